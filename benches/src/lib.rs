@@ -1,0 +1,1 @@
+//! prism-benches: not built yet; see ARCHITECTURE.md and the issue tracker.

@@ -1,0 +1,1 @@
+//! prism-integrator: not built yet; see ARCHITECTURE.md and the issue tracker.

@@ -1,0 +1,1 @@
+//! prism-sampling: not built yet; see ARCHITECTURE.md and the issue tracker.

@@ -1,0 +1,1 @@
+//! prism-scene: not built yet; see ARCHITECTURE.md and the issue tracker.

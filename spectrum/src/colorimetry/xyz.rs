@@ -1,0 +1,163 @@
+use super::Observer;
+use crate::constants::{LAMBDA_MAX, LAMBDA_MIN};
+use crate::error::SpectrumError;
+use crate::Spectrum;
+
+/// CIE XYZ tristimulus values.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Xyz {
+    /// X.
+    pub x: f64,
+    /// Y (luminance, relative or absolute depending on where the value came from).
+    pub y: f64,
+    /// Z.
+    pub z: f64,
+}
+
+/// CIE 1931 xy chromaticity coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Chromaticity {
+    /// x = X / (X + Y + Z).
+    pub x: f64,
+    /// y = Y / (X + Y + Z).
+    pub y: f64,
+}
+
+/// CIE 1960 UCS chromaticity coordinates (u, v), in which CCT is defined.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Uv {
+    /// u = 4X / (X + 15Y + 3Z).
+    pub u: f64,
+    /// v = 6Y / (X + 15Y + 3Z).
+    pub v: f64,
+}
+
+impl Xyz {
+    /// XYZ from its components.
+    pub const fn new(x: f64, y: f64, z: f64) -> Self {
+        Self { x, y, z }
+    }
+
+    /// The components as an array.
+    pub fn to_array(self) -> [f64; 3] {
+        [self.x, self.y, self.z]
+    }
+
+    /// XYZ with luminance `luminance` at chromaticity `xy` (xyY to XYZ). Errors when
+    /// `xy.y <= 0` (no colour has it) or an input is not finite.
+    pub fn from_xy_luminance(xy: Chromaticity, luminance: f64) -> Result<Self, SpectrumError> {
+        if !(xy.y > 0.0 && xy.x.is_finite() && xy.y.is_finite() && luminance.is_finite()) {
+            return Err(SpectrumError::Degenerate(format!(
+                "chromaticity ({}, {}) with luminance {} has no XYZ (need y > 0, all finite)",
+                xy.x, xy.y, luminance
+            )));
+        }
+        let scale = luminance / xy.y;
+        Ok(Self::new(xy.x * scale, luminance, (1.0 - xy.x - xy.y) * scale))
+    }
+
+    /// The chromaticity, or an error for a colour with X + Y + Z = 0 (black).
+    pub fn chromaticity(self) -> Result<Chromaticity, SpectrumError> {
+        let sum = self.x + self.y + self.z;
+        if sum == 0.0 || !sum.is_finite() {
+            return Err(SpectrumError::Degenerate(format!(
+                "XYZ ({}, {}, {}) has no chromaticity (X + Y + Z = {sum})",
+                self.x, self.y, self.z
+            )));
+        }
+        Ok(Chromaticity {
+            x: self.x / sum,
+            y: self.y / sum,
+        })
+    }
+
+    /// CIE 1960 (u, v), or an error where X + 15Y + 3Z = 0.
+    pub fn uv(self) -> Result<Uv, SpectrumError> {
+        let d = self.x + 15.0 * self.y + 3.0 * self.z;
+        if d == 0.0 || !d.is_finite() {
+            return Err(SpectrumError::Degenerate(format!(
+                "XYZ ({}, {}, {}) has no (u, v) chromaticity",
+                self.x, self.y, self.z
+            )));
+        }
+        Ok(Uv {
+            u: 4.0 * self.x / d,
+            v: 6.0 * self.y / d,
+        })
+    }
+
+    /// Scaled so that Y = 1, or an error if Y is zero or not finite.
+    pub fn normalized_to_unit_y(self) -> Result<Self, SpectrumError> {
+        if self.y == 0.0 || !self.y.is_finite() {
+            return Err(SpectrumError::Degenerate(format!(
+                "cannot normalize to Y = 1: the spectrum has luminance Y = {}",
+                self.y
+            )));
+        }
+        Ok(Self::new(self.x / self.y, 1.0, self.z / self.y))
+    }
+}
+
+impl Chromaticity {
+    /// xy from its components.
+    pub const fn new(x: f64, y: f64) -> Self {
+        Self { x, y }
+    }
+}
+
+/// Wavelengths of the 1 nm integration grid, 360..=830.
+fn grid() -> impl Iterator<Item = f64> {
+    (LAMBDA_MIN as i32..=LAMBDA_MAX as i32).map(f64::from)
+}
+
+/// Tristimulus values of an emission spectrum: X = sum S(l) x-bar(l) dl over 360-830 nm at
+/// dl = 1 nm (CIE 015:2018 §7.1 with k = 1). For radiance in W m^-2 sr^-1 nm^-1, multiply
+/// Y by [`crate::constants::LUMINOUS_EFFICACY_MAX`] for luminance in cd m^-2.
+pub fn emission_xyz<S: Spectrum + ?Sized>(spectrum: &S, observer: Observer) -> Xyz {
+    let mut xyz = [0.0f64; 3];
+    for l in grid() {
+        let s = spectrum.evaluate(l);
+        if s != 0.0 {
+            for (acc, c) in xyz.iter_mut().zip(observer.cmf(l)) {
+                *acc += s * c;
+            }
+        }
+    }
+    Xyz::new(xyz[0], xyz[1], xyz[2])
+}
+
+/// Emission XYZ scaled to Y = 1: the colour of a light independent of its power. Errors
+/// for a spectrum with no luminance (for example a 1 K blackbody, or pure UV).
+pub fn luminous_xyz_normalized<S: Spectrum + ?Sized>(
+    spectrum: &S,
+    observer: Observer,
+) -> Result<Xyz, SpectrumError> {
+    emission_xyz(spectrum, observer).normalized_to_unit_y()
+}
+
+/// Tristimulus values of a reflectance (or transmittance) under an illuminant, normalized
+/// so that a perfect reflecting diffuser has Y = 1 (CIE 015:2018 §7.2 with
+/// k = 1 / sum S y-bar). Errors for an illuminant with no luminance.
+pub fn reflectance_xyz<R: Spectrum + ?Sized, I: Spectrum + ?Sized>(
+    reflectance: &R,
+    illuminant: &I,
+    observer: Observer,
+) -> Result<Xyz, SpectrumError> {
+    let mut xyz = [0.0f64; 3];
+    let mut white_y = 0.0;
+    for l in grid() {
+        let s = illuminant.evaluate(l);
+        let cmf = observer.cmf(l);
+        white_y += s * cmf[1];
+        let sr = s * reflectance.evaluate(l);
+        for (acc, c) in xyz.iter_mut().zip(cmf) {
+            *acc += sr * c;
+        }
+    }
+    if white_y == 0.0 || !white_y.is_finite() {
+        return Err(SpectrumError::Degenerate(format!(
+            "the illuminant has luminance {white_y}: reflectance colour is undefined"
+        )));
+    }
+    Ok(Xyz::new(xyz[0] / white_y, xyz[1] / white_y, xyz[2] / white_y))
+}

@@ -1,0 +1,79 @@
+//! The one error type of this crate.
+
+use std::fmt;
+
+/// What went wrong when building or evaluating a spectral quantity.
+///
+/// Every variant renders as one line that names the offending input, so a command-line
+/// tool can print it as it is.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SpectrumError {
+    /// A numeric argument outside its domain (negative temperature, NaN wavelength...).
+    InvalidValue {
+        /// What the value is (for example "temperature").
+        what: &'static str,
+        /// The value that was given.
+        value: f64,
+        /// The domain it must lie in, in words.
+        expected: &'static str,
+    },
+    /// A table that cannot describe a spectrum (unsorted, mismatched lengths, malformed text).
+    InvalidTable(String),
+    /// A name that is not in a catalogue; `valid` lists the accepted names.
+    UnknownName {
+        /// What kind of thing was looked up (for example "illuminant").
+        kind: &'static str,
+        /// The name that was given.
+        name: String,
+        /// The accepted names, comma separated.
+        valid: String,
+    },
+    /// A computation whose answer does not exist for this input (a spectrum with zero
+    /// luminance cannot be normalized, collinear primaries span no colour space...).
+    Degenerate(String),
+}
+
+impl fmt::Display for SpectrumError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SpectrumError::InvalidValue {
+                what,
+                value,
+                expected,
+            } => write!(f, "invalid {what} {value}: expected {expected}"),
+            SpectrumError::InvalidTable(msg) => write!(f, "invalid spectral table: {msg}"),
+            SpectrumError::UnknownName { kind, name, valid } => {
+                write!(f, "unknown {kind} '{name}' (valid: {valid})")
+            }
+            SpectrumError::Degenerate(msg) => f.write_str(msg),
+        }
+    }
+}
+
+impl std::error::Error for SpectrumError {}
+
+/// Checks that `value` is finite and strictly positive.
+pub(crate) fn require_positive(what: &'static str, value: f64) -> Result<f64, SpectrumError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(SpectrumError::InvalidValue {
+            what,
+            value,
+            expected: "a finite number > 0",
+        })
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn require_finite(what: &'static str, value: f64) -> Result<f64, SpectrumError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(SpectrumError::InvalidValue {
+            what,
+            value,
+            expected: "a finite number",
+        })
+    }
+}

@@ -1,0 +1,108 @@
+use crate::constants::{BOLTZMANN, PLANCK, SPEED_OF_LIGHT, WIEN_DISPLACEMENT, WIEN_X};
+use crate::error::{require_positive, SpectrumError};
+use crate::Spectrum;
+
+/// Planck's law: spectral radiance of a blackbody at `kelvin`, at vacuum wavelength
+/// `lambda_m` (metres), in W m^-2 sr^-1 m^-1 (SI, per metre of wavelength).
+///
+/// Domain: every input. Non-positive or non-finite wavelengths and temperatures give 0
+/// (no emission), as does an exponent so large that the true value is below the smallest
+/// `f64`; the result is never NaN or infinite for `lambda_m >= 1e-12`. Accuracy: a few ulp,
+/// because `exp(x) - 1` is evaluated with `exp_m1` (no cancellation at high temperature)
+/// and an overflowing `exp_m1` correctly yields 0 (Wien tail at low temperature).
+pub fn planck_radiance(lambda_m: f64, kelvin: f64) -> f64 {
+    if !(lambda_m > 0.0 && kelvin > 0.0 && lambda_m.is_finite() && kelvin.is_finite()) {
+        return 0.0;
+    }
+    let x = PLANCK * SPEED_OF_LIGHT / (lambda_m * BOLTZMANN * kelvin);
+    // 2 h c^2 / lambda^5, split so that lambda^5 cannot underflow before the division.
+    let l2 = lambda_m * lambda_m;
+    let prefactor = 2.0 * PLANCK * SPEED_OF_LIGHT * SPEED_OF_LIGHT / (l2 * l2 * lambda_m);
+    let value = prefactor / x.exp_m1();
+    if value.is_finite() {
+        value
+    } else {
+        0.0
+    }
+}
+
+/// Whether a [`Blackbody`] evaluates to absolute radiance or to its shape with peak 1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Normalization {
+    /// Spectral radiance in W m^-2 sr^-1 nm^-1 (prism's radiance unit).
+    Absolute,
+    /// Divided by the value at the Wien peak, so the maximum over all wavelengths is 1.
+    PeakOne,
+}
+
+/// The emission of an ideal blackbody radiator (Planck's law).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Blackbody {
+    kelvin: f64,
+    normalization: Normalization,
+}
+
+impl Blackbody {
+    /// Absolute spectral radiance, W m^-2 sr^-1 nm^-1, at `kelvin` (finite, > 0).
+    pub fn new(kelvin: f64) -> Result<Self, SpectrumError> {
+        Ok(Self {
+            kelvin: require_positive("blackbody temperature (K)", kelvin)?,
+            normalization: Normalization::Absolute,
+        })
+    }
+
+    /// The blackbody's spectral shape with peak value 1, at `kelvin` (finite, > 0).
+    pub fn normalized(kelvin: f64) -> Result<Self, SpectrumError> {
+        Ok(Self {
+            normalization: Normalization::PeakOne,
+            ..Self::new(kelvin)?
+        })
+    }
+
+    /// Temperature, K.
+    pub fn kelvin(&self) -> f64 {
+        self.kelvin
+    }
+
+    /// Wavelength of maximum spectral radiance (Wien's displacement law), nm.
+    pub fn peak_nm(&self) -> f64 {
+        WIEN_DISPLACEMENT / self.kelvin * 1e9
+    }
+
+    /// Spectral radiance in SI units, W m^-2 sr^-1 m^-1, at `lambda_m` metres.
+    pub fn radiance_si(&self, lambda_m: f64) -> f64 {
+        planck_radiance(lambda_m, self.kelvin)
+    }
+}
+
+impl Spectrum for Blackbody {
+    /// 0 for non-positive or non-finite wavelengths.
+    fn evaluate(&self, lambda_nm: f64) -> f64 {
+        match self.normalization {
+            Normalization::Absolute => planck_radiance(lambda_nm * 1e-9, self.kelvin) * 1e-9,
+            Normalization::PeakOne => {
+                if !(lambda_nm > 0.0 && lambda_nm.is_finite()) {
+                    return 0.0;
+                }
+                // B(l) / B(l_peak) = (l_peak / l)^5 (e^x_peak - 1) / (e^x - 1): a ratio of
+                // modest numbers, so neither overflows even where B itself would.
+                let ratio = self.peak_nm() / lambda_nm;
+                let x = WIEN_X * ratio;
+                let r2 = ratio * ratio;
+                let value = r2 * r2 * ratio * WIEN_X.exp_m1() / x.exp_m1();
+                if value.is_finite() {
+                    value.min(1.0)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    fn max_value(&self) -> f64 {
+        match self.normalization {
+            Normalization::Absolute => self.evaluate(self.peak_nm()),
+            Normalization::PeakOne => 1.0,
+        }
+    }
+}

@@ -1,0 +1,13 @@
+//! Concrete spectrum representations.
+
+mod blackbody;
+mod constant;
+mod dense;
+mod gaussian;
+mod piecewise_linear;
+
+pub use blackbody::{planck_radiance, Blackbody, Normalization};
+pub use constant::Constant;
+pub use dense::DenselySampled;
+pub use gaussian::Gaussian;
+pub use piecewise_linear::{Extrapolation, PiecewiseLinear};
