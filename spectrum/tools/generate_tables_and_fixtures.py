@@ -46,6 +46,17 @@ DATA_RS = SPECTRUM / "src" / "data"
 FIXTURES = SPECTRUM / "tests" / "fixtures"
 
 COLOUR_VERSION = colour.__version__
+# prism uses the exact SI constants (CODATA 2018) in Planck's law; colour-science defaults
+# to the rounded ITS-90 c2 = 1.4388e-2, so pass both radiation constants explicitly.
+# (colour's own Ohno 2013 Planckian table keeps its default c2: a 1.6e-5 relative shift in
+# temperature, 0.16 K at 10 000 K, which the CCT tolerances absorb and document.)
+C1 = 2.0 * math.pi * sc.h * sc.c**2
+C2 = sc.h * sc.c / sc.k
+
+
+def planck(wavelength_m, kelvin):
+    return colour.colorimetry.planck_law(wavelength_m, kelvin, c1=C1, c2=C2)
+
 WL = np.arange(360, 831, 1.0)
 
 OBSERVERS = {
@@ -195,7 +206,7 @@ def reference():
             spd = on_grid(sd.shape.start, sd.shape.interval, sd.values)
             entries[rust_name(ill)] = xy_of(xyz_emission(spd, observer))
         for t in range(1000, 25001, 500):
-            bb = colour.colorimetry.planck_law(WL * 1e-9, t)
+            bb = planck(WL * 1e-9, t)
             entries[f"blackbody:{t}"] = xy_of(xyz_emission(bb, observer))
         chroma[observer] = entries
     ref["chromaticity_xy"] = chroma
@@ -292,7 +303,7 @@ def reference():
 
     cct = {"blackbody": [], "daylight": []}
     for t in list(range(1000, 10001, 250)) + list(range(11000, 25001, 1000)):
-        uv = uv_of(colour.colorimetry.planck_law(WL * 1e-9, t))
+        uv = uv_of(planck(WL * 1e-9, t))
         tc, duv = colour.temperature.uv_to_CCT_Ohno2013(uv)
         cct["blackbody"].append({"kelvin": t, "uv": uv.tolist(), "ohno2013_cct": float(tc), "duv": float(duv)})
     for t in list(range(4000, 10001, 500)) + list(range(12000, 25001, 2000)):
@@ -323,13 +334,13 @@ def reference():
     }
 
     # Planck's law, absolute spectral radiance in W m^-2 sr^-1 m^-1.
-    planck = []
+    planck_rows = []
     for t in [300.0, 1000.0, 2856.0, 5778.0, 6504.0, 20000.0, 1.0e6]:
         for nm in [1.0, 100.0, 360.0, 555.0, 830.0, 10000.0, 1.0e6]:
-            value = float(colour.colorimetry.planck_law(nm * 1e-9, t))
+            value = float(planck(nm * 1e-9, t))
             if value > 0.0 and math.isfinite(value):
-                planck.append({"kelvin": t, "nm": nm, "radiance": value})
-    ref["planck"] = planck
+                planck_rows.append({"kelvin": t, "nm": nm, "radiance": value})
+    ref["planck"] = planck_rows
 
     ref["constants"] = {
         "h": sc.h,

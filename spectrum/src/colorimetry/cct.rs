@@ -47,8 +47,9 @@ pub fn cct_ohno2013(uv: Uv) -> Result<CctResult, SpectrumError> {
         )));
     }
     let distance = |p: Uv| (p.u - uv.u).hypot(p.v - uv.v);
-    let (mut lo, mut hi) = (CCT_MIN_KELVIN.ln(), CCT_MAX_KELVIN.ln());
-    let mut first = true;
+    // The first table reaches a little beyond the supported range so that a colour exactly
+    // at either end is found in its interior; results outside the range are rejected below.
+    let (mut lo, mut hi) = ((0.9 * CCT_MIN_KELVIN).ln(), (1.1 * CCT_MAX_KELVIN).ln());
     loop {
         let step = (hi - lo) / TABLE_STEPS as f64;
         let mut table = Vec::with_capacity(TABLE_STEPS + 1);
@@ -60,21 +61,26 @@ pub fn cct_ohno2013(uv: Uv) -> Result<CctResult, SpectrumError> {
         let nearest = (0..table.len())
             .min_by(|&a, &b| table[a].2.total_cmp(&table[b].2))
             .unwrap_or(0);
-        if first && (nearest == 0 || nearest == TABLE_STEPS) {
-            return Err(SpectrumError::Degenerate(format!(
-                "(u, v) = ({:.5}, {:.5}) is nearest the Planckian locus outside \
-                 {CCT_MIN_KELVIN}-{CCT_MAX_KELVIN} K: no CCT",
-                uv.u, uv.v
-            )));
-        }
-        first = false;
         let i = nearest.clamp(1, TABLE_STEPS - 1);
         if step < FINAL_SPACING {
-            return Ok(solve(table[i - 1], table[i], table[i + 1], uv));
+            let result = solve(table[i - 1], table[i], table[i + 1], uv);
+            let slack = 1.0 + 1e-6;
+            if result.kelvin < CCT_MIN_KELVIN / slack || result.kelvin > CCT_MAX_KELVIN * slack {
+                return Err(out_of_range(uv));
+            }
+            return Ok(result);
         }
         lo = table[i - 1].0.ln();
         hi = table[i + 1].0.ln();
     }
+}
+
+fn out_of_range(uv: Uv) -> SpectrumError {
+    SpectrumError::Degenerate(format!(
+        "(u, v) = ({:.5}, {:.5}) is nearest the Planckian locus outside \
+         {CCT_MIN_KELVIN}-{CCT_MAX_KELVIN} K: no CCT",
+        uv.u, uv.v
+    ))
 }
 
 /// Ohno's triangular solution, or the parabolic one away from the locus.

@@ -1,0 +1,28 @@
+//! Helpers shared by the integration tests: fixture loading.
+
+#![allow(dead_code)]
+
+use serde_json::Value;
+
+/// Parses a fixture file from `tests/fixtures`.
+pub fn fixture(name: &str) -> Value {
+    let path = format!("{}/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// A JSON number as f64.
+pub fn num(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// A JSON array of numbers.
+pub fn nums(v: &Value) -> Vec<f64> {
+    v.as_array().unwrap_or_else(|| panic!("not an array: {v}")).iter().map(num).collect()
+}
+
+/// A JSON 3x3 array.
+pub fn mat3(v: &Value) -> [[f64; 3]; 3] {
+    let rows: Vec<Vec<f64>> = v.as_array().unwrap().iter().map(nums).collect();
+    std::array::from_fn(|r| std::array::from_fn(|c| rows[r][c]))
+}
