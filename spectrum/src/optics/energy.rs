@@ -4,25 +4,31 @@ use crate::error::{require_positive, SpectrumError};
 use crate::Spectrum;
 
 /// Energy of one photon of vacuum wavelength `lambda_nm`, E = h c / lambda, in joules.
-/// Errors unless `lambda_nm` is finite and > 0.
+/// Errors unless `lambda_nm` is finite and > 0 (and large enough, > ~1e-290 nm, for the
+/// energy to be finite); beyond ~1e290 nm the energy underflows to 0.
 pub fn photon_energy_joules(lambda_nm: f64) -> Result<f64, SpectrumError> {
+    finite_energy(lambda_nm, PLANCK * SPEED_OF_LIGHT * 1e9)
+}
+
+/// Energy of one photon of vacuum wavelength `lambda_nm`, in electronvolts
+/// (1239.84... / lambda_nm).
+pub fn photon_energy_ev(lambda_nm: f64) -> Result<f64, SpectrumError> {
+    finite_energy(lambda_nm, PLANCK * SPEED_OF_LIGHT * 1e9 / ELEMENTARY_CHARGE)
+}
+
+/// `hc_in_unit_nm / lambda_nm`, or an error where that is not a finite number.
+fn finite_energy(lambda_nm: f64, hc_in_unit_nm: f64) -> Result<f64, SpectrumError> {
     let lambda = require_positive("photon wavelength (nm)", lambda_nm)?;
-    let energy = PLANCK * SPEED_OF_LIGHT / (lambda * 1e-9);
+    let energy = hc_in_unit_nm / lambda;
     if energy.is_finite() {
         Ok(energy)
     } else {
         Err(SpectrumError::InvalidValue {
             what: "photon wavelength (nm)",
             value: lambda_nm,
-            expected: "large enough for a finite photon energy",
+            expected: "large enough for a finite photon energy (> ~1e-290 nm)",
         })
     }
-}
-
-/// Energy of one photon of vacuum wavelength `lambda_nm`, in electronvolts
-/// (1239.84... / lambda_nm).
-pub fn photon_energy_ev(lambda_nm: f64) -> Result<f64, SpectrumError> {
-    Ok(photon_energy_joules(lambda_nm)? / ELEMENTARY_CHARGE)
 }
 
 /// Photometric quantity of a radiometric spectrum: K_m * integral S(l) y-bar(l) dl with

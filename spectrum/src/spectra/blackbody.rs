@@ -6,19 +6,24 @@ use crate::Spectrum;
 /// `lambda_m` (metres), in W m^-2 sr^-1 m^-1 (SI, per metre of wavelength).
 ///
 /// Domain: every input. Non-positive or non-finite wavelengths and temperatures give 0
-/// (no emission), as does an exponent so large that the true value is below the smallest
-/// `f64`; the result is never NaN or infinite for `lambda_m >= 1e-12`. Accuracy: a few ulp,
-/// because `exp(x) - 1` is evaluated with `exp_m1` (no cancellation at high temperature)
-/// and an overflowing `exp_m1` correctly yields 0 (Wien tail at low temperature).
+/// (no emission); the result is never NaN or infinite. It is 0 where the true value is
+/// below the smallest `f64`, and also where it would exceed the largest (only possible
+/// for wavelengths below 1e-12 m at absurd temperatures). Accuracy: better than 1e-12 relative, because the
+/// Rayleigh-Jeans side (x = hc / lambda k T <= 1) divides by `exp_m1(x)`, which has no
+/// cancellation, and the Wien side evaluates `exp(ln(2hc^2/lambda^5) - x) / (1 - e^-x)`,
+/// which neither overflows (as `e^x` would past x = 709) nor loses the prefactor.
 pub fn planck_radiance(lambda_m: f64, kelvin: f64) -> f64 {
     if !(lambda_m > 0.0 && kelvin > 0.0 && lambda_m.is_finite() && kelvin.is_finite()) {
         return 0.0;
     }
     let x = PLANCK * SPEED_OF_LIGHT / (lambda_m * BOLTZMANN * kelvin);
-    // 2 h c^2 / lambda^5, split so that lambda^5 cannot underflow before the division.
-    let l2 = lambda_m * lambda_m;
-    let prefactor = 2.0 * PLANCK * SPEED_OF_LIGHT * SPEED_OF_LIGHT / (l2 * l2 * lambda_m);
-    let value = prefactor / x.exp_m1();
+    // ln(2 h c^2 / lambda^5): finite for every positive finite lambda.
+    let ln_prefactor = (2.0 * PLANCK * SPEED_OF_LIGHT * SPEED_OF_LIGHT).ln() - 5.0 * lambda_m.ln();
+    let value = if x <= 1.0 {
+        ln_prefactor.exp() / x.exp_m1()
+    } else {
+        (ln_prefactor - x).exp() / -(-x).exp_m1()
+    };
     if value.is_finite() {
         value
     } else {

@@ -15,9 +15,18 @@ impl Gaussian {
     /// given `peak` value. Centre and peak must be finite, the width finite and positive.
     pub fn new(center_nm: f64, fwhm_nm: f64, peak: f64) -> Result<Self, SpectrumError> {
         let fwhm = require_positive("Gaussian FWHM (nm)", fwhm_nm)?;
+        let sigma_nm = fwhm / (2.0 * (2.0 * std::f64::consts::LN_2).sqrt());
+        // A subnormal width would make sigma 0 (or lose all precision): reject it.
+        if !sigma_nm.is_normal() {
+            return Err(SpectrumError::InvalidValue {
+                what: "Gaussian FWHM (nm)",
+                value: fwhm_nm,
+                expected: "a normal (not subnormal) positive number",
+            });
+        }
         Ok(Self {
             center_nm: require_finite("Gaussian centre (nm)", center_nm)?,
-            sigma_nm: fwhm / (2.0 * (2.0 * std::f64::consts::LN_2).sqrt()),
+            sigma_nm,
             peak: require_finite("Gaussian peak", peak)?,
         })
     }

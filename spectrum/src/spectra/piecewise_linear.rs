@@ -66,11 +66,9 @@ impl PiecewiseLinear {
                 lambdas[i + 1]
             )));
         }
-        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let max = match extrapolation {
-            Extrapolation::Zero => max.max(0.0),
-            Extrapolation::Clamp => max,
-        };
+        // An upper bound that includes 0, the value at NaN wavelengths (and outside the
+        // table under `Extrapolation::Zero`).
+        let max = values.iter().copied().fold(0.0, f64::max);
         Ok(Self {
             lambdas,
             values,

@@ -1,0 +1,166 @@
+//! Numerical stability of the spectrum representations at the extremes.
+
+use prism_spectrum::constants::{BOLTZMANN, PLANCK, SPEED_OF_LIGHT};
+use prism_spectrum::spectra::{
+    planck_radiance, Blackbody, Constant, DenselySampled, Extrapolation, Gaussian, PiecewiseLinear,
+};
+use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use proptest::prelude::*;
+
+/// Any f64 at all, with the awkward ones well represented.
+fn any_f64() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(0.0),
+        Just(-0.0),
+        Just(1.0),
+        Just(f64::MIN_POSITIVE),
+        Just(5e-324),
+        Just(f64::MAX),
+        Just(f64::MIN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(f64::NAN),
+        -1e6..1e6f64,
+        any::<f64>(),
+    ]
+}
+
+/// Log-uniform in [lo, hi].
+fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+/// An independent f64 formulation of Planck's law, accurate where it is used: the Wien
+/// form e^-x / (1 - e^-x) for x > 1e-3, the Rayleigh-Jeans series 1/x - 1/2 + x/12 below.
+fn planck_reference(lambda_m: f64, kelvin: f64) -> f64 {
+    let x = PLANCK * SPEED_OF_LIGHT / (lambda_m * BOLTZMANN * kelvin);
+    let c1 = 2.0 * PLANCK * SPEED_OF_LIGHT * SPEED_OF_LIGHT;
+    let bose = if x > 1e-3 {
+        (-x).exp() / (1.0 - (-x).exp())
+    } else {
+        1.0 / x - 0.5 + x / 12.0
+    };
+    c1 / lambda_m.powi(5) * bose
+}
+
+proptest! {
+    /// T in [1 K, 1e9 K], lambda in [1 nm, 1 mm]: finite, non-negative, 1e-12 relative to
+    /// the independent f64 form in f64 and 1e-5 in the renderer's f32 lanes wherever the
+    /// value is representable in f32.
+    #[test]
+    fn planck_is_finite_and_accurate(kelvin in log_uniform(1.0, 1e9), lambda_m in log_uniform(1e-9, 1e-3)) {
+        let got = planck_radiance(lambda_m, kelvin);
+        prop_assert!(got.is_finite() && got >= 0.0);
+        let reference = planck_reference(lambda_m, kelvin);
+        if reference > 1e-300 {
+            prop_assert!(((got - reference) / reference).abs() < 1e-12, "{got} vs {reference}");
+        } else {
+            prop_assert!(got <= 1e-290);
+        }
+        let body = Blackbody::new(kelvin).unwrap();
+        let lambda_nm = lambda_m * 1e9;
+        let lane = body.sample(&SampledWavelengths::new([lambda_nm as f32], [1.0]).unwrap()).0[0];
+        prop_assert!(lane.is_finite() && lane >= 0.0);
+        let per_nm = planck_radiance(f64::from(lambda_nm as f32) * 1e-9, kelvin) * 1e-9;
+        if per_nm > 1e-30 && per_nm < 1e38 {
+            prop_assert!(((f64::from(lane) - per_nm) / per_nm).abs() < 1e-5, "{lane} vs {per_nm}");
+        }
+    }
+
+    /// The normalized blackbody is in [0, 1] everywhere, with no 0/0 anywhere, and 1 at
+    /// the Wien peak.
+    #[test]
+    fn normalized_blackbody_is_bounded(kelvin in log_uniform(1.0, 1e9), lambda in any_f64()) {
+        let body = Blackbody::normalized(kelvin).unwrap();
+        let v = body.evaluate(lambda);
+        prop_assert!(v.is_finite() && (0.0..=1.0).contains(&v), "{v}");
+        let peak = body.evaluate(body.peak_nm());
+        prop_assert!((peak - 1.0).abs() < 1e-12, "{peak}");
+    }
+
+    /// Planck never overflows, never NaNs, for any input at all.
+    #[test]
+    fn planck_total(lambda in any_f64(), kelvin in any_f64()) {
+        let v = planck_radiance(lambda, kelvin);
+        prop_assert!(v.is_finite() && v >= 0.0);
+        match Blackbody::new(kelvin) {
+            Ok(b) => {
+                prop_assert!(b.evaluate(lambda).is_finite());
+                prop_assert!(b.max_value().is_finite());
+            }
+            Err(_) => prop_assert!(!(kelvin > 0.0 && kelvin.is_finite())),
+        }
+    }
+
+    /// Tabulated spectra evaluate finitely everywhere and stay inside the table's range.
+    #[test]
+    fn piecewise_linear_is_finite_and_bounded(
+        values in prop::collection::vec(-1e6..1e6f64, 2..50),
+        start in -1e3..1e3f64,
+        lambda in any_f64(),
+        clamp in any::<bool>(),
+    ) {
+        let lambdas: Vec<f64> = (0..values.len()).map(|i| start + 3.0 * i as f64).collect();
+        let extrapolation = if clamp { Extrapolation::Clamp } else { Extrapolation::Zero };
+        let s = PiecewiseLinear::new(lambdas, values.clone(), extrapolation).unwrap();
+        let v = s.evaluate(lambda);
+        let lo = values.iter().copied().fold(0.0f64, f64::min);
+        let hi = values.iter().copied().fold(0.0f64, f64::max);
+        prop_assert!(v.is_finite() && v >= lo - 1e-9 && v <= hi + 1e-9);
+        prop_assert!(v <= s.max_value() + 1e-9);
+    }
+
+    /// Malformed tables are errors, never panics.
+    #[test]
+    fn piecewise_linear_rejects_bad_tables(
+        lambdas in prop::collection::vec(any_f64(), 0..6),
+        values in prop::collection::vec(any_f64(), 0..6),
+    ) {
+        let ok = PiecewiseLinear::new(lambdas.clone(), values.clone(), Extrapolation::Zero).is_ok();
+        let valid = lambdas.len() == values.len()
+            && lambdas.len() >= 2
+            && lambdas.iter().chain(&values).all(|v| v.is_finite())
+            && lambdas.windows(2).all(|w| w[0] < w[1]);
+        prop_assert_eq!(ok, valid);
+    }
+
+    /// CSV parsing never panics, whatever the text.
+    #[test]
+    fn csv_parsing_is_total(text in ".{0,200}") {
+        let _ = PiecewiseLinear::from_csv_str(&text, Extrapolation::Zero);
+    }
+
+    #[test]
+    fn gaussian_and_constant_are_total(c in any_f64(), w in any_f64(), p in any_f64(), lambda in any_f64()) {
+        if let Ok(g) = Gaussian::new(c, w, p) {
+            prop_assert!(g.evaluate(lambda).is_finite());
+        }
+        if let Ok(k) = Constant::new(c) {
+            prop_assert!(k.evaluate(lambda).is_finite());
+        }
+    }
+
+    #[test]
+    fn dense_sampling_is_total(kelvin in log_uniform(100.0, 1e6), lambda in any_f64()) {
+        let dense = DenselySampled::from_spectrum(&Blackbody::normalized(kelvin).unwrap(), 300, 1000).unwrap();
+        let v = dense.evaluate(lambda);
+        prop_assert!(v.is_finite() && (0.0..=1.0).contains(&v));
+    }
+
+    /// Lane arithmetic: division by zero gives 0, never inf or NaN; colour of finite lanes
+    /// is finite.
+    #[test]
+    fn sampled_spectrum_arithmetic_is_finite(
+        a in prop::array::uniform4(-1e6f32..1e6),
+        b in prop::array::uniform4(prop_oneof![Just(0.0f32), -1e6f32..1e6]),
+        lambda in prop::array::uniform4(300.0f32..900.0),
+        pdf in prop::array::uniform4(prop_oneof![Just(0.0f32), Just(1e-38f32), 1e-6f32..1.0]),
+    ) {
+        let (sa, sb) = (SampledSpectrum(a), SampledSpectrum(b));
+        prop_assert!((sa / sb).is_finite());
+        prop_assert!((sa * sb + sa - sb).is_finite());
+        let wl = SampledWavelengths::new(lambda, pdf).unwrap();
+        let xyz = sa.to_xyz(&wl, Default::default());
+        prop_assert!(xyz.x.is_finite() && xyz.y.is_finite() && xyz.z.is_finite());
+    }
+}
