@@ -1,1 +1,71 @@
-fn main() {}
+//! `prism`: the command-line front end of the prism spectral renderer.
+//!
+//! The binary is thin by design (see ARCHITECTURE.md): it parses arguments, reads files,
+//! and composes the library crates. Every failure is one line on stderr and a non-zero exit
+//! code: 2 for a malformed command line, 1 for anything else.
+
+mod commands;
+mod spectrum_spec;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// prism: a spectral path tracer.
+#[derive(Debug, Parser)]
+#[command(name = "prism", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Print the colorimetry of one spectrum: XYZ, chromaticity, RGB and CCT.
+    Color(commands::color::ColorArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(error) => return usage_error(error),
+    };
+    let result = match cli.command {
+        Command::Color(args) => commands::color::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("prism: error: {message}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Help and version go to stdout with success; real usage errors become one line.
+fn usage_error(error: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match error.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // Printing help can only fail if stdout is closed; nothing useful remains to do.
+            let _ = error.print();
+            if error.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        _ => {
+            let rendered = error.render().to_string();
+            let first = rendered
+                .lines()
+                .next()
+                .unwrap_or("invalid arguments")
+                .trim_start_matches("error: ");
+            eprintln!("prism: error: {first} (see 'prism --help')");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -3,7 +3,7 @@
 //! Tables from CIE 015:2018 (Table 5 for A, D-series and E; Table 10 for F1-F12; Table 6
 //! for the daylight basis S0, S1, S2), via colour-science (see `data/PROVENANCE.md`).
 
-use crate::colorimetry::{emission_xyz, Chromaticity, Observer};
+use crate::colorimetry::{Chromaticity, Observer, emission_xyz};
 use crate::data::cie_illuminants::{self as tables, RegularTable};
 use crate::error::SpectrumError;
 use crate::spectra::{Extrapolation, PiecewiseLinear};

@@ -146,11 +146,7 @@ impl<const N: usize> IndexMut<usize> for SampledSpectrum<N> {
 }
 
 fn safe_div(a: f32, b: f32) -> f32 {
-    if b == 0.0 {
-        0.0
-    } else {
-        a / b
-    }
+    if b == 0.0 { 0.0 } else { a / b }
 }
 
 macro_rules! lanewise {

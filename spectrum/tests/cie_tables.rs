@@ -13,13 +13,32 @@ use prism_spectrum::__tables::{cie_cmf, cie_illuminants};
 fn colour_matching_functions_equal_source() {
     let source = fixture("cie_source.json");
     for (key, tables) in [
-        ("cie1931", [&cie_cmf::CIE1931_X, &cie_cmf::CIE1931_Y, &cie_cmf::CIE1931_Z]),
-        ("cie1964", [&cie_cmf::CIE1964_X, &cie_cmf::CIE1964_Y, &cie_cmf::CIE1964_Z]),
+        (
+            "cie1931",
+            [
+                &cie_cmf::CIE1931_X,
+                &cie_cmf::CIE1931_Y,
+                &cie_cmf::CIE1931_Z,
+            ],
+        ),
+        (
+            "cie1964",
+            [
+                &cie_cmf::CIE1964_X,
+                &cie_cmf::CIE1964_Y,
+                &cie_cmf::CIE1964_Z,
+            ],
+        ),
     ] {
         let wavelengths = nums(&source["cmfs"][key]["wavelengths"]);
         assert_eq!(wavelengths.len(), cie_cmf::CMF_LEN);
         assert_eq!(wavelengths[0], cie_cmf::CMF_FIRST_NM);
-        for (i, row) in source["cmfs"][key]["xyz"].as_array().unwrap().iter().enumerate() {
+        for (i, row) in source["cmfs"][key]["xyz"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .enumerate()
+        {
             assert_eq!(wavelengths[i], cie_cmf::CMF_FIRST_NM + i as f64);
             for (axis, table) in tables.iter().enumerate() {
                 assert_eq!(table[i], num(&row[axis]), "{key} axis {axis} at row {i}");

@@ -3,14 +3,14 @@
 mod common;
 
 use common::{fixture, num};
+use prism_spectrum::Spectrum;
 use prism_spectrum::constants::{BOLTZMANN, PLANCK, SPEED_OF_LIGHT, WIEN_DISPLACEMENT};
 use prism_spectrum::illuminant::StandardIlluminant;
 use prism_spectrum::optics::{
-    abbe_number, luminous_flux, named_glass, named_metal, photon_energy_ev, photon_energy_joules,
-    radiant_scale_for_luminance, Cauchy, Sellmeier, FRAUNHOFER_C_NM, FRAUNHOFER_D_NM,
-    FRAUNHOFER_F_NM,
+    Cauchy, FRAUNHOFER_C_NM, FRAUNHOFER_D_NM, FRAUNHOFER_F_NM, Sellmeier, abbe_number,
+    luminous_flux, named_glass, named_metal, photon_energy_ev, photon_energy_joules,
+    radiant_scale_for_luminance,
 };
-use prism_spectrum::Spectrum;
 
 /// n_d and V_d from the manufacturers' data sheets (SCHOTT 2017 catalogue) and standard
 /// references. The SCHOTT data sheets print n_d to 5 decimals and V_d to 2, and their
@@ -50,7 +50,11 @@ fn catalogue_glasses_reproduce_published_nd_and_vd() {
 #[test]
 fn lecture_bk7_formula() {
     let bk7 = Sellmeier::new(
-        vec![(1.03961212, 0.00600069897), (0.231792344, 0.0200179144), (1.01046945, 103.560653)],
+        vec![
+            (1.03961212, 0.00600069897),
+            (0.231792344, 0.0200179144),
+            (1.01046945, 103.560653),
+        ],
         (300.0, 2500.0),
     )
     .unwrap();
@@ -69,9 +73,18 @@ fn khr_dispersion_constants_derive_from_fraunhofer_lines() {
 
 #[test]
 fn abbe_cauchy_round_trip() {
-    for (nd, vd) in [(1.5, 20.0), (1.5168, 64.17), (2.4, 55.0), (1.33, 55.7), (1.9, 9.8)] {
+    for (nd, vd) in [
+        (1.5, 20.0),
+        (1.5168, 64.17),
+        (2.4, 55.0),
+        (1.33, 55.7),
+        (1.9, 9.8),
+    ] {
         let ior = Cauchy::from_abbe(nd, vd).unwrap();
-        assert!((ior.evaluate(FRAUNHOFER_D_NM) - nd).abs() < 1e-4, "n_d for {nd}, {vd}");
+        assert!(
+            (ior.evaluate(FRAUNHOFER_D_NM) - nd).abs() < 1e-4,
+            "n_d for {nd}, {vd}"
+        );
         let v = abbe_number(&ior).unwrap();
         assert!(((v - vd) / vd).abs() < 1e-4, "V_d {v} for {vd}");
         // Normal dispersion: blue bends more.
@@ -88,7 +101,9 @@ fn abbe_cauchy_round_trip() {
 fn sellmeier_rejects_poles_and_clamps_outside_its_range() {
     // BK7's first resonance is at sqrt(0.006) um = 77.5 nm.
     let terms = vec![(1.03961212, 0.00600069867)];
-    let err = Sellmeier::new(terms.clone(), (50.0, 2500.0)).unwrap_err().to_string();
+    let err = Sellmeier::new(terms.clone(), (50.0, 2500.0))
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("77.5 nm"), "{err}");
     assert!(Sellmeier::new(vec![(-1.0, 0.01)], (300.0, 900.0)).is_err());
     assert!(Sellmeier::new(vec![], (300.0, 900.0)).is_err());
@@ -138,7 +153,7 @@ fn photon_energy() {
     let ev = photon_energy_ev(555.0).unwrap();
     assert!(((ev - num(&c["photon_energy_ev_at_555nm"])) / ev).abs() < 1e-14);
     // 1 eV photon: lambda = h c / e = 1239.84198... nm.
-    assert!((photon_energy_ev(1239.841_984).unwrap() - 1.0).abs() < 1e-9);
+    assert!((photon_energy_ev(1_239.841_984).unwrap() - 1.0).abs() < 1e-9);
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         assert!(photon_energy_joules(bad).is_err());
     }

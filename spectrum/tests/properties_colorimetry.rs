@@ -1,8 +1,8 @@
 //! Numerical stability of colorimetry and colour at the extremes.
 
-use prism_spectrum::color::{display_8bit, RgbColorSpace, RgbSpaceId, ToneMap, TransferFunction};
+use prism_spectrum::color::{RgbColorSpace, RgbSpaceId, ToneMap, TransferFunction, display_8bit};
 use prism_spectrum::colorimetry::{
-    cct_ohno2013, ciede2000, emission_xyz, Chromaticity, Lab, Observer, Uv, WhitePoint, Xyz,
+    Chromaticity, Lab, Observer, Uv, WhitePoint, Xyz, cct_ohno2013, ciede2000, emission_xyz,
 };
 use prism_spectrum::illuminant::daylight;
 use prism_spectrum::spectra::Gaussian;

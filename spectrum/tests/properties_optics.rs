@@ -1,9 +1,9 @@
 //! Numerical stability of refractive index models and energy at the extremes.
 
-use prism_spectrum::optics::{
-    named_glass, named_metal, photon_energy_ev, photon_energy_joules, Cauchy, Sellmeier,
-};
 use prism_spectrum::Spectrum;
+use prism_spectrum::optics::{
+    Cauchy, Sellmeier, named_glass, named_metal, photon_energy_ev, photon_energy_joules,
+};
 use proptest::prelude::*;
 
 fn any_wavelength() -> impl Strategy<Value = f64> {
@@ -20,7 +20,17 @@ fn any_wavelength() -> impl Strategy<Value = f64> {
     ]
 }
 
-const GLASSES: [&str; 9] = ["bk7", "fused-silica", "sf11", "f2", "baf10", "sapphire", "caf2", "water", "diamond"];
+const GLASSES: [&str; 9] = [
+    "bk7",
+    "fused-silica",
+    "sf11",
+    "f2",
+    "baf10",
+    "sapphire",
+    "caf2",
+    "water",
+    "diamond",
+];
 
 proptest! {
     /// Catalogue glasses: finite n >= 1 at any wavelength whatsoever (clamped outside the

@@ -2,7 +2,7 @@
 
 use prism_spectrum::constants::{BOLTZMANN, PLANCK, SPEED_OF_LIGHT};
 use prism_spectrum::spectra::{
-    planck_radiance, Blackbody, Constant, DenselySampled, Extrapolation, Gaussian, PiecewiseLinear,
+    Blackbody, Constant, DenselySampled, Extrapolation, Gaussian, PiecewiseLinear, planck_radiance,
 };
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 use proptest::prelude::*;

@@ -3,15 +3,15 @@
 
 mod common;
 
-use common::{fixture, mat3, num, nums};
-use prism_spectrum::color::{adaptation_matrix, AdaptationMethod, RgbSpaceId, TransferFunction};
-use prism_spectrum::colorimetry::{
-    cct_ohno2013, ciede2000, emission_xyz, reflectance_xyz, Chromaticity, Lab, Observer, Uv,
-    WhitePoint, Xyz,
-};
-use prism_spectrum::illuminant::{daylight, StandardIlluminant};
-use prism_spectrum::spectra::{planck_radiance, Blackbody, Extrapolation, PiecewiseLinear};
+use common::{assert_mat3_close, fixture, mat3, num, nums};
 use prism_spectrum::Spectrum;
+use prism_spectrum::color::{AdaptationMethod, RgbSpaceId, TransferFunction, adaptation_matrix};
+use prism_spectrum::colorimetry::{
+    Chromaticity, Lab, Observer, Uv, WhitePoint, Xyz, cct_ohno2013, ciede2000, emission_xyz,
+    reflectance_xyz,
+};
+use prism_spectrum::illuminant::{StandardIlluminant, daylight};
+use prism_spectrum::spectra::{Blackbody, Extrapolation, PiecewiseLinear, planck_radiance};
 
 fn observer(key: &str) -> Observer {
     Observer::from_name(key).unwrap()
@@ -29,7 +29,10 @@ fn chromaticities_of_illuminants_and_blackbodies() {
             let xyz = if let Some(t) = name.strip_prefix("blackbody:") {
                 emission_xyz(&Blackbody::new(t.parse().unwrap()).unwrap(), observer(key))
             } else {
-                emission_xyz(&StandardIlluminant::from_name(name).unwrap().spectrum(), observer(key))
+                emission_xyz(
+                    &StandardIlluminant::from_name(name).unwrap().spectrum(),
+                    observer(key),
+                )
             };
             let got = xyz.chromaticity().unwrap();
             assert!(
@@ -43,7 +46,10 @@ fn chromaticities_of_illuminants_and_blackbodies() {
             checked += 1;
         }
     }
-    assert!(checked >= 2 * (3 + 49), "all fixtures were checked ({checked})");
+    assert!(
+        checked >= 2 * (3 + 49),
+        "all fixtures were checked ({checked})"
+    );
 }
 
 /// Published CIE chromaticities (CIE 015:2018 Table 3, 2-degree): a check of the whole
@@ -51,8 +57,13 @@ fn chromaticities_of_illuminants_and_blackbodies() {
 #[test]
 fn d65_and_a_match_the_published_white_points() {
     for (ill, x, y) in [("D65", 0.31272, 0.32903), ("A", 0.44758, 0.40745)] {
-        let xy = StandardIlluminant::from_name(ill).unwrap().chromaticity(Observer::Cie1931);
-        assert!((xy.x - x).abs() < 5e-5 && (xy.y - y).abs() < 5e-5, "{ill}: {xy:?}");
+        let xy = StandardIlluminant::from_name(ill)
+            .unwrap()
+            .chromaticity(Observer::Cie1931);
+        assert!(
+            (xy.x - x).abs() < 5e-5 && (xy.y - y).abs() < 5e-5,
+            "{ill}: {xy:?}"
+        );
     }
 }
 
@@ -86,22 +97,20 @@ fn rgb_matrices_are_derived_correctly() {
     for (key, entry) in reference["rgb_spaces"].as_object().unwrap() {
         let space = RgbSpaceId::from_name(key).unwrap().space();
         let white = nums(&entry["white"]);
-        assert!((space.white().xy().x - white[0]).abs() < 1e-12, "{key} white");
+        assert!(
+            (space.white().xy().x - white[0]).abs() < 1e-12,
+            "{key} white"
+        );
         for (which, got) in [
             ("rgb_to_xyz", space.rgb_to_xyz_matrix()),
             ("xyz_to_rgb", space.xyz_to_rgb_matrix()),
         ] {
-            let expected = mat3(&entry[which]);
-            for r in 0..3 {
-                for c in 0..3 {
-                    assert!(
-                        (got.0[r][c] - expected[r][c]).abs() < 1e-6,
-                        "{key} {which}[{r}][{c}]: {} vs {}",
-                        got.0[r][c],
-                        expected[r][c]
-                    );
-                }
-            }
+            assert_mat3_close(
+                &got.0,
+                &mat3(&entry[which]),
+                1e-6,
+                &format!("{key} {which}"),
+            );
         }
     }
 }
@@ -118,12 +127,7 @@ fn chromatic_adaptation_matrices() {
             WhitePoint::from_xy(Chromaticity::new(xy[0], xy[1])).unwrap()
         };
         let got = adaptation_matrix(white(&entry["src_xy"]), white(&entry["dst_xy"]), method);
-        let expected = mat3(&entry["matrix"]);
-        for r in 0..3 {
-            for c in 0..3 {
-                assert!((got.0[r][c] - expected[r][c]).abs() < 1e-6, "{key}[{r}][{c}]");
-            }
-        }
+        assert_mat3_close(&got.0, &mat3(&entry["matrix"]), 1e-6, key);
     }
 }
 
@@ -158,8 +162,16 @@ fn ciede2000_sharma_pairs() {
         let (a, b) = (nums(&pair["lab1"]), nums(&pair["lab2"]));
         let (l1, l2) = (Lab::new(a[0], a[1], a[2]), Lab::new(b[0], b[1], b[2]));
         let de = ciede2000(l1, l2);
-        assert!((de - num(&pair["published"])).abs() <= 5e-5 + 1e-12, "pair {}: {de}", i + 1);
-        assert!((de - num(&pair["colour"])).abs() < 1e-9, "pair {} vs colour: {de}", i + 1);
+        assert!(
+            (de - num(&pair["published"])).abs() <= 5e-5 + 1e-12,
+            "pair {}: {de}",
+            i + 1
+        );
+        assert!(
+            (de - num(&pair["colour"])).abs() < 1e-9,
+            "pair {} vs colour: {de}",
+            i + 1
+        );
         assert_eq!(de, ciede2000(l2, l1), "pair {} is symmetric", i + 1);
     }
 }
@@ -177,13 +189,29 @@ fn cct_of_blackbodies_and_daylight() {
             let uv = nums(&entry["uv"]);
             let got = cct_ohno2013(Uv { u: uv[0], v: uv[1] }).unwrap();
             let colour = num(&entry["ohno2013_cct"]);
-            let tolerance = if kelvin <= 10_000.0 { 1.0 } else { 1e-4 * kelvin };
-            assert!((got.kelvin - colour).abs() < tolerance, "{series} {kelvin} K: {got:?} vs colour {colour}");
-            if series == "blackbody" {
-                assert!((got.kelvin - kelvin).abs() < tolerance, "{series} {kelvin} K: {got:?}");
-                assert!(got.duv.abs() < 1e-6, "a blackbody lies on the locus: {got:?}");
+            let tolerance = if kelvin <= 10_000.0 {
+                1.0
             } else {
-                assert!((got.duv - num(&entry["duv"])).abs() < 1e-5, "{series} {kelvin} K duv {got:?}");
+                1e-4 * kelvin
+            };
+            assert!(
+                (got.kelvin - colour).abs() < tolerance,
+                "{series} {kelvin} K: {got:?} vs colour {colour}"
+            );
+            if series == "blackbody" {
+                assert!(
+                    (got.kelvin - kelvin).abs() < tolerance,
+                    "{series} {kelvin} K: {got:?}"
+                );
+                assert!(
+                    got.duv.abs() < 1e-6,
+                    "a blackbody lies on the locus: {got:?}"
+                );
+            } else {
+                assert!(
+                    (got.duv - num(&entry["duv"])).abs() < 1e-5,
+                    "{series} {kelvin} K duv {got:?}"
+                );
             }
             if kelvin <= 10_000.0 {
                 worst = worst.max((got.kelvin - colour).abs());
@@ -202,14 +230,20 @@ fn daylight_spectra() {
         let step = num(&entry["step_nm"]);
         for (i, expected) in nums(&entry["values"]).iter().enumerate() {
             let l = first + step * i as f64;
-            assert!((spd.evaluate(l) - expected).abs() < 1e-9, "{kelvin} K at {l} nm");
+            assert!(
+                (spd.evaluate(l) - expected).abs() < 1e-9,
+                "{kelvin} K at {l} nm"
+            );
         }
     }
     // CIE 015: daylight at 6504 K reproduces the tabulated D65 (to its 3 printed decimals).
     let d65 = StandardIlluminant::D65.spectrum();
     let computed = daylight(6500.0 * 1.4388 / 1.4380).unwrap();
     for l in (300..=780).step_by(5).map(f64::from) {
-        assert!((d65.evaluate(l) - computed.evaluate(l)).abs() < 0.03, "{l} nm");
+        assert!(
+            (d65.evaluate(l) - computed.evaluate(l)).abs() < 0.03,
+            "{l} nm"
+        );
     }
 }
 
@@ -225,8 +259,14 @@ fn transfer_functions() {
     ] {
         for (x, expected) in xs.iter().zip(nums(&t[name])) {
             let got = function.encode(*x);
-            assert!((got - expected).abs() < 1e-9, "{name}({x}) = {got}, expected {expected}");
-            assert!((function.decode(got) - x).abs() < 1e-12, "{name} round trip at {x}");
+            assert!(
+                (got - expected).abs() < 1e-9,
+                "{name}({x}) = {got}, expected {expected}"
+            );
+            assert!(
+                (function.decode(got) - x).abs() < 1e-12,
+                "{name} round trip at {x}"
+            );
         }
     }
 }
@@ -237,9 +277,16 @@ fn transfer_functions() {
 fn planck_absolute_radiance() {
     let reference = fixture("colorimetry_reference.json");
     for entry in reference["planck"].as_array().unwrap() {
-        let (t, nm, expected) = (num(&entry["kelvin"]), num(&entry["nm"]), num(&entry["radiance"]));
+        let (t, nm, expected) = (
+            num(&entry["kelvin"]),
+            num(&entry["nm"]),
+            num(&entry["radiance"]),
+        );
         let got = planck_radiance(nm * 1e-9, t);
-        assert!(((got - expected) / expected).abs() < 1e-12, "{t} K, {nm} nm: {got} vs {expected}");
+        assert!(
+            ((got - expected) / expected).abs() < 1e-12,
+            "{t} K, {nm} nm: {got} vs {expected}"
+        );
         // The Spectrum form is the same per nm.
         let per_nm = Blackbody::new(t).unwrap().evaluate(nm);
         assert!(((per_nm * 1e9 - expected) / expected).abs() < 1e-12);

@@ -10,8 +10,8 @@ mod space;
 mod tonemap;
 mod transfer;
 
-pub use adaptation::{adaptation_matrix, AdaptationMethod};
+pub use adaptation::{AdaptationMethod, adaptation_matrix};
 pub use matrix::Mat3;
 pub use space::{RgbColorSpace, RgbSpaceId};
-pub use tonemap::{display_8bit, ToneMap};
+pub use tonemap::{ToneMap, display_8bit};
 pub use transfer::TransferFunction;

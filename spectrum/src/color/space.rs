@@ -37,8 +37,11 @@ impl RgbColorSpace {
             .map(|p| primary_xyz(&name, *p))
             .collect::<Result<Vec<_>, _>>()?;
         let p = Mat3::from_columns([columns[0], columns[1], columns[2]]);
-        let degenerate =
-            || SpectrumError::Degenerate(format!("colour space '{name}': the primaries are collinear"));
+        let degenerate = || {
+            SpectrumError::Degenerate(format!(
+                "colour space '{name}': the primaries are collinear"
+            ))
+        };
         let p_inverse = p.inverse().ok_or_else(degenerate)?;
         let scale = p_inverse.apply(white.xyz().to_array());
         let rgb_to_xyz = p.mul(&Mat3::diagonal(scale));

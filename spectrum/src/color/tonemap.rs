@@ -52,9 +52,13 @@ impl ToneMap {
         let mapped = match self {
             ToneMap::Clamp => clean,
             ToneMap::ReinhardExtended { white } => {
-                let white = if white.is_finite() && white > 0.0 { white } else { 1.0 };
+                let white = if white.is_finite() && white > 0.0 {
+                    white
+                } else {
+                    1.0
+                };
                 let l: f64 = (0..3).map(|i| clean[i] * luminance_weights[i]).sum();
-                if !(l > 0.0) {
+                if l.is_nan() || l <= 0.0 {
                     [0.0; 3]
                 } else if !l.is_finite() {
                     [1.0; 3]
@@ -72,7 +76,13 @@ impl ToneMap {
                 (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)
             }),
         };
-        mapped.map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 1.0 })
+        mapped.map(|v| {
+            if v.is_finite() {
+                v.clamp(0.0, 1.0)
+            } else {
+                1.0
+            }
+        })
     }
 }
 

@@ -93,9 +93,5 @@ impl TransferFunction {
 
 /// A gamma built directly from the enum may be anything; treat invalid ones as 1.
 fn sanitize_gamma(g: f64) -> f64 {
-    if g.is_finite() && g > 0.0 {
-        g
-    } else {
-        1.0
-    }
+    if g.is_finite() && g > 0.0 { g } else { 1.0 }
 }

@@ -1,4 +1,4 @@
-use super::{emission_xyz, Observer, Uv};
+use super::{Observer, Uv, emission_xyz};
 use crate::error::SpectrumError;
 use crate::spectra::Blackbody;
 

@@ -85,5 +85,7 @@ pub fn ciede2000(first: Lab, second: Lab) -> f64 {
     let r_t = -(2.0 * d_theta).to_radians().sin() * r_c;
 
     let (tl, tc, th) = (dl / s_l, dc / s_c, dh / s_h);
-    (tl * tl + tc * tc + th * th + r_t * tc * th).max(0.0).sqrt()
+    (tl * tl + tc * tc + th * th + r_t * tc * th)
+        .max(0.0)
+        .sqrt()
 }

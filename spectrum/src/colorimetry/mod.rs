@@ -11,10 +11,8 @@ mod lab;
 mod observer;
 mod xyz;
 
-pub use cct::{cct_ohno2013, planckian_uv, CctResult, CCT_MAX_KELVIN, CCT_MIN_KELVIN};
+pub use cct::{CCT_MAX_KELVIN, CCT_MIN_KELVIN, CctResult, cct_ohno2013, planckian_uv};
 pub use ciede2000::ciede2000;
 pub use lab::{Lab, WhitePoint};
 pub use observer::Observer;
-pub use xyz::{
-    emission_xyz, luminous_xyz_normalized, reflectance_xyz, Chromaticity, Uv, Xyz,
-};
+pub use xyz::{Chromaticity, Uv, Xyz, emission_xyz, luminous_xyz_normalized, reflectance_xyz};

@@ -40,8 +40,16 @@ impl Observer {
     /// The three tables (x-bar, y-bar, z-bar) at 360..=830 nm.
     pub fn tables(self) -> [&'static [f64; CMF_LEN]; 3] {
         match self {
-            Observer::Cie1931 => [&cie_cmf::CIE1931_X, &cie_cmf::CIE1931_Y, &cie_cmf::CIE1931_Z],
-            Observer::Cie1964 => [&cie_cmf::CIE1964_X, &cie_cmf::CIE1964_Y, &cie_cmf::CIE1964_Z],
+            Observer::Cie1931 => [
+                &cie_cmf::CIE1931_X,
+                &cie_cmf::CIE1931_Y,
+                &cie_cmf::CIE1931_Z,
+            ],
+            Observer::Cie1964 => [
+                &cie_cmf::CIE1964_X,
+                &cie_cmf::CIE1964_Y,
+                &cie_cmf::CIE1964_Z,
+            ],
         }
     }
 
@@ -55,6 +63,7 @@ impl Observer {
         }
         let i = (x as usize).min(CMF_LEN - 2);
         let t = x - i as f64;
-        self.tables().map(|table| (1.0 - t) * table[i] + t * table[i + 1])
+        self.tables()
+            .map(|table| (1.0 - t) * table[i] + t * table[i + 1])
     }
 }

@@ -1,7 +1,7 @@
 use super::Observer;
+use crate::Spectrum;
 use crate::constants::{LAMBDA_MAX, LAMBDA_MIN};
 use crate::error::SpectrumError;
-use crate::Spectrum;
 
 /// CIE XYZ tristimulus values.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -53,7 +53,11 @@ impl Xyz {
             )));
         }
         let scale = luminance / xy.y;
-        Ok(Self::new(xy.x * scale, luminance, (1.0 - xy.x - xy.y) * scale))
+        Ok(Self::new(
+            xy.x * scale,
+            luminance,
+            (1.0 - xy.x - xy.y) * scale,
+        ))
     }
 
     /// The chromaticity, or an error for a colour with X + Y + Z = 0 (black).
@@ -159,5 +163,9 @@ pub fn reflectance_xyz<R: Spectrum + ?Sized, I: Spectrum + ?Sized>(
             "the illuminant has luminance {white_y}: reflectance colour is undefined"
         )));
     }
-    Ok(Xyz::new(xyz[0] / white_y, xyz[1] / white_y, xyz[2] / white_y))
+    Ok(Xyz::new(
+        xyz[0] / white_y,
+        xyz[1] / white_y,
+        xyz[2] / white_y,
+    ))
 }

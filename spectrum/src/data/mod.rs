@@ -2,11 +2,19 @@
 //! `spectrum/tools/generate_tables_and_fixtures.py`; `spectrum/data/PROVENANCE.md` names
 //! the source of each, and `tests/cie_tables.rs` proves they equal that source.
 
-#![allow(clippy::unreadable_literal, clippy::excessive_precision)]
+// Measured data: digits are what the source printed, and some merely look like pi.
+#![allow(
+    clippy::unreadable_literal,
+    clippy::excessive_precision,
+    clippy::approx_constant
+)]
 
 /// CIE 1931 and 1964 colour matching functions.
+#[rustfmt::skip]
 pub mod cie_cmf;
 /// CIE standard illuminants and daylight basis functions.
+#[rustfmt::skip]
 pub mod cie_illuminants;
 /// Measured complex refractive indices of metals.
+#[rustfmt::skip]
 pub mod metals;

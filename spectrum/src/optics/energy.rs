@@ -1,7 +1,7 @@
-use crate::colorimetry::{emission_xyz, Observer};
-use crate::constants::{ELEMENTARY_CHARGE, LUMINOUS_EFFICACY_MAX, PLANCK, SPEED_OF_LIGHT};
-use crate::error::{require_positive, SpectrumError};
 use crate::Spectrum;
+use crate::colorimetry::{Observer, emission_xyz};
+use crate::constants::{ELEMENTARY_CHARGE, LUMINOUS_EFFICACY_MAX, PLANCK, SPEED_OF_LIGHT};
+use crate::error::{SpectrumError, require_positive};
 
 /// Energy of one photon of vacuum wavelength `lambda_nm`, E = h c / lambda, in joules.
 /// Errors unless `lambda_nm` is finite and > 0 (and large enough, > ~1e-290 nm, for the

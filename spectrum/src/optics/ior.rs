@@ -1,5 +1,5 @@
-use crate::error::{require_finite, require_positive, SpectrumError};
 use crate::Spectrum;
+use crate::error::{SpectrumError, require_finite, require_positive};
 
 /// Fraunhofer d line (helium), nm: where n_d is specified.
 pub const FRAUNHOFER_D_NM: f64 = 587.5618;
@@ -29,7 +29,9 @@ impl Sellmeier {
     /// monotonically between poles, so the range ends bound it).
     pub fn new(terms: Vec<(f64, f64)>, range_nm: (f64, f64)) -> Result<Self, SpectrumError> {
         if terms.is_empty() {
-            return Err(SpectrumError::InvalidTable("a Sellmeier model needs at least one term".into()));
+            return Err(SpectrumError::InvalidTable(
+                "a Sellmeier model needs at least one term".into(),
+            ));
         }
         let (lo, hi) = range_nm;
         require_positive("Sellmeier range start (nm)", lo)?;
@@ -89,7 +91,11 @@ impl Spectrum for Sellmeier {
     /// start.
     fn evaluate(&self, lambda_nm: f64) -> f64 {
         let (lo, hi) = self.range_nm;
-        let l = if lambda_nm.is_nan() { lo } else { lambda_nm.clamp(lo, hi) };
+        let l = if lambda_nm.is_nan() {
+            lo
+        } else {
+            lambda_nm.clamp(lo, hi)
+        };
         self.n_squared(l).sqrt()
     }
 
@@ -117,14 +123,21 @@ impl Cauchy {
     pub const ABBE_RANGE_NM: (f64, f64) = (200.0, 2500.0);
 
     /// A Cauchy model with coefficients A, B (nm^2), C (nm^4), valid over `range_nm`.
-    pub fn new(a: f64, b_nm2: f64, c_nm4: f64, range_nm: (f64, f64)) -> Result<Self, SpectrumError> {
+    pub fn new(
+        a: f64,
+        b_nm2: f64,
+        c_nm4: f64,
+        range_nm: (f64, f64),
+    ) -> Result<Self, SpectrumError> {
         require_finite("Cauchy A", a)?;
         require_finite("Cauchy B (nm^2)", b_nm2)?;
         require_finite("Cauchy C (nm^4)", c_nm4)?;
         let lo = require_positive("Cauchy range start (nm)", range_nm.0)?;
         let hi = require_positive("Cauchy range end (nm)", range_nm.1)?;
         if lo >= hi {
-            return Err(SpectrumError::InvalidTable(format!("Cauchy range {lo}-{hi} nm is empty")));
+            return Err(SpectrumError::InvalidTable(format!(
+                "Cauchy range {lo}-{hi} nm is empty"
+            )));
         }
         Ok(Self {
             a,
@@ -161,7 +174,11 @@ impl Cauchy {
 impl Spectrum for Cauchy {
     fn evaluate(&self, lambda_nm: f64) -> f64 {
         let (lo, hi) = self.range_nm;
-        let l = if lambda_nm.is_nan() { lo } else { lambda_nm.clamp(lo, hi) };
+        let l = if lambda_nm.is_nan() {
+            lo
+        } else {
+            lambda_nm.clamp(lo, hi)
+        };
         let inv2 = 1.0 / (l * l);
         (self.a + self.b_nm2 * inv2 + self.c_nm4 * inv2 * inv2).max(1.0)
     }

@@ -1,7 +1,7 @@
+use crate::Spectrum;
 use crate::data::metals;
 use crate::error::SpectrumError;
 use crate::spectra::{Extrapolation, PiecewiseLinear};
-use crate::Spectrum;
 
 /// A complex index of refraction n = eta + i k as two spectra, for conductors.
 /// Outside the measured range the nearest measured value is used (clamp).
@@ -31,16 +31,33 @@ pub const METAL_NAMES: &str = "au (gold), ag (silver), cu (copper), al (aluminiu
 pub fn named_metal(name: &str) -> Result<ComplexIor, SpectrumError> {
     let (nm, eta, k, source): (&[f64], &[f64], &[f64], &'static str) =
         match name.trim().to_ascii_lowercase().as_str() {
-            "au" | "gold" => (&metals::AU_NM, &metals::AU_ETA, &metals::AU_K, JOHNSON_CHRISTY),
-            "ag" | "silver" => (&metals::AG_NM, &metals::AG_ETA, &metals::AG_K, JOHNSON_CHRISTY),
-            "cu" | "copper" => (&metals::CU_NM, &metals::CU_ETA, &metals::CU_K, JOHNSON_CHRISTY),
-            "al" | "aluminium" | "aluminum" => (&metals::AL_NM, &metals::AL_ETA, &metals::AL_K, RAKIC),
+            "au" | "gold" => (
+                &metals::AU_NM,
+                &metals::AU_ETA,
+                &metals::AU_K,
+                JOHNSON_CHRISTY,
+            ),
+            "ag" | "silver" => (
+                &metals::AG_NM,
+                &metals::AG_ETA,
+                &metals::AG_K,
+                JOHNSON_CHRISTY,
+            ),
+            "cu" | "copper" => (
+                &metals::CU_NM,
+                &metals::CU_ETA,
+                &metals::CU_K,
+                JOHNSON_CHRISTY,
+            ),
+            "al" | "aluminium" | "aluminum" => {
+                (&metals::AL_NM, &metals::AL_ETA, &metals::AL_K, RAKIC)
+            }
             _ => {
                 return Err(SpectrumError::UnknownName {
                     kind: "metal",
                     name: name.to_string(),
                     valid: METAL_NAMES.to_string(),
-                })
+                });
             }
         };
     Ok(ComplexIor {

@@ -10,6 +10,6 @@ mod metal;
 pub use energy::{
     luminous_flux, photon_energy_ev, photon_energy_joules, radiant_scale_for_luminance,
 };
-pub use glass::{named_glass, Glass, GLASS_NAMES};
-pub use ior::{abbe_number, Cauchy, Sellmeier, FRAUNHOFER_C_NM, FRAUNHOFER_D_NM, FRAUNHOFER_F_NM};
-pub use metal::{named_metal, ComplexIor, METAL_NAMES};
+pub use glass::{GLASS_NAMES, Glass, named_glass};
+pub use ior::{Cauchy, FRAUNHOFER_C_NM, FRAUNHOFER_D_NM, FRAUNHOFER_F_NM, Sellmeier, abbe_number};
+pub use metal::{ComplexIor, METAL_NAMES, named_metal};

@@ -1,6 +1,6 @@
-use crate::constants::{BOLTZMANN, PLANCK, SPEED_OF_LIGHT, WIEN_DISPLACEMENT, WIEN_X};
-use crate::error::{require_positive, SpectrumError};
 use crate::Spectrum;
+use crate::constants::{BOLTZMANN, PLANCK, SPEED_OF_LIGHT, WIEN_DISPLACEMENT, WIEN_X};
+use crate::error::{SpectrumError, require_positive};
 
 /// Planck's law: spectral radiance of a blackbody at `kelvin`, at vacuum wavelength
 /// `lambda_m` (metres), in W m^-2 sr^-1 m^-1 (SI, per metre of wavelength).
@@ -24,11 +24,7 @@ pub fn planck_radiance(lambda_m: f64, kelvin: f64) -> f64 {
     } else {
         (ln_prefactor - x).exp() / -(-x).exp_m1()
     };
-    if value.is_finite() {
-        value
-    } else {
-        0.0
-    }
+    if value.is_finite() { value } else { 0.0 }
 }
 
 /// Whether a [`Blackbody`] evaluates to absolute radiance or to its shape with peak 1.

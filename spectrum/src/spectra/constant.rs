@@ -1,5 +1,5 @@
-use crate::error::{require_finite, SpectrumError};
 use crate::Spectrum;
+use crate::error::{SpectrumError, require_finite};
 
 /// The same value at every wavelength.
 #[derive(Debug, Clone, Copy, PartialEq)]

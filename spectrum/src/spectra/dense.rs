@@ -1,5 +1,5 @@
-use crate::error::{require_finite, SpectrumError};
 use crate::Spectrum;
+use crate::error::{SpectrumError, require_finite};
 
 /// A spectrum stored at every whole nanometre of a range, for O(1) evaluation in hot
 /// loops. Between whole nanometres it interpolates linearly; outside the range it is 0.
@@ -36,7 +36,9 @@ impl DenselySampled {
             return Err(SpectrumError::InvalidTable("no samples".into()));
         }
         if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-            return Err(SpectrumError::InvalidTable(format!("value {v} is not finite")));
+            return Err(SpectrumError::InvalidTable(format!(
+                "value {v} is not finite"
+            )));
         }
         let max = values.iter().copied().fold(0.0, f64::max);
         Ok(Self {

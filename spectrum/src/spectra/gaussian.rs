@@ -1,5 +1,5 @@
-use crate::error::{require_finite, require_positive, SpectrumError};
 use crate::Spectrum;
+use crate::error::{SpectrumError, require_finite, require_positive};
 
 /// A Gaussian band `peak * exp(-(lambda - center)^2 / (2 sigma^2))`, described by its
 /// centre and full width at half maximum (FWHM = 2 sqrt(2 ln 2) sigma).

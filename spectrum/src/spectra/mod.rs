@@ -6,7 +6,7 @@ mod dense;
 mod gaussian;
 mod piecewise_linear;
 
-pub use blackbody::{planck_radiance, Blackbody, Normalization};
+pub use blackbody::{Blackbody, Normalization, planck_radiance};
 pub use constant::Constant;
 pub use dense::DenselySampled;
 pub use gaussian::Gaussian;

@@ -1,5 +1,5 @@
-use crate::error::SpectrumError;
 use crate::Spectrum;
+use crate::error::SpectrumError;
 
 /// What a tabulated spectrum is outside its first and last wavelength.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -92,7 +92,8 @@ impl PiecewiseLinear {
 
     /// Parses two-column text, `wavelength_nm, value` per line. Columns may be separated by
     /// a comma, semicolon, tab or spaces; blank lines and lines starting with `#` are
-    /// skipped, and so is a first line that does not parse as numbers (a header).
+    /// skipped, and so are lines before the first data row that do not start with a number
+    /// (headers).
     pub fn from_csv_str(text: &str, extrapolation: Extrapolation) -> Result<Self, SpectrumError> {
         let mut lambdas = Vec::new();
         let mut values = Vec::new();
@@ -113,13 +114,16 @@ impl PiecewiseLinear {
                     values.push(numbers[1]);
                     seen_data = true;
                 }
-                None if !seen_data => continue, // a header line
+                // A header: text before any data, not starting with a number.
+                None if !seen_data && fields.first().is_none_or(|f| f.parse::<f64>().is_err()) => {
+                    continue;
+                }
                 _ => {
                     return Err(SpectrumError::InvalidTable(format!(
                         "line {}: expected two numbers 'wavelength_nm, value', got '{}'",
                         index + 1,
                         line
-                    )))
+                    )));
                 }
             }
         }
@@ -151,7 +155,11 @@ impl Spectrum for PiecewiseLinear {
             return 0.0;
         }
         if lambda_nm <= self.lambdas[0] || lambda_nm >= self.lambdas[n - 1] {
-            let edge = if lambda_nm <= self.lambdas[0] { 0 } else { n - 1 };
+            let edge = if lambda_nm <= self.lambdas[0] {
+                0
+            } else {
+                n - 1
+            };
             return match self.extrapolation {
                 Extrapolation::Clamp => self.values[edge],
                 Extrapolation::Zero if lambda_nm == self.lambdas[edge] => self.values[edge],

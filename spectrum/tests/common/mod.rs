@@ -18,11 +18,29 @@ pub fn num(v: &Value) -> f64 {
 
 /// A JSON array of numbers.
 pub fn nums(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap_or_else(|| panic!("not an array: {v}")).iter().map(num).collect()
+    v.as_array()
+        .unwrap_or_else(|| panic!("not an array: {v}"))
+        .iter()
+        .map(num)
+        .collect()
 }
 
 /// A JSON 3x3 array.
 pub fn mat3(v: &Value) -> [[f64; 3]; 3] {
     let rows: Vec<Vec<f64>> = v.as_array().unwrap().iter().map(nums).collect();
     std::array::from_fn(|r| std::array::from_fn(|c| rows[r][c]))
+}
+
+/// Asserts every entry of `got` is within `tolerance` of `expected`.
+pub fn assert_mat3_close(
+    got: &[[f64; 3]; 3],
+    expected: &[[f64; 3]; 3],
+    tolerance: f64,
+    label: &str,
+) {
+    for (r, (g_row, e_row)) in got.iter().zip(expected).enumerate() {
+        for (c, (g, e)) in g_row.iter().zip(e_row).enumerate() {
+            assert!((g - e).abs() < tolerance, "{label}[{r}][{c}]: {g} vs {e}");
+        }
+    }
 }
