@@ -157,3 +157,54 @@ fn black_has_no_chromaticity_and_no_normalization() {
     assert!(Xyz::default().normalized_to_unit_y().is_err());
     assert!(WhitePoint::from_xy(Chromaticity::new(0.5, 0.6)).is_err());
 }
+
+mod more {
+    use prism_spectrum::color::{AdaptationMethod, adaptation_matrix};
+    use prism_spectrum::colorimetry::{Chromaticity, Observer, WhitePoint, Xyz, reflectance_xyz};
+    use prism_spectrum::spectra::Gaussian;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Adaptation between any two valid whites is finite and maps white to white.
+        #[test]
+        fn adaptation_is_finite(a in prop::array::uniform2(0.05..0.6f64), b in prop::array::uniform2(0.05..0.6f64), m in 0..3usize) {
+            let (Ok(src), Ok(dst)) = (
+                WhitePoint::from_xy(Chromaticity::new(a[0], a[1])),
+                WhitePoint::from_xy(Chromaticity::new(b[0], b[1])),
+            ) else { return Ok(()); };
+            let method = [AdaptationMethod::Bradford, AdaptationMethod::Cat02, AdaptationMethod::VonKries][m];
+            let matrix = adaptation_matrix(src, dst, method);
+            let mapped = matrix.apply(src.xyz().to_array());
+            for (g, e) in mapped.iter().zip(dst.xyz().to_array()) {
+                prop_assert!(g.is_finite() && (g - e).abs() < 1e-9 * (1.0 + e.abs()), "{g} vs {e}");
+            }
+        }
+
+        /// Reflectance under any illuminant band: finite XYZ or an error (no luminance).
+        #[test]
+        fn reflectance_xyz_is_finite_or_error(center in 100.0..1200.0f64, fwhm in 1e-3..1e3f64, r in -10.0..10.0f64) {
+            let illuminant = Gaussian::new(center, fwhm, 1.0).unwrap();
+            let reflectance = Gaussian::new(550.0, 100.0, r).unwrap();
+            if let Ok(xyz) = reflectance_xyz(&reflectance, &illuminant, Observer::Cie1964) {
+                prop_assert!(xyz.to_array().iter().all(|v| v.is_finite()));
+            }
+        }
+
+        /// xyY to XYZ and back.
+        #[test]
+        fn xyy_round_trip(x in -1.0..1.0f64, y in prop_oneof![Just(0.0), Just(-0.1), Just(5e-324), 1e-300..1.0f64], big_y in prop_oneof![Just(1e300), -1e6..1e6f64]) {
+            match Xyz::from_xy_luminance(Chromaticity::new(x, y), big_y) {
+                Ok(xyz) => {
+                    prop_assert!(y > 0.0);
+                    prop_assert!(xyz.to_array().iter().all(|v| v.is_finite()), "{xyz:?}");
+                    if big_y.abs() > 1e-9 && y > 1e-6 {
+                        let xy = xyz.chromaticity().unwrap();
+                        prop_assert!((xy.x - x).abs() < 1e-9 && (xy.y - y).abs() < 1e-9);
+                    }
+                }
+                // Either no colour has this chromaticity or its XYZ overflows f64.
+                Err(_) => prop_assert!(y <= 0.0 || big_y.abs() / y > 1e300),
+            }
+        }
+    }
+}

@@ -44,20 +44,18 @@ impl Xyz {
     }
 
     /// XYZ with luminance `luminance` at chromaticity `xy` (xyY to XYZ). Errors when
-    /// `xy.y <= 0` (no colour has it) or an input is not finite.
+    /// `xy.y <= 0` (no colour has it), an input is not finite, or the XYZ would overflow.
     pub fn from_xy_luminance(xy: Chromaticity, luminance: f64) -> Result<Self, SpectrumError> {
-        if !(xy.y > 0.0 && xy.x.is_finite() && xy.y.is_finite() && luminance.is_finite()) {
-            return Err(SpectrumError::Degenerate(format!(
-                "chromaticity ({}, {}) with luminance {} has no XYZ (need y > 0, all finite)",
-                xy.x, xy.y, luminance
-            )));
-        }
         let scale = luminance / xy.y;
-        Ok(Self::new(
-            xy.x * scale,
-            luminance,
-            (1.0 - xy.x - xy.y) * scale,
-        ))
+        let xyz = Self::new(xy.x * scale, luminance, (1.0 - xy.x - xy.y) * scale);
+        if xy.y > 0.0 && xyz.to_array().iter().all(|v| v.is_finite()) {
+            Ok(xyz)
+        } else {
+            Err(SpectrumError::Degenerate(format!(
+                "chromaticity ({}, {}) with luminance {} has no finite XYZ (need y > 0)",
+                xy.x, xy.y, luminance
+            )))
+        }
     }
 
     /// The chromaticity, or an error for a colour with X + Y + Z = 0 (black).
