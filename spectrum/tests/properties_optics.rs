@@ -6,19 +6,8 @@ use prism_spectrum::optics::{
 };
 use proptest::prelude::*;
 
-fn any_wavelength() -> impl Strategy<Value = f64> {
-    prop_oneof![
-        Just(0.0),
-        Just(-0.0),
-        Just(5e-324),
-        Just(f64::MAX),
-        Just(f64::NAN),
-        Just(f64::INFINITY),
-        Just(f64::NEG_INFINITY),
-        -1e4..1e5f64,
-        any::<f64>(),
-    ]
-}
+mod common;
+use common::any_f64;
 
 const GLASSES: [&str; 9] = [
     "bk7",
@@ -36,7 +25,7 @@ proptest! {
     /// Catalogue glasses: finite n >= 1 at any wavelength whatsoever (clamped outside the
     /// fitted range, so never near a pole).
     #[test]
-    fn catalogue_indices_are_finite(lambda in any_wavelength(), which in 0..GLASSES.len()) {
+    fn catalogue_indices_are_finite(lambda in any_f64(), which in 0..GLASSES.len()) {
         let glass = named_glass(GLASSES[which]).unwrap();
         let n = glass.ior.evaluate(lambda);
         prop_assert!(n.is_finite() && n >= 1.0, "{} at {lambda}: {n}", GLASSES[which]);
@@ -50,7 +39,7 @@ proptest! {
         terms in prop::collection::vec((0.0..10.0f64, 0.0..200.0f64), 0..4),
         lo in 1.0..3000.0f64,
         width in 0.0..5000.0f64,
-        lambda in any_wavelength(),
+        lambda in any_f64(),
     ) {
         if let Ok(model) = Sellmeier::new(terms, (lo, lo + width)) {
             let n = model.evaluate(lambda);
@@ -70,21 +59,21 @@ proptest! {
 
     /// KHR_materials_dispersion's Cauchy model: n >= 1 and finite for any wavelength.
     #[test]
-    fn abbe_cauchy_is_finite(n_d in 1.0..4.0f64, abbe in prop_oneof![Just(1e-300), 1e-3..1e3f64], lambda in any_wavelength()) {
+    fn abbe_cauchy_is_finite(n_d in 1.0..4.0f64, abbe in prop_oneof![Just(1e-300), 1e-3..1e3f64], lambda in any_f64()) {
         let ior = Cauchy::from_abbe(n_d, abbe).unwrap();
         let n = ior.evaluate(lambda);
         prop_assert!(n.is_finite() && n >= 1.0);
     }
 
     #[test]
-    fn metals_are_finite(lambda in any_wavelength(), which in 0..4usize) {
+    fn metals_are_finite(lambda in any_f64(), which in 0..4usize) {
         let metal = named_metal(["au", "ag", "cu", "al"][which]).unwrap();
         let r = metal.normal_reflectance(lambda);
         prop_assert!(r.is_finite() && (0.0..=1.0).contains(&r));
     }
 
     #[test]
-    fn photon_energy_is_finite_or_error(lambda in any_wavelength()) {
+    fn photon_energy_is_finite_or_error(lambda in any_f64()) {
         for energy in [photon_energy_joules(lambda), photon_energy_ev(lambda)] {
             match energy {
                 Ok(e) => prop_assert!(e.is_finite() && e >= 0.0),

@@ -7,23 +7,8 @@ use prism_spectrum::spectra::{
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 use proptest::prelude::*;
 
-/// Any f64 at all, with the awkward ones well represented.
-fn any_f64() -> impl Strategy<Value = f64> {
-    prop_oneof![
-        Just(0.0),
-        Just(-0.0),
-        Just(1.0),
-        Just(f64::MIN_POSITIVE),
-        Just(5e-324),
-        Just(f64::MAX),
-        Just(f64::MIN),
-        Just(f64::INFINITY),
-        Just(f64::NEG_INFINITY),
-        Just(f64::NAN),
-        -1e6..1e6f64,
-        any::<f64>(),
-    ]
-}
+mod common;
+use common::any_f64;
 
 /// Log-uniform in [lo, hi].
 fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {

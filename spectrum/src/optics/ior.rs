@@ -8,6 +8,17 @@ pub const FRAUNHOFER_F_NM: f64 = 486.1327;
 /// Fraunhofer C line (hydrogen), nm.
 pub const FRAUNHOFER_C_NM: f64 = 656.2725;
 
+/// A wavelength moved into a model's valid range; NaN goes to the range start. This is the
+/// documented clamp of every index model here: outside its fitted range a dispersion
+/// formula is meaningless (or runs into a pole), so the nearest valid index is used.
+fn clamp_to_range(lambda_nm: f64, (lo, hi): (f64, f64)) -> f64 {
+    if lambda_nm.is_nan() {
+        lo
+    } else {
+        lambda_nm.clamp(lo, hi)
+    }
+}
+
 /// The Sellmeier dispersion formula n^2(l) = 1 + sum_i B_i l^2 / (l^2 - C_i), with l in
 /// micrometres and C_i in square micrometres (the convention of glass catalogues and of
 /// the seed lecture's BK7 example).
@@ -90,12 +101,7 @@ impl Spectrum for Sellmeier {
     /// n at `lambda_nm` clamped into the valid range; NaN wavelengths evaluate at the range
     /// start.
     fn evaluate(&self, lambda_nm: f64) -> f64 {
-        let (lo, hi) = self.range_nm;
-        let l = if lambda_nm.is_nan() {
-            lo
-        } else {
-            lambda_nm.clamp(lo, hi)
-        };
+        let l = clamp_to_range(lambda_nm, self.range_nm);
         self.n_squared(l).sqrt()
     }
 
@@ -173,12 +179,7 @@ impl Cauchy {
 
 impl Spectrum for Cauchy {
     fn evaluate(&self, lambda_nm: f64) -> f64 {
-        let (lo, hi) = self.range_nm;
-        let l = if lambda_nm.is_nan() {
-            lo
-        } else {
-            lambda_nm.clamp(lo, hi)
-        };
+        let l = clamp_to_range(lambda_nm, self.range_nm);
         let inv2 = 1.0 / (l * l);
         (self.a + self.b_nm2 * inv2 + self.c_nm4 * inv2 * inv2).max(1.0)
     }

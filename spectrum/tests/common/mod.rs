@@ -44,3 +44,23 @@ pub fn assert_mat3_close(
         }
     }
 }
+
+/// Any f64 at all, with the awkward ones (signed zeros, subnormals, extremes, NaN,
+/// infinities) well represented.
+pub fn any_f64() -> impl proptest::strategy::Strategy<Value = f64> {
+    use proptest::prelude::*;
+    prop_oneof![
+        Just(0.0),
+        Just(-0.0),
+        Just(1.0),
+        Just(f64::MIN_POSITIVE),
+        Just(5e-324),
+        Just(f64::MAX),
+        Just(f64::MIN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(f64::NAN),
+        -1e4..1e5f64,
+        any::<f64>(),
+    ]
+}
