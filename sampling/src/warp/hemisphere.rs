@@ -1,0 +1,69 @@
+use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+use glam::{Vec2, Vec3};
+
+use super::clamp_unit2;
+
+/// A point on the unit disk with uniform density 1/pi, by Shirley and Chiu's concentric
+/// mapping ("A low distortion map between disk and square", JGT 2(3), 1997), which keeps
+/// strata compact.
+pub fn uniform_disk_concentric(u: Vec2) -> Vec2 {
+    let offset = 2.0 * clamp_unit2(u) - Vec2::ONE;
+    if offset == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if offset.x.abs() > offset.y.abs() {
+        (offset.x, FRAC_PI_4 * (offset.y / offset.x))
+    } else {
+        (offset.y, FRAC_PI_2 - FRAC_PI_4 * (offset.x / offset.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// A direction on the +z hemisphere with density cos(theta) / pi (Malley's method: a
+/// uniform disk point projected up).
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = uniform_disk_concentric(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3::new(d.x, d.y, z)
+}
+
+/// The density of [`cosine_hemisphere`] for direction `w` (0 below the horizon).
+pub fn cosine_hemisphere_pdf(w: Vec3) -> f32 {
+    w.z.max(0.0) / PI
+}
+
+/// A direction with uniform density 1 / (4 pi) on the unit sphere.
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let u = clamp_unit2(u);
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// The density of [`uniform_sphere`]: 1 / (4 pi).
+pub fn uniform_sphere_pdf() -> f32 {
+    1.0 / (4.0 * PI)
+}
+
+/// A direction with uniform density in the cone around +z of half-angle
+/// acos(`cos_theta_max`) (clamped into [-1, 1]; -1 is the whole sphere).
+pub fn uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
+    let u = clamp_unit2(u);
+    let cos_max = sanitize_cos(cos_theta_max);
+    let cos_theta = (1.0 - u.x) + u.x * cos_max;
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
+}
+
+/// The density of [`uniform_cone`]: 1 / (2 pi (1 - cos_theta_max)); for a degenerate cone
+/// (cos_theta_max = 1, a single direction) it is +inf, a delta distribution.
+pub fn uniform_cone_pdf(cos_theta_max: f32) -> f32 {
+    1.0 / (2.0 * PI * (1.0 - sanitize_cos(cos_theta_max)))
+}
+
+fn sanitize_cos(c: f32) -> f32 {
+    if c.is_nan() { 1.0 } else { c.clamp(-1.0, 1.0) }
+}
