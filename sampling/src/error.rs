@@ -28,7 +28,9 @@ impl fmt::Display for SamplingError {
                 f,
                 "function value {value} at index {index} is not a finite number >= 0"
             ),
-            SamplingError::AllZero => f.write_str("cannot sample a function that is zero everywhere"),
+            SamplingError::AllZero => {
+                f.write_str("cannot sample a function that is zero everywhere")
+            }
             SamplingError::InvalidParameter(msg) => f.write_str(msg),
         }
     }

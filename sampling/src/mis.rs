@@ -17,7 +17,7 @@ pub fn power_heuristic(nf: u32, f_pdf: f32, ng: u32, g_pdf: f32) -> f32 {
     }
     // Squares of values above ~1.8e19 overflow f32: divide both by the larger first.
     let scale = f.max(g);
-    if !(scale > 0.0) {
+    if scale.is_nan() || scale <= 0.0 {
         return 0.0;
     }
     let (f, g) = (f / scale, g / scale);

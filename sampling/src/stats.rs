@@ -23,14 +23,22 @@ pub const MIN_EXPECTED_PER_BIN: f64 = 5.0;
 /// 5. A bin that expects 0 but observed samples is an immediate failure (p = 0): the
 /// sampler produced something impossible.
 pub fn chi_square_test(observed: &[u64], expected: &[f64]) -> ChiSquare {
-    assert_eq!(observed.len(), expected.len(), "observed and expected differ in length");
+    assert_eq!(
+        observed.len(),
+        expected.len(),
+        "observed and expected differ in length"
+    );
     let mut statistic = 0.0;
     let mut bins = 0usize;
     let (mut pooled_observed, mut pooled_expected) = (0.0, 0.0);
     for (&o, &e) in observed.iter().zip(expected) {
         if e <= 0.0 {
             if o > 0 {
-                return ChiSquare { statistic: f64::INFINITY, degrees_of_freedom: bins, p_value: 0.0 };
+                return ChiSquare {
+                    statistic: f64::INFINITY,
+                    degrees_of_freedom: bins,
+                    p_value: 0.0,
+                };
             }
             continue;
         }
@@ -136,7 +144,9 @@ fn ln_gamma(x: f64) -> f64 {
     let series = COEFFICIENTS[1..]
         .iter()
         .enumerate()
-        .fold(COEFFICIENTS[0], |acc, (i, c)| acc + c / (x + i as f64 + 1.0));
+        .fold(COEFFICIENTS[0], |acc, (i, c)| {
+            acc + c / (x + i as f64 + 1.0)
+        });
     0.5 * (2.0 * std::f64::consts::PI).ln() + (x + 0.5) * t.ln() - t + series.ln()
 }
 
@@ -148,9 +158,20 @@ mod tests {
     /// Table 1.3.6.7.4): the statistic exceeded with probability 0.05 and 0.01.
     #[test]
     fn p_values_match_published_critical_values() {
-        for (dof, x05, x01) in [(1, 3.841, 6.635), (2, 5.991, 9.210), (10, 18.307, 23.209), (100, 124.342, 135.807)] {
-            assert!((chi_square_p_value(x05, dof) - 0.05).abs() < 1e-4, "dof {dof}");
-            assert!((chi_square_p_value(x01, dof) - 0.01).abs() < 1e-4, "dof {dof}");
+        for (dof, x05, x01) in [
+            (1, 3.841, 6.635),
+            (2, 5.991, 9.210),
+            (10, 18.307, 23.209),
+            (100, 124.342, 135.807),
+        ] {
+            assert!(
+                (chi_square_p_value(x05, dof) - 0.05).abs() < 1e-4,
+                "dof {dof}"
+            );
+            assert!(
+                (chi_square_p_value(x01, dof) - 0.01).abs() < 1e-4,
+                "dof {dof}"
+            );
         }
         assert_eq!(chi_square_p_value(0.0, 3), 1.0);
         assert_eq!(chi_square_p_value(f64::INFINITY, 3), 0.0);

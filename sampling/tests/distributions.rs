@@ -4,8 +4,10 @@
 mod common;
 
 use common::{assert_chi_square, uniforms};
-use prism_sampling::distribution::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear1D};
 use prism_sampling::SamplingError;
+use prism_sampling::distribution::{
+    AliasTable, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear1D,
+};
 
 const SAMPLES: usize = 200_000;
 
@@ -29,7 +31,10 @@ fn piecewise_constant_matches_its_bins() {
     for _ in 0..SAMPLES {
         let s = d.sample(u());
         assert!(values[s.bin] > 0.0, "a zero bin was sampled");
-        assert!((s.pdf - d.pdf(s.value)).abs() <= 1e-12 * s.pdf, "sample and pdf disagree");
+        assert!(
+            (s.pdf - d.pdf(s.value)).abs() <= 1e-12 * s.pdf,
+            "sample and pdf disagree"
+        );
         counts[s.bin] += 1;
     }
     let total: f64 = values.iter().sum();
@@ -42,25 +47,43 @@ fn piecewise_constant_normalizes_and_inverts() {
     let values = test_values(50);
     let d = PiecewiseConstant1D::new(&values, 10.0, 20.0).unwrap();
     let width = 10.0 / 50.0;
-    let integral: f64 = (0..50).map(|i| d.pdf(10.0 + (i as f64 + 0.5) * width) * width).sum();
+    let integral: f64 = (0..50)
+        .map(|i| d.pdf(10.0 + (i as f64 + 0.5) * width) * width)
+        .sum();
     assert!((integral - 1.0).abs() < 1e-12);
     let mut u = uniforms("pc1d-invert");
     for _ in 0..10_000 {
         let x = u();
         let s = d.sample(x);
-        assert!((d.invert(s.value) - x).abs() < 1e-9, "invert(sample({x})) = {}", d.invert(s.value));
+        assert!(
+            (d.invert(s.value) - x).abs() < 1e-9,
+            "invert(sample({x})) = {}",
+            d.invert(s.value)
+        );
     }
 }
 
 #[test]
 fn degenerate_inputs_are_errors() {
-    assert_eq!(PiecewiseConstant1D::new(&[], 0.0, 1.0), Err(SamplingError::Empty));
-    assert_eq!(PiecewiseConstant1D::new(&[0.0, 0.0], 0.0, 1.0), Err(SamplingError::AllZero));
-    assert!(matches!(PiecewiseConstant1D::new(&[1.0, f64::NAN], 0.0, 1.0), Err(SamplingError::InvalidValue { index: 1, .. })));
+    assert_eq!(
+        PiecewiseConstant1D::new(&[], 0.0, 1.0),
+        Err(SamplingError::Empty)
+    );
+    assert_eq!(
+        PiecewiseConstant1D::new(&[0.0, 0.0], 0.0, 1.0),
+        Err(SamplingError::AllZero)
+    );
+    assert!(matches!(
+        PiecewiseConstant1D::new(&[1.0, f64::NAN], 0.0, 1.0),
+        Err(SamplingError::InvalidValue { index: 1, .. })
+    ));
     assert!(PiecewiseConstant1D::new(&[1.0, -1.0], 0.0, 1.0).is_err());
     assert!(PiecewiseConstant1D::new(&[1.0, f64::INFINITY], 0.0, 1.0).is_err());
     assert!(PiecewiseConstant1D::new(&[1.0], 1.0, 1.0).is_err());
-    assert!(PiecewiseConstant1D::new(&[f64::MAX, f64::MAX], 0.0, 10.0).is_err(), "overflowing integral");
+    assert!(
+        PiecewiseConstant1D::new(&[f64::MAX, f64::MAX], 0.0, 10.0).is_err(),
+        "overflowing integral"
+    );
     assert!(AliasTable::new(&[0.0]).is_err());
     assert!(PiecewiseLinear1D::new(&[1.0], 0.0, 1.0).is_err());
     assert!(PiecewiseConstant2D::new(&[1.0; 6], 4, 2, [[0.0, 1.0], [0.0, 1.0]]).is_err());
@@ -89,7 +112,13 @@ fn alias_table_matches_its_weights() {
 fn two_dimensional_distribution_matches_its_cells() {
     let (w, h) = (12, 9);
     let values: Vec<f64> = (0..w * h)
-        .map(|i| if i / w == 4 { 0.0 } else { test_values(w * h)[i] })
+        .map(|i| {
+            if i / w == 4 {
+                0.0
+            } else {
+                test_values(w * h)[i]
+            }
+        })
         .collect();
     let d = PiecewiseConstant2D::new(&values, w, h, [[0.0, 2.0], [-1.0, 1.0]]).unwrap();
     let mut u = uniforms("pc2d");
@@ -107,7 +136,10 @@ fn two_dimensional_distribution_matches_its_cells() {
     let cell_area = (2.0 / w as f64) * (2.0 / h as f64);
     let integral: f64 = (0..w * h)
         .map(|i| {
-            let (x, y) = (((i % w) as f64 + 0.5) * 2.0 / w as f64, ((i / w) as f64 + 0.5) * 2.0 / h as f64 - 1.0);
+            let (x, y) = (
+                ((i % w) as f64 + 0.5) * 2.0 / w as f64,
+                ((i / w) as f64 + 0.5) * 2.0 / h as f64 - 1.0,
+            );
             d.pdf([x, y]) * cell_area
         })
         .sum();

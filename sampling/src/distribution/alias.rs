@@ -1,5 +1,5 @@
 use super::clamp_unit;
-use crate::error::{validate, SamplingError};
+use crate::error::{SamplingError, validate};
 
 /// Walker's alias method for O(1) discrete sampling (A. J. Walker, ACM TOMS 3(3), 1977),
 /// built with Vose's numerically stable construction (M. D. Vose, IEEE TSE 17(9), 1991).
@@ -22,14 +22,17 @@ impl AliasTable {
             return Err(SamplingError::AllZero);
         }
         if !sum.is_finite() {
-            return Err(SamplingError::InvalidParameter("weights sum to infinity".into()));
+            return Err(SamplingError::InvalidParameter(
+                "weights sum to infinity".into(),
+            ));
         }
         let n = weights.len();
         let pmf: Vec<f64> = weights.iter().map(|w| w / sum).collect();
         let mut scaled: Vec<f64> = pmf.iter().map(|p| p * n as f64).collect();
         let mut keep = vec![1.0; n];
         let mut alias: Vec<usize> = (0..n).collect();
-        let (mut small, mut large): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| scaled[i] < 1.0);
+        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
+            (0..n).partition(|&i| scaled[i] < 1.0);
         while let (Some(s), Some(&l)) = (small.pop(), large.last()) {
             keep[s] = scaled[s];
             alias[s] = l;

@@ -20,5 +20,17 @@ pub(crate) fn clamp_unit(u: f64) -> f64 {
     }
 }
 
+/// A density of a sampled value narrowed to f32 for the render hot path. A positive f64
+/// density never becomes 0 (which would make the sample unusable): values below f32's
+/// smallest normal number (1.2e-38) are raised to it. Such densities belong to events of
+/// probability below ~1e-30, so the bias this introduces is of that order.
+pub fn density_f32(pdf: f64) -> f32 {
+    if pdf > 0.0 {
+        (pdf as f32).clamp(f32::MIN_POSITIVE, f32::MAX)
+    } else {
+        0.0
+    }
+}
+
 /// The largest f64 below 1.
 pub const ONE_MINUS_EPSILON: f64 = 1.0 - f64::EPSILON / 2.0;

@@ -1,5 +1,5 @@
 use super::clamp_unit;
-use crate::error::{validate, SamplingError};
+use crate::error::{SamplingError, validate};
 
 /// A sample of a [`PiecewiseConstant1D`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,9 +120,19 @@ impl PiecewiseConstant1D {
         let bin = (self.cdf.partition_point(|&c| c <= u).saturating_sub(1))
             .clamp(self.first_nonzero, self.last_nonzero);
         let (c0, c1) = (self.cdf[bin], self.cdf[bin + 1]);
-        let t = if c1 > c0 { ((u - c0) / (c1 - c0)).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if c1 > c0 {
+            ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let width = (self.max - self.min) / self.len() as f64;
-        let value = (self.min + (bin as f64 + t) * width).min(self.max);
+        // Keep the point inside its bin's half-open interval, so that `pdf(value)` is the
+        // density of the bin that was sampled even at t = 1 or after rounding.
+        let (start, end) = (
+            self.min + bin as f64 * width,
+            self.min + (bin + 1) as f64 * width,
+        );
+        let value = (self.min + (bin as f64 + t) * width).clamp(start, end.next_down().max(start));
         Sample1D {
             value,
             pdf: self.values[bin] / self.integral,

@@ -63,7 +63,11 @@ impl PiecewiseConstant2D {
     /// A point with density proportional to the function; `u` components are clamped
     /// into [0, 1).
     pub fn sample(&self, u: [f64; 2]) -> Sample2D {
-        let Sample1D { value: y, pdf: pdf_y, bin } = self.marginal.sample(u[1]);
+        let Sample1D {
+            value: y,
+            pdf: pdf_y,
+            bin,
+        } = self.marginal.sample(u[1]);
         // The marginal never picks a zero row, so its conditional exists.
         match &self.conditionals[bin] {
             Some(row) => {

@@ -1,5 +1,5 @@
-use super::{clamp_unit, PiecewiseConstant1D};
-use crate::error::{validate, SamplingError};
+use super::{PiecewiseConstant1D, clamp_unit};
+use crate::error::{SamplingError, validate};
 
 /// A piecewise-linear density over `[min, max]` through `n >= 2` equally spaced
 /// non-negative values: a segment is chosen in proportion to its trapezoid area, then the
@@ -44,7 +44,11 @@ impl PiecewiseLinear1D {
         let u = clamp_unit(u);
         let s = self.segments.sample(u);
         let (c0, c1) = (self.segments.cdf_at(s.bin), self.segments.cdf_at(s.bin + 1));
-        let v = if c1 > c0 { ((u - c0) / (c1 - c0)).clamp(0.0, 1.0) } else { 0.0 };
+        let v = if c1 > c0 {
+            ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         let (a, b) = (self.values[s.bin], self.values[s.bin + 1]);
         let t = sample_linear(v, a, b);
         let width = (self.max - self.min) / (self.values.len() - 1) as f64;

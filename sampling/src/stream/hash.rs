@@ -11,7 +11,7 @@ pub const fn mix64(mut x: u64) -> u64 {
 /// Hashes a tuple of words into one: each word is mixed into the running state, so
 /// `(a, b)` and `(b, a)` differ.
 pub(crate) fn hash_words(words: &[u64]) -> u64 {
-    words
-        .iter()
-        .fold(0x9e37_79b9_7f4a_7c15, |h, &w| mix64(h ^ mix64(w.wrapping_add(0x632b_e59b_d9b4_e019))))
+    words.iter().fold(0x9e37_79b9_7f4a_7c15, |h, &w| {
+        mix64(h ^ mix64(w.wrapping_add(0x632b_e59b_d9b4_e019)))
+    })
 }

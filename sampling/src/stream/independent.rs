@@ -1,7 +1,7 @@
 use glam::Vec2;
 
 use super::hash::{hash_words, mix64};
-use super::{bits_to_unit_f32, SampleStream};
+use super::{SampleStream, bits_to_unit_f32};
 
 /// Independent uniform numbers from a counter-based hash of `(seed, pixel, sample,
 /// dimension)`: no state is shared between samples, so any sample is reproducible alone.

@@ -9,7 +9,7 @@ mod sobol;
 
 pub use hash::mix64;
 pub use independent::IndependentStream;
-pub use sobol::{sobol_sample, SobolStream};
+pub use sobol::{SobolStream, sobol_sample};
 
 use glam::Vec2;
 

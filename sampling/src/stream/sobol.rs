@@ -3,7 +3,7 @@ use std::sync::LazyLock;
 use glam::Vec2;
 
 use super::hash::hash_words;
-use super::{bits_to_unit_f32, SampleStream};
+use super::{SampleStream, bits_to_unit_f32};
 
 /// Generator matrices (as 32 direction numbers each) of the first two Sobol dimensions,
 /// which together form a (0, 2)-sequence in base 2. Derived in code from the primitive
@@ -11,7 +11,8 @@ use super::{bits_to_unit_f32, SampleStream};
 /// with better two-dimensional projections", SIAM J. Sci. Comput. 30(5), 2008): dimension
 /// 0 is the van der Corput sequence, dimension 1 has polynomial x + 1 (degree 1, a = 0)
 /// and m_1 = 1.
-static DIRECTIONS: LazyLock<[[u32; 32]; 2]> = LazyLock::new(|| [van_der_corput(), directions(1, 0, &[1])]);
+static DIRECTIONS: LazyLock<[[u32; 32]; 2]> =
+    LazyLock::new(|| [van_der_corput(), directions(1, 0, &[1])]);
 
 fn van_der_corput() -> [u32; 32] {
     std::array::from_fn(|i| 1u32 << (31 - i))
@@ -123,14 +124,29 @@ impl SampleStream for SobolStream {
 mod tests {
     use super::*;
 
-    /// The first points of the 2D Sobol sequence, as printed by Joe and Kuo's generator:
-    /// (0, 0), (0.5, 0.5), (0.75, 0.25), (0.25, 0.75), (0.375, 0.375), (0.875, 0.875).
+    /// The first points of the 2D Sobol sequence in natural index order. (Joe and Kuo's
+    /// generator prints them in Gray-code order, (0.5, 0.5), (0.75, 0.25), (0.25, 0.75), ...:
+    /// the same sets for every power-of-two prefix.)
     #[test]
     fn unscrambled_points_match_the_sequence() {
-        let expected = [(0.0, 0.0), (0.5, 0.5), (0.75, 0.25), (0.25, 0.75), (0.375, 0.375), (0.875, 0.875)];
+        let expected = [
+            (0.0, 0.0),
+            (0.5, 0.5),
+            (0.25, 0.75),
+            (0.75, 0.25),
+            (0.125, 0.625),
+            (0.625, 0.125),
+        ];
         for (i, (x, y)) in expected.into_iter().enumerate() {
             let to_f = |b: u32| f64::from(b) / 4_294_967_296.0;
-            assert_eq!((to_f(sobol_sample(i as u32, 0)), to_f(sobol_sample(i as u32, 1))), (x, y), "{i}");
+            assert_eq!(
+                (
+                    to_f(sobol_sample(i as u32, 0)),
+                    to_f(sobol_sample(i as u32, 1))
+                ),
+                (x, y),
+                "{i}"
+            );
         }
     }
 }

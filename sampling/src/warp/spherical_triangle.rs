@@ -21,7 +21,11 @@ pub fn spherical_triangle_solid_angle(p: Vec3, v: [Vec3; 3]) -> f32 {
     let numerator = a.dot(b.cross(c)).abs();
     let denominator = 1.0 + a.dot(b) + b.dot(c) + c.dot(a);
     let omega = 2.0 * numerator.atan2(denominator);
-    if omega.is_finite() { omega.max(0.0) } else { 0.0 }
+    if omega.is_finite() {
+        omega.max(0.0)
+    } else {
+        0.0
+    }
 }
 
 /// Uniform sampling of the solid angle subtended by triangle `v` as seen from `p`, by
@@ -72,7 +76,9 @@ pub fn spherical_triangle(p: Vec3, v: [Vec3; 3], u: Vec2) -> Option<SphericalTri
     // A point on the arc from b to c'.
     let cos_theta = 1.0 - u.y * (1.0 - c_prime.dot(b));
     let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    let perp = (c_prime - c_prime.dot(b) * b).try_normalize().unwrap_or(Vec3::ZERO);
+    let perp = (c_prime - c_prime.dot(b) * b)
+        .try_normalize()
+        .unwrap_or(Vec3::ZERO);
     let direction = (cos_theta * b + sin_theta * perp).try_normalize()?;
     Some(SphericalTriangleSample {
         direction,

@@ -21,5 +21,9 @@ pub fn uniform_triangle(u: Vec2) -> [f32; 3] {
 /// degenerate triangle (which cannot be sampled).
 pub fn uniform_triangle_pdf(p0: Vec3, p1: Vec3, p2: Vec3) -> f32 {
     let area = 0.5 * (p1 - p0).cross(p2 - p0).length();
-    if area > 0.0 && area.is_finite() { 1.0 / area } else { 0.0 }
+    if area > 0.0 && area.is_finite() {
+        1.0 / area
+    } else {
+        0.0
+    }
 }

@@ -1,5 +1,5 @@
 use super::WavelengthRange;
-use crate::distribution::{clamp_unit, PiecewiseConstant1D};
+use crate::distribution::{PiecewiseConstant1D, clamp_unit};
 use crate::error::SamplingError;
 
 /// Centre of the visible-importance density, nm (Radziszewski, Boryczko and Alda, "An
@@ -64,7 +64,9 @@ impl WavelengthDistribution {
         }
         let (lo, hi) = (f64::from(range.min()), f64::from(range.max()));
         let width = (hi - lo) / bins as f64;
-        let values: Vec<f64> = (0..bins).map(|i| importance(lo + (i as f64 + 0.5) * width)).collect();
+        let values: Vec<f64> = (0..bins)
+            .map(|i| importance(lo + (i as f64 + 0.5) * width))
+            .collect();
         Ok(WavelengthDistribution::Tabulated {
             range,
             histogram: PiecewiseConstant1D::new(&values, lo, hi)?,
@@ -127,16 +129,23 @@ impl WavelengthDistribution {
                 "the response is zero over the range, or a light's power is not finite".into(),
             ));
         }
-        let spd_weight = if spd_area > 0.0 { (1.0 - defensive) / spd_area } else { 0.0 };
+        let spd_weight = if spd_area > 0.0 {
+            (1.0 - defensive) / spd_area
+        } else {
+            0.0
+        };
         let response_weight = if spd_area > 0.0 { defensive } else { 1.0 } / response_area;
-        Self::tabulated(range, bins, |l| spd_weight * spd(l) + response_weight * response(l).max(0.0))
+        Self::tabulated(range, bins, |l| {
+            spd_weight * spd(l) + response_weight * response(l).max(0.0)
+        })
     }
 
     /// The range.
     pub fn range(&self) -> WavelengthRange {
         match self {
             WavelengthDistribution::Uniform(r) => *r,
-            WavelengthDistribution::Visible { range, .. } | WavelengthDistribution::Tabulated { range, .. } => *range,
+            WavelengthDistribution::Visible { range, .. }
+            | WavelengthDistribution::Tabulated { range, .. } => *range,
         }
     }
 
@@ -170,7 +179,9 @@ impl WavelengthDistribution {
                 VISIBLE_SHARPNESS / ((t_max - t_min) * c * c)
             }
             // The histogram's domain is half-open; its last point belongs to the last bin.
-            WavelengthDistribution::Tabulated { histogram, .. } => histogram.pdf(lambda.min(hi - (hi - lo) * 1e-12)),
+            WavelengthDistribution::Tabulated { histogram, .. } => {
+                histogram.pdf(lambda.min(hi - (hi - lo) * 1e-12))
+            }
         }
     }
 
@@ -199,5 +210,8 @@ impl WavelengthDistribution {
 fn bin_area(range: WavelengthRange, bins: usize, f: &dyn Fn(f64) -> f64) -> f64 {
     let (lo, hi) = (f64::from(range.min()), f64::from(range.max()));
     let width = (hi - lo) / bins.max(1) as f64;
-    (0..bins).map(|i| f(lo + (i as f64 + 0.5) * width).max(0.0)).sum::<f64>() * width
+    (0..bins)
+        .map(|i| f(lo + (i as f64 + 0.5) * width).max(0.0))
+        .sum::<f64>()
+        * width
 }

@@ -11,7 +11,7 @@ mod package;
 mod range;
 mod reradiation;
 
-pub use distribution::{WavelengthDistribution, VISIBLE_CENTER_NM, VISIBLE_SHARPNESS};
-pub use package::{spectral_mis_weights, PackageScheme, WavelengthPackage, MAX_PACKAGE_SIZE};
+pub use distribution::{VISIBLE_CENTER_NM, VISIBLE_SHARPNESS, WavelengthDistribution};
+pub use package::{MAX_PACKAGE_SIZE, PackageScheme, WavelengthPackage, spectral_mis_weights};
 pub use range::WavelengthRange;
 pub use reradiation::{ReradiationSample, ReradiationSampler};

@@ -1,33 +1,40 @@
 use super::WavelengthDistribution;
+use crate::distribution::density_f32;
 
 /// The largest package size supported (the issue's C in 1, 2, 4, 8, 16).
 pub const MAX_PACKAGE_SIZE: usize = 16;
 
-/// How the `C` wavelengths of a package are chosen from the hero distribution p.
+/// How the `C` wavelengths of a package are chosen from the hero distribution p, and how
+/// they are combined.
+///
+/// Both schemes use the balance heuristic over the C "techniques" *lane m is the hero*.
+/// Technique m gives lane j's point (x, lambda_j) the density p_m(lambda_j) q(x | lambda_m),
+/// where q is the density of the path given a wavelength and p_m(lambda_j) the density of
+/// lambda_j when lane m is the hero; which p_m that is depends on the scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum PackageScheme {
-    /// Wilkie et al. 2014: the hero lambda_H ~ p and the others by rotation in wavelength,
-    /// lambda_j = ((lambda_H - min + j / C (max - min)) mod (max - min)) + min, combined by
-    /// the balance heuristic over the package (the seed lecture's "HWS").
+    /// Wilkie et al. 2014 (the seed lecture's HWS): lambda_H ~ p and the other lanes by
+    /// rotation in wavelength, lambda_j = ((lambda_H - min + j / C (max - min)) mod
+    /// (max - min)) + min. Rotation preserves measure, so p_m(lambda_j) = p(lambda_m) and
+    /// the estimator is sum_j L_j / sum_k p(lambda_k) q_k: every lane's density is
+    /// `(1/C) sum_k p(lambda_k) q_k`.
     HeroRotation,
-    /// Every lane distributed by p (the seed lecture's "let's pick each wavelength
-    /// according to p"): lambda_j = P^-1((u + j / C) mod 1), with lane 0 the hero, combined
-    /// by the balance heuristic over the package. Rotation in primary sample space makes
-    /// the package the same set whichever lane is the hero, which is what the balance
-    /// heuristic needs.
-    StratifiedBalance,
-    /// The lanes of `StratifiedBalance`, each weighted by its own marginal density p(lambda_j)
-    /// without MIS (pbrt-v4's `SampleVisible`). Only for paths whose sampling does not
-    /// depend on wavelength.
-    StratifiedIndependent,
+    /// Every lane distributed by p (the seed lecture's "pick each wavelength according to
+    /// p, but still use only one as the hero"): lambda_j = P^-1((u + j / C) mod 1), lane 0
+    /// the hero. Rotation in primary sample space gives every lane the marginal density p,
+    /// so p_m(lambda_j) = p(lambda_j) and the estimator is
+    /// sum_j L_j / (p(lambda_j) sum_k q_k): lane j's density is `p(lambda_j) (1/C) sum_k q_k`,
+    /// which for wavelength-independent paths is simply p(lambda_j) (pbrt-v4's
+    /// `SampleVisible`).
+    Stratified,
 }
 
 /// The wavelengths a path carries, with their densities.
 ///
-/// `pdf` is the per-lane density for the estimator `(1/C) sum_j L(lambda_j) / pdf_j`: for
-/// the balance schemes it is `(1/C) sum_k p(lambda_k)` in every lane (so the estimator is
-/// `sum_j L(lambda_j) / sum_k p(lambda_k)`), for `StratifiedIndependent` it is
-/// `p(lambda_j)`. A lane with `pdf` 0 is terminated and contributes nothing.
+/// `pdf` is the per-lane density for the estimator `(1/C) sum_j L(lambda_j) / pdf_j` when
+/// path sampling does not depend on wavelength (see [`PackageScheme`]); when it does, use
+/// [`WavelengthPackage::balance_pdf`]. A lane with `pdf` 0 is terminated and contributes
+/// nothing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WavelengthPackage<const N: usize> {
     /// Wavelengths, nm; lane 0 is the hero.
@@ -36,6 +43,7 @@ pub struct WavelengthPackage<const N: usize> {
     pub hero_pdf: [f32; N],
     /// The estimator density per lane (see the type's documentation), per nm.
     pub pdf: [f32; N],
+    scheme: PackageScheme,
     terminated: bool,
 }
 
@@ -43,38 +51,53 @@ impl<const N: usize> WavelengthPackage<N> {
     /// Draws a package from `distribution` with one uniform number `u` (clamped into
     /// [0, 1)) by `scheme`.
     pub fn sample(distribution: &WavelengthDistribution, u: f64, scheme: PackageScheme) -> Self {
-        const { assert!(N >= 1 && N <= MAX_PACKAGE_SIZE, "package size must be 1..=16") };
+        const {
+            assert!(
+                N >= 1 && N <= MAX_PACKAGE_SIZE,
+                "package size must be 1..=16"
+            )
+        };
         let range = distribution.range();
         let (lo, width) = (f64::from(range.min()), f64::from(range.width()));
         let u = crate::distribution::clamp_unit(u);
         let lambda_f64: [f64; N] = match scheme {
             PackageScheme::HeroRotation => {
                 let hero = distribution.sample(u);
+                // Lane 0 is the hero itself: wrapping it would turn lambda_max into lambda_min.
                 std::array::from_fn(|j| {
-                    let shifted = (hero - lo + j as f64 / N as f64 * width).rem_euclid(width);
-                    lo + shifted
+                    if j == 0 {
+                        return hero;
+                    }
+                    lo + (hero - lo + j as f64 / N as f64 * width).rem_euclid(width)
                 })
             }
-            PackageScheme::StratifiedBalance | PackageScheme::StratifiedIndependent => {
+            PackageScheme::Stratified => {
                 std::array::from_fn(|j| distribution.sample((u + j as f64 / N as f64).fract()))
             }
         };
-        let hero_pdf_f64 = lambda_f64.map(|l| distribution.pdf(l));
-        let lambda = lambda_f64.map(|l| range.clamp(l as f32));
-        let hero_pdf = hero_pdf_f64.map(|p| p as f32);
-        let pdf = match scheme {
-            PackageScheme::HeroRotation | PackageScheme::StratifiedBalance => {
-                let mean = hero_pdf_f64.iter().sum::<f64>() / N as f64;
-                [mean as f32; N]
+        // The renderer uses the f32 wavelength, so its density is evaluated there; if
+        // rounding to f32 crossed into a zero-density bin, step back one ulp towards the
+        // sampled f64 value.
+        let lambda: [f32; N] = lambda_f64.map(|l| {
+            let narrow = range.clamp(l as f32);
+            if distribution.pdf(f64::from(narrow)) > 0.0 {
+                narrow
+            } else if f64::from(narrow) > l {
+                range.clamp(narrow.next_down())
+            } else {
+                range.clamp(narrow.next_up())
             }
-            PackageScheme::StratifiedIndependent => hero_pdf,
-        };
-        Self {
+        });
+        let hero_pdf = lambda.map(|l| density_f32(distribution.pdf(f64::from(l))));
+        let mut package = Self {
             lambda,
             hero_pdf,
-            pdf,
+            pdf: hero_pdf,
+            scheme,
             terminated: false,
-        }
+        };
+        package.pdf = package.balance_pdf(&[1.0; N]);
+        package
     }
 
     /// The hero wavelength, nm.
@@ -102,26 +125,52 @@ impl<const N: usize> WavelengthPackage<N> {
         }
         self.terminated = true;
         self.pdf = [0.0; N];
-        self.pdf[0] = self.hero_pdf[0] / N as f32;
+        self.pdf[0] = density_f32(f64::from(self.hero_pdf[0]) / N as f64);
     }
 
-    /// The balance-heuristic estimator density of every lane when path sampling depends
-    /// on wavelength: `(1/C) sum_k p(lambda_k) q_k`, with `q_k` the density of the sampled
-    /// path given lambda_k (the seed lecture's HWS MIS). After secondary termination it is
-    /// `p(lambda_0) q_0 / C` for the hero and 0 elsewhere.
+    /// The scheme that drew the package.
+    pub fn scheme(&self) -> PackageScheme {
+        self.scheme
+    }
+
+    /// The balance-heuristic estimator density per lane when path sampling depends on
+    /// wavelength, `path_pdf[k]` = q_k the density of the sampled path given lambda_k
+    /// (the seed lecture's HWS MIS): `(1/C) sum_k p(lambda_k) q_k` for `HeroRotation`,
+    /// `p(lambda_j) (1/C) sum_k q_k` for `Stratified`. After secondary termination only
+    /// the hero remains, with `p(lambda_0) q_0 / C`.
     pub fn balance_pdf(&self, path_pdf: &[f32; N]) -> [f32; N] {
+        let q = |k: usize| f64::from(path_pdf[k]);
         if self.terminated {
             let mut pdf = [0.0; N];
-            pdf[0] = self.hero_pdf[0] * path_pdf[0] / N as f32;
+            pdf[0] = density_f32(f64::from(self.hero_pdf[0]) * q(0) / N as f64);
             return pdf;
         }
-        let sum: f64 = (0..N).map(|k| f64::from(self.hero_pdf[k]) * f64::from(path_pdf[k])).sum();
-        [(sum / N as f64) as f32; N]
+        match self.scheme {
+            PackageScheme::HeroRotation => {
+                let sum: f64 = (0..N).map(|k| f64::from(self.hero_pdf[k]) * q(k)).sum();
+                [density_f32(sum / N as f64); N]
+            }
+            PackageScheme::Stratified => {
+                let mean_q = (0..N).map(q).sum::<f64>() / N as f64;
+                std::array::from_fn(|j| density_f32(f64::from(self.hero_pdf[j]) * mean_q))
+            }
+        }
+    }
+
+    /// The balance-heuristic weight of each lane's own technique, so that the estimator is
+    /// `sum_j w_j L_j / (p(lambda_j) q_j)`: [`spectral_mis_weights`] for `HeroRotation`,
+    /// `q_j / sum_k q_k` for `Stratified`. They sum to 1 (0 everywhere if every q is 0).
+    pub fn mis_weights(&self, path_pdf: &[f32; N]) -> [f32; N] {
+        match self.scheme {
+            PackageScheme::HeroRotation => spectral_mis_weights(&self.hero_pdf, path_pdf),
+            PackageScheme::Stratified => spectral_mis_weights(&[1.0; N], path_pdf),
+        }
     }
 }
 
-/// Spectral MIS weights over a package: w_j = p(lambda_j) q_j / sum_k p(lambda_k) q_k, with
-/// p the hero density and q_j the density of the path given lambda_j. Non-finite or negative
+/// Spectral MIS weights over a rotation package (the issue's and the seed lecture's
+/// formula): w_j = p(lambda_j) q_j / sum_k p(lambda_k) q_k, with p the hero density and q_j
+/// the density of the path given lambda_j. Non-finite or negative
 /// inputs count as 0; if every product is 0 the weights are 0.
 pub fn spectral_mis_weights<const N: usize>(hero_pdf: &[f32; N], path_pdf: &[f32; N]) -> [f32; N] {
     let product = |j: usize| {

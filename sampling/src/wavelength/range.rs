@@ -9,7 +9,10 @@ pub struct WavelengthRange {
 
 impl WavelengthRange {
     /// The range of the CIE colour-matching functions, 360-830 nm: the default.
-    pub const VISIBLE: WavelengthRange = WavelengthRange { min: 360.0, max: 830.0 };
+    pub const VISIBLE: WavelengthRange = WavelengthRange {
+        min: 360.0,
+        max: 830.0,
+    };
 
     /// `[min, max]` in nm.
     pub fn new(min: f32, max: f32) -> Result<Self, SamplingError> {
@@ -44,7 +47,11 @@ impl WavelengthRange {
 
     /// `lambda` clamped into the range (NaN to `min`).
     pub fn clamp(&self, lambda: f32) -> f32 {
-        if lambda.is_nan() { self.min } else { lambda.clamp(self.min, self.max) }
+        if lambda.is_nan() {
+            self.min
+        } else {
+            lambda.clamp(self.min, self.max)
+        }
     }
 }
 

@@ -1,5 +1,5 @@
 use super::WavelengthRange;
-use crate::distribution::PiecewiseConstant1D;
+use crate::distribution::{PiecewiseConstant1D, density_f32};
 use crate::error::SamplingError;
 
 /// A sampled wavelength change at a fluorescent vertex.
@@ -90,7 +90,7 @@ impl ReradiationSampler {
         let s = column.sample(u);
         Some(ReradiationSample {
             lambda: self.range.clamp(s.value as f32),
-            pdf: s.pdf as f32,
+            pdf: density_f32(s.pdf),
             weight: (column.integral()) as f32,
         })
     }
@@ -102,7 +102,7 @@ impl ReradiationSampler {
         let s = row.sample(u);
         Some(ReradiationSample {
             lambda: self.range.clamp(s.value as f32),
-            pdf: s.pdf as f32,
+            pdf: density_f32(s.pdf),
             weight: row.integral() as f32,
         })
     }
@@ -112,7 +112,7 @@ impl ReradiationSampler {
     pub fn pdf_incident(&self, lambda_incident: f32, lambda_outgoing: f32) -> f32 {
         self.bin(lambda_outgoing)
             .and_then(|o| self.by_outgoing[o].as_ref())
-            .map_or(0.0, |c| c.pdf(f64::from(lambda_incident)) as f32)
+            .map_or(0.0, |c| density_f32(c.pdf(f64::from(lambda_incident))))
     }
 
     /// The density with which [`ReradiationSampler::sample_outgoing`] returns
@@ -120,6 +120,6 @@ impl ReradiationSampler {
     pub fn pdf_outgoing(&self, lambda_outgoing: f32, lambda_incident: f32) -> f32 {
         self.bin(lambda_incident)
             .and_then(|i| self.by_incident[i].as_ref())
-            .map_or(0.0, |r| r.pdf(f64::from(lambda_outgoing)) as f32)
+            .map_or(0.0, |r| density_f32(r.pdf(f64::from(lambda_outgoing))))
     }
 }

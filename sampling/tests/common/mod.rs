@@ -25,8 +25,10 @@ pub fn assert_chi_square(name: &str, observed: &[u64], expected: &[f64]) {
 }
 
 /// A deterministic stream of uniform f64s for test `name` (seeded by the name).
-pub fn uniforms(name: &str) -> impl FnMut() -> f64 {
-    let seed = name.bytes().fold(0u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b)));
+pub fn uniforms(name: &str) -> impl FnMut() -> f64 + use<> {
+    let seed = name
+        .bytes()
+        .fold(0u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b)));
     let mut stream = IndependentStream::new(seed, 0, 0);
     move || stream.next_f64()
 }
