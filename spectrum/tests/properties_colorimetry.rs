@@ -53,9 +53,8 @@ proptest! {
         b in 1e-9..1e-6f64,
         other_l in 0.0..100.0f64,
         other_c in 1.0..100.0f64,
-        other_h in 0.0..360.0f64,
+        other_h in (0.0..340.0f64).prop_map(|h| if h >= 170.0 { h + 20.0 } else { h }),
     ) {
-        prop_assume!((other_h - 180.0).abs() > 10.0);
         let other = Lab::new(other_l, other_c * other_h.to_radians().cos(), other_c * other_h.to_radians().sin());
         let above = ciede2000(Lab::new(l, a, b), other);
         let below = ciede2000(Lab::new(l, a, -b), other);

@@ -16,16 +16,19 @@ fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
 }
 
 /// An independent f64 formulation of Planck's law, accurate where it is used: the Wien
-/// form e^-x / (1 - e^-x) for x > 1e-3, the Rayleigh-Jeans series 1/x - 1/2 + x/12 below.
+/// form e^-x / (1 - e^-x) for x > 1e-3, with e^-x applied as two halves so that no
+/// intermediate is subnormal (e^-732 alone would keep only ~5 digits), and the
+/// Rayleigh-Jeans series 1/x - 1/2 + x/12 below.
 fn planck_reference(lambda_m: f64, kelvin: f64) -> f64 {
     let x = PLANCK * SPEED_OF_LIGHT / (lambda_m * BOLTZMANN * kelvin);
     let c1 = 2.0 * PLANCK * SPEED_OF_LIGHT * SPEED_OF_LIGHT;
-    let bose = if x > 1e-3 {
-        (-x).exp() / (1.0 - (-x).exp())
+    let prefactor = c1 / lambda_m.powi(5);
+    if x > 1e-3 {
+        let half = (-x / 2.0).exp();
+        prefactor * half * half / (1.0 - (-x).exp())
     } else {
-        1.0 / x - 0.5 + x / 12.0
-    };
-    c1 / lambda_m.powi(5) * bose
+        prefactor * (1.0 / x - 0.5 + x / 12.0)
+    }
 }
 
 proptest! {
