@@ -166,4 +166,14 @@ fn piecewise_linear_matches_its_density() {
         })
         .collect();
     assert_chi_square("piecewise linear 1D", &counts, &expected);
+    // The density integrates to 1 (trapezoid rule is exact for a piecewise-linear function
+    // on a grid that contains its knots).
+    let n = 6000;
+    let integral: f64 = (0..n)
+        .map(|i| {
+            0.5 * (d.pdf(i as f64 * 6.0 / n as f64) + d.pdf((i + 1) as f64 * 6.0 / n as f64)) * 6.0
+                / n as f64
+        })
+        .sum();
+    assert!((integral - 1.0).abs() < 1e-9, "{integral}");
 }

@@ -78,17 +78,21 @@ impl<const N: usize> WavelengthPackage<N> {
         // The renderer uses the f32 wavelength, so its density is evaluated there; if
         // rounding to f32 crossed into a zero-density bin, step back one ulp towards the
         // sampled f64 value.
-        let lambda: [f32; N] = lambda_f64.map(|l| {
+        let lanes: [(f32, f64); N] = lambda_f64.map(|l| {
             let narrow = range.clamp(l as f32);
-            if distribution.pdf(f64::from(narrow)) > 0.0 {
-                narrow
-            } else if f64::from(narrow) > l {
-                range.clamp(narrow.next_down())
-            } else {
-                range.clamp(narrow.next_up())
+            let pdf = distribution.pdf(f64::from(narrow));
+            if pdf > 0.0 {
+                return (narrow, pdf);
             }
+            let stepped = range.clamp(if f64::from(narrow) > l {
+                narrow.next_down()
+            } else {
+                narrow.next_up()
+            });
+            (stepped, distribution.pdf(f64::from(stepped)))
         });
-        let hero_pdf = lambda.map(|l| density_f32(distribution.pdf(f64::from(l))));
+        let lambda = lanes.map(|(l, _)| l);
+        let hero_pdf = lanes.map(|(_, p)| density_f32(p));
         let mut package = Self {
             lambda,
             hero_pdf,

@@ -1,0 +1,103 @@
+//! prism-sampling: ns per wavelength package for each sampler and package size, and ns per
+//! 1D sample from tables of 1e2 and 1e5 bins.
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use prism_sampling::distribution::{AliasTable, PiecewiseConstant1D};
+use prism_sampling::stream::{IndependentStream, SampleStream, SobolStream};
+use prism_sampling::wavelength::{
+    PackageScheme, WavelengthDistribution, WavelengthPackage, WavelengthRange,
+};
+
+fn y_bar(l: f64) -> f64 {
+    (-0.5 * ((l - 555.0) / 45.0).powi(2)).exp()
+}
+
+fn samplers() -> Vec<(&'static str, WavelengthDistribution)> {
+    let range = WavelengthRange::VISIBLE;
+    vec![
+        ("uniform", WavelengthDistribution::uniform(range)),
+        ("visible", WavelengthDistribution::visible(range)),
+        (
+            "response",
+            WavelengthDistribution::response(range, 470, &[&y_bar]).expect("valid"),
+        ),
+        (
+            "spd",
+            WavelengthDistribution::light_spd(range, 470, &[&|l| l / 1000.0], &y_bar, 0.1)
+                .expect("valid"),
+        ),
+    ]
+}
+
+fn package<const N: usize>(c: &mut Criterion, group_name: &str) {
+    let mut group = c.benchmark_group(group_name);
+    group.throughput(Throughput::Elements(1));
+    for (name, d) in samplers() {
+        for scheme in [PackageScheme::HeroRotation, PackageScheme::Stratified] {
+            let mut u = 0.123_f64;
+            group.bench_function(BenchmarkId::new(name, format!("{scheme:?}")), |b| {
+                b.iter(|| {
+                    u = (u + 0.618_033_988_749_894_9).fract();
+                    black_box(WavelengthPackage::<N>::sample(black_box(&d), u, scheme))
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+fn packages(c: &mut Criterion) {
+    package::<1>(c, "wavelength package C=1");
+    package::<4>(c, "wavelength package C=4");
+    package::<16>(c, "wavelength package C=16");
+}
+
+fn tables(c: &mut Criterion) {
+    let mut group = c.benchmark_group("1D sample");
+    group.throughput(Throughput::Elements(1));
+    for bins in [100usize, 100_000] {
+        let values: Vec<f64> = (0..bins)
+            .map(|i| 1.0 + (i as f64 * 0.1).sin().abs())
+            .collect();
+        let table = PiecewiseConstant1D::new(&values, 0.0, 1.0).expect("valid");
+        let alias = AliasTable::new(&values).expect("valid");
+        let mut u = 0.5_f64;
+        group.bench_function(BenchmarkId::new("piecewise constant", bins), |b| {
+            b.iter(|| {
+                u = (u + 0.618_033_988_749_894_9).fract();
+                black_box(table.sample(u))
+            })
+        });
+        group.bench_function(BenchmarkId::new("alias table", bins), |b| {
+            b.iter(|| {
+                u = (u + 0.618_033_988_749_894_9).fract();
+                black_box(alias.sample(u))
+            })
+        });
+    }
+    group.finish();
+}
+
+fn streams(c: &mut Criterion) {
+    let mut group = c.benchmark_group("stream 2D sample");
+    group.throughput(Throughput::Elements(1));
+    let mut i = 0u64;
+    group.bench_function("independent", |b| {
+        b.iter(|| {
+            i += 1;
+            black_box(IndependentStream::new(7, i >> 6, i & 63).next_2d())
+        })
+    });
+    group.bench_function("sobol", |b| {
+        b.iter(|| {
+            i += 1;
+            black_box(SobolStream::new(7, i >> 6, i & 63).next_2d())
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, packages, tables, streams);
+criterion_main!(benches);
