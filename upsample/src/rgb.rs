@@ -1,0 +1,164 @@
+//! RGB colours as spectra: albedo, unbounded and illuminant kinds (Jakob and Hanika 2019,
+//! §5; pbrt-v4's RGBAlbedoSpectrum, RGBUnboundedSpectrum, RGBIlluminantSpectrum).
+//!
+//! Policies for inputs outside a kind's domain, applied before fitting and reported in
+//! [`RgbSpectrum::clamped`] so callers can warn:
+//! - NaN or infinite components: an error.
+//! - Negative components (outside the gamut): clamped to 0.
+//! - Albedo components above 1 (no reflectance exceeds 1): clamped to 1.
+//! - Exact black: the zero spectrum (no sigmoid reaches 0 everywhere).
+//! - r = g = b: an exactly constant spectrum (c0 = c1 = 0), no fit needed.
+
+use std::sync::Arc;
+
+use prism_spectrum::Spectrum;
+use prism_spectrum::spectra::DenselySampled;
+
+use crate::error::UpsampleError;
+use crate::fit::FitContext;
+use crate::model::SigmoidPolynomial;
+
+/// What a fitted colour is used for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RgbKind {
+    /// A reflectance or transmittance: values in [0, 1].
+    Albedo,
+    /// An unbounded positive quantity: scale times a sigmoid, scale = 2 max(r, g, b).
+    Unbounded,
+    /// An emission: scale times a sigmoid times the space's illuminant (normalized to
+    /// luminance 1), so RGB (1, 1, 1) emits exactly the illuminant.
+    Illuminant,
+}
+
+/// A spectrum standing for an RGB colour.
+#[derive(Debug, Clone)]
+pub struct RgbSpectrum {
+    kind: RgbKind,
+    scale: f64,
+    /// None for black.
+    shape: Option<SigmoidPolynomial>,
+    illuminant: Option<Arc<DenselySampled>>,
+    clamped: bool,
+    residual: f64,
+}
+
+impl RgbSpectrum {
+    /// Fits `rgb` (linear, in `context`'s space) as `kind`. `illuminant` is required for
+    /// [`RgbKind::Illuminant`] and ignored otherwise; pass it normalized to luminance 1
+    /// ([`normalized_illuminant`]).
+    pub fn fit(
+        context: &FitContext,
+        rgb: [f64; 3],
+        kind: RgbKind,
+        illuminant: Option<Arc<DenselySampled>>,
+    ) -> Result<Self, UpsampleError> {
+        if rgb.iter().any(|c| !c.is_finite()) {
+            return Err(UpsampleError::NonFinite(rgb));
+        }
+        let upper = if kind == RgbKind::Albedo {
+            1.0
+        } else {
+            f64::MAX
+        };
+        let clean = rgb.map(|c| c.clamp(0.0, upper));
+        let clamped = clean != rgb;
+        let m = clean.iter().copied().fold(0.0, f64::max);
+        let scale = if kind == RgbKind::Albedo {
+            1.0
+        } else {
+            2.0 * m
+        };
+        let (shape, residual) = if m == 0.0 {
+            (None, 0.0)
+        } else {
+            let target = clean.map(|c| c / scale);
+            if target[0] == target[1] && target[1] == target[2] {
+                (Some(SigmoidPolynomial::constant(target[0])), 0.0)
+            } else {
+                let fit = context.fit(target, [0.0; 3]);
+                (Some(fit.spectrum), fit.residual)
+            }
+        };
+        Ok(Self {
+            kind,
+            scale,
+            shape,
+            illuminant: if kind == RgbKind::Illuminant {
+                illuminant
+            } else {
+                None
+            },
+            clamped,
+            residual,
+        })
+    }
+
+    /// The kind.
+    pub fn kind(&self) -> RgbKind {
+        self.kind
+    }
+
+    /// The sigmoid polynomial (None for black).
+    pub fn shape(&self) -> Option<SigmoidPolynomial> {
+        self.shape
+    }
+
+    /// The scale factor (1 for albedo).
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// Whether the input was outside the kind's domain and was clamped.
+    pub fn clamped(&self) -> bool {
+        self.clamped
+    }
+
+    /// The fit's remaining CIE76 Lab distance (0 for black and greys).
+    pub fn residual(&self) -> f64 {
+        self.residual
+    }
+}
+
+impl Spectrum for RgbSpectrum {
+    fn evaluate(&self, lambda_nm: f64) -> f64 {
+        let Some(shape) = self.shape else { return 0.0 };
+        let base = self.scale * shape.evaluate(lambda_nm);
+        match &self.illuminant {
+            Some(i) => base * i.evaluate(lambda_nm),
+            None => base,
+        }
+    }
+
+    fn max_value(&self) -> f64 {
+        let Some(shape) = self.shape else { return 0.0 };
+        let base = self.scale * shape.max_value();
+        match &self.illuminant {
+            Some(i) => base * i.max_value(),
+            None => base,
+        }
+    }
+}
+
+/// `illuminant` sampled at 1 nm over 300-1000 nm and scaled to luminance Y = 1 (emission
+/// XYZ under the CIE 1931 observer), for [`RgbKind::Illuminant`].
+pub fn normalized_illuminant<S: Spectrum + ?Sized>(
+    illuminant: &S,
+) -> Result<Arc<DenselySampled>, UpsampleError> {
+    let dense = DenselySampled::from_spectrum(illuminant, 300, 1000)?;
+    let y = prism_spectrum::colorimetry::emission_xyz(
+        &dense,
+        prism_spectrum::colorimetry::Observer::Cie1931,
+    )
+    .y;
+    if !(y > 0.0 && y.is_finite()) {
+        return Err(prism_spectrum::SpectrumError::Degenerate(
+            "the illuminant has no luminance".into(),
+        )
+        .into());
+    }
+    let values = dense.values().iter().map(|v| v / y).collect();
+    Ok(Arc::new(DenselySampled::from_values(
+        dense.first_nm(),
+        values,
+    )?))
+}
