@@ -9,6 +9,8 @@ pub enum UpsampleError {
     NonFinite([f64; 3]),
     /// A colorimetric computation failed (for example an illuminant without luminance).
     Spectrum(prism_spectrum::SpectrumError),
+    /// A table could not be built or read (the message names the problem).
+    InvalidTable(String),
 }
 
 impl fmt::Display for UpsampleError {
@@ -20,6 +22,7 @@ impl fmt::Display for UpsampleError {
                 rgb[0], rgb[1], rgb[2]
             ),
             UpsampleError::Spectrum(e) => e.fmt(f),
+            UpsampleError::InvalidTable(msg) => write!(f, "invalid coefficient table: {msg}"),
         }
     }
 }

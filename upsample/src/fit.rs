@@ -10,7 +10,7 @@ use prism_spectrum::constants::{LAMBDA_MAX, LAMBDA_MIN};
 
 use crate::error::UpsampleError;
 use crate::model::SigmoidPolynomial;
-use crate::sigmoid::{sigmoid, sigmoid_derivative};
+use crate::sigmoid::sigmoid_with_derivative;
 
 /// Everything the fitter needs about a colour space, precomputed once: the CIE 1931
 /// colour-matching functions weighted by the space's illuminant on the 1 nm grid
@@ -115,7 +115,7 @@ impl FitContext {
         let mut jacobian = Matrix3::zeros();
         for (t, w) in self.t.iter().zip(&self.weights) {
             let x = (c[0] * t + c[1]) * t + c[2];
-            let (s, ds) = (sigmoid(x), sigmoid_derivative(x));
+            let (s, ds) = sigmoid_with_derivative(x);
             let basis = [t * t, *t, 1.0];
             for (row, wi) in w.iter().enumerate() {
                 xyz[row] += wi * s;
@@ -166,11 +166,17 @@ impl FitContext {
     /// can stall; then the fit restarts from the neutral start, so it converges from any
     /// start.
     pub fn fit(&self, rgb: [f64; 3], start: [f64; 3]) -> Fit {
-        let first = self.fit_from(rgb, start);
+        self.fit_to(rgb, start, TOLERANCE)
+    }
+
+    /// [`FitContext::fit`] to a Lab `tolerance` of the caller's choice (tables use 1e-4:
+    /// a hundred times below their interpolation error, and fewer iterations).
+    pub fn fit_to(&self, rgb: [f64; 3], start: [f64; 3], tolerance: f64) -> Fit {
+        let first = self.fit_iterations(rgb, start, MAX_ITERATIONS, tolerance);
         if first.residual <= RESTART_THRESHOLD || start == [0.0; 3] {
             return first;
         }
-        let second = self.fit_from(rgb, [0.0; 3]);
+        let second = self.fit_iterations(rgb, [0.0; 3], MAX_ITERATIONS, tolerance);
         let iterations = first.iterations + second.iterations;
         let best = if second.residual < first.residual {
             second
@@ -180,7 +186,13 @@ impl FitContext {
         Fit { iterations, ..best }
     }
 
-    fn fit_from(&self, rgb: [f64; 3], start: [f64; 3]) -> Fit {
+    /// At most `max_iterations` Levenberg-Marquardt steps from `start`, without restarts:
+    /// the refined table lookup.
+    pub fn fit_with_budget(&self, rgb: [f64; 3], start: [f64; 3], max_iterations: u32) -> Fit {
+        self.fit_iterations(rgb, start, max_iterations, TOLERANCE)
+    }
+
+    fn fit_iterations(&self, rgb: [f64; 3], start: [f64; 3], max_iterations: u32, tolerance: f64) -> Fit {
         let target_xyz = self.rgb_xyz(rgb);
         let target_lab = Lab::from_xyz(target_xyz, self.white);
         let target = Vector3::new(target_lab.l, target_lab.a, target_lab.b);
@@ -194,7 +206,7 @@ impl FitContext {
         let mut error = r.norm();
         let mut damping = 1e-3;
         let mut iterations = 0;
-        while error > TOLERANCE && iterations < MAX_ITERATIONS {
+        while error > tolerance && iterations < max_iterations {
             iterations += 1;
             let jt = j.transpose();
             let jtj = jt * j;

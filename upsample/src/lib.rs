@@ -34,8 +34,10 @@ mod fit;
 mod model;
 mod rgb;
 pub mod sigmoid;
+mod table;
 
 pub use error::UpsampleError;
 pub use fit::{Fit, FitContext, denormalize};
 pub use model::{SigmoidPolynomial, inverse_sigmoid};
 pub use rgb::{RgbKind, RgbSpectrum, normalized_illuminant};
+pub use table::{CoefficientTable, FitStatistics};

@@ -42,6 +42,20 @@ pub fn sigmoid_derivative(x: f64) -> f64 {
     }
 }
 
+/// S(x) and dS/dx together, sharing one square root: the fitter's inner loop.
+#[inline]
+pub fn sigmoid_with_derivative(x: f64) -> (f64, f64) {
+    let a = x.abs();
+    let r = if a > 1.0 { a * (1.0 + 1.0 / (a * a)).sqrt() } else { (1.0 + a * a).sqrt() };
+    if !r.is_finite() {
+        return (if x > 0.0 { 1.0 } else if x < 0.0 { 0.0 } else { 0.5 }, if x.is_nan() { 0.5 } else { 0.0 });
+    }
+    let inverse = 1.0 / r;
+    let lower = 0.5 * inverse / (r + a);
+    let s = if x < 0.0 { lower } else { 1.0 - lower };
+    (s, 0.5 * inverse * inverse * inverse)
+}
+
 /// S(x) in f32 for the render hot path, with the same guarantees as [`sigmoid`].
 #[inline]
 pub fn sigmoid_f32(x: f32) -> f32 {

@@ -1,0 +1,188 @@
+//! Precomputed coefficient tables in the layout of Jakob and Hanika (2019, §5): for each
+//! choice of largest channel, a grid over that channel's value (the brightness axis,
+//! remapped by smoothstep(smoothstep(t)) so that dark colours get more nodes) and the two
+//! other channels divided by it.
+
+use rayon::prelude::*;
+
+use crate::fit::{denormalize, FitContext};
+use crate::model::SigmoidPolynomial;
+
+/// Lab tolerance of table nodes: a hundred times below the interpolation error at 64^3.
+const TABLE_TOLERANCE: f64 = 1e-4;
+
+/// A fitted table for one colour space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoefficientTable {
+    pub(crate) resolution: usize,
+    /// Brightness nodes, increasing from 0 to 1.
+    pub(crate) z_nodes: Vec<f32>,
+    /// Normalized coefficients (t = (l - 360) / 470), indexed
+    /// [largest channel][z][y][x][coefficient].
+    pub(crate) data: Vec<f32>,
+}
+
+/// The smoothstep remap of the brightness axis.
+fn smoothstep(x: f64) -> f64 {
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// Statistics of a table fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitStatistics {
+    /// Nodes fitted.
+    pub nodes: usize,
+    /// Largest Lab residual of any node (unreachable colours show up here).
+    pub max_residual: f64,
+    /// Nodes whose residual exceeds 1e-3 Lab (not reachable by a reflectance).
+    pub unreachable: usize,
+    /// Total Levenberg-Marquardt iterations.
+    pub iterations: u64,
+}
+
+impl CoefficientTable {
+    /// Resolutions accepted by [`CoefficientTable::fit`].
+    pub const RESOLUTIONS: std::ops::RangeInclusive<usize> = 2..=256;
+
+    /// Fits a table of `resolution`^3 nodes per largest channel in parallel. Each worker
+    /// fits one (channel, y) row; along it, every column over brightness starts at the
+    /// middle node from the previous column's solution and walks up and down, each node
+    /// warm-started from its neighbour, so most nodes converge in two or three steps.
+    /// `progress` is called with the number of rows finished (of 3 `resolution`).
+    pub fn fit(
+        context: &FitContext,
+        resolution: usize,
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Result<(Self, FitStatistics), crate::UpsampleError> {
+        if !Self::RESOLUTIONS.contains(&resolution) {
+            return Err(crate::UpsampleError::InvalidTable(format!(
+                "resolution {resolution} is outside {:?}",
+                Self::RESOLUTIONS
+            )));
+        }
+        let res = resolution;
+        let scale = (res - 1) as f64;
+        let z_nodes: Vec<f64> = (0..res).map(|i| smoothstep(smoothstep(i as f64 / scale))).collect();
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let rows: Vec<(Vec<f32>, FitStatistics)> = (0..3 * res)
+            .into_par_iter()
+            .map(|row| {
+                let (channel, yi) = (row / res, row % res);
+                let mut out = vec![0f32; res * res * 3];
+                let mut stats = FitStatistics { nodes: 0, max_residual: 0.0, unreachable: 0, iterations: 0 };
+                let mut column_start = [0.0; 3];
+                let middle = res / 5;
+                for xi in 0..res {
+                    let (x, y) = (xi as f64 / scale, yi as f64 / scale);
+                    let mut fit_node = |zi: usize, start: [f64; 3]| {
+                        let z = z_nodes[zi];
+                        let mut rgb = [0.0; 3];
+                        rgb[channel] = z;
+                        rgb[(channel + 1) % 3] = x * z;
+                        rgb[(channel + 2) % 3] = y * z;
+                        let fit = context.fit_to(rgb, start, TABLE_TOLERANCE);
+                        stats.nodes += 1;
+                        stats.iterations += u64::from(fit.iterations);
+                        stats.max_residual = stats.max_residual.max(fit.residual);
+                        stats.unreachable += usize::from(fit.residual > 1e-3);
+                        let at = (zi * res + xi) * 3;
+                        for k in 0..3 {
+                            out[at + k] = fit.normalized[k] as f32;
+                        }
+                        fit.normalized
+                    };
+                    let mut start = fit_node(middle, column_start);
+                    column_start = start;
+                    for zi in middle + 1..res {
+                        start = fit_node(zi, start);
+                    }
+                    start = column_start;
+                    // Down to z node 1; node 0 is black, which no sigmoid reaches: it keeps
+                    // node 1's shape (lookups of black are exact zeros before the table).
+                    for zi in (1..middle).rev() {
+                        start = fit_node(zi, start);
+                    }
+                    let (from, to) = ((res + xi) * 3, xi * 3);
+                    let copied: [f32; 3] = [out[from], out[from + 1], out[from + 2]];
+                    out[to..to + 3].copy_from_slice(&copied);
+                }
+                progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                (out, stats)
+            })
+            .collect();
+        // Rows come back in order: row = channel * res + y, each [z][x][3]; reorder to
+        // [channel][z][y][x][3].
+        let mut data = vec![0f32; 3 * res * res * res * 3];
+        let mut total = FitStatistics { nodes: 0, max_residual: 0.0, unreachable: 0, iterations: 0 };
+        for (row, (values, stats)) in rows.into_iter().enumerate() {
+            let (channel, yi) = (row / res, row % res);
+            for zi in 0..res {
+                for xi in 0..res {
+                    let src = (zi * res + xi) * 3;
+                    let dst = ((((channel * res + zi) * res + yi) * res) + xi) * 3;
+                    data[dst..dst + 3].copy_from_slice(&values[src..src + 3]);
+                }
+            }
+            total.nodes += stats.nodes;
+            total.iterations += stats.iterations;
+            total.unreachable += stats.unreachable;
+            total.max_residual = total.max_residual.max(stats.max_residual);
+        }
+        Ok((
+            Self {
+                resolution: res,
+                z_nodes: z_nodes.iter().map(|&z| z as f32).collect(),
+                data,
+            },
+            total,
+        ))
+    }
+
+    /// The resolution.
+    pub fn resolution(&self) -> usize {
+        self.resolution
+    }
+
+    /// Trilinearly interpolated normalized coefficients for `rgb` (components in [0, 1],
+    /// not all zero; others are clamped). Black has no sigmoid: callers handle it first.
+    pub fn lookup_normalized(&self, rgb: [f64; 3]) -> [f64; 3] {
+        let rgb = rgb.map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
+        let res = self.resolution;
+        let channel = if rgb[0] >= rgb[1] && rgb[0] >= rgb[2] { 0 } else if rgb[1] >= rgb[2] { 1 } else { 2 };
+        let z = rgb[channel];
+        if z == 0.0 {
+            return [0.0, 0.0, f64::NEG_INFINITY];
+        }
+        let scale = (res - 1) as f64;
+        let x = (rgb[(channel + 1) % 3] / z * scale).clamp(0.0, scale);
+        let y = (rgb[(channel + 2) % 3] / z * scale).clamp(0.0, scale);
+        let zi = (self.z_nodes.partition_point(|&n| f64::from(n) <= z).max(1) - 1).min(res - 2);
+        let (z0, z1) = (f64::from(self.z_nodes[zi]), f64::from(self.z_nodes[zi + 1]));
+        let tz = ((z - z0) / (z1 - z0)).clamp(0.0, 1.0);
+        let xi = (x as usize).min(res - 2);
+        let yi = (y as usize).min(res - 2);
+        let (tx, ty) = (x - xi as f64, y - yi as f64);
+        let at = |dz: usize, dy: usize, dx: usize, k: usize| {
+            f64::from(self.data[((((channel * res + zi + dz) * res + yi + dy) * res) + xi + dx) * 3 + k])
+        };
+        std::array::from_fn(|k| {
+            let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+            let c00 = lerp(at(0, 0, 0, k), at(0, 0, 1, k), tx);
+            let c01 = lerp(at(0, 1, 0, k), at(0, 1, 1, k), tx);
+            let c10 = lerp(at(1, 0, 0, k), at(1, 0, 1, k), tx);
+            let c11 = lerp(at(1, 1, 0, k), at(1, 1, 1, k), tx);
+            lerp(lerp(c00, c01, ty), lerp(c10, c11, ty), tz)
+        })
+    }
+
+    /// The interpolated spectrum for `rgb` (l in nm).
+    pub fn lookup(&self, rgb: [f64; 3]) -> SigmoidPolynomial {
+        SigmoidPolynomial { coefficients: denormalize(self.lookup_normalized(rgb)) }
+    }
+
+    /// The refined lookup: the interpolated coefficients improved by `steps`
+    /// Levenberg-Marquardt steps of the exact fit (accuracy over speed).
+    pub fn lookup_refined(&self, context: &FitContext, rgb: [f64; 3], steps: u32) -> SigmoidPolynomial {
+        context.fit_with_budget(rgb, self.lookup_normalized(rgb), steps).spectrum
+    }
+}
