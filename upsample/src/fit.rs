@@ -24,6 +24,7 @@ pub struct FitContext {
     weights: Vec<[f64; 3]>,
     white: WhitePoint,
     rgb_to_xyz: Matrix3<f64>,
+    space: RgbColorSpace,
 }
 
 /// The result of a fit.
@@ -95,6 +96,7 @@ impl FitContext {
             weights,
             white,
             rgb_to_xyz: Matrix3::from_fn(|r, c| m[r][c]),
+            space: adapted,
         })
     }
 
@@ -107,6 +109,11 @@ impl FitContext {
     /// The reference white.
     pub fn white(&self) -> WhitePoint {
         self.white
+    }
+
+    /// The colour space fitted for: the given primaries with the illuminant's own white.
+    pub fn space(&self) -> &RgbColorSpace {
+        &self.space
     }
 
     /// XYZ of the reflectance S(c0 t^2 + c1 t + c2) and its Jacobian with respect to c.
@@ -192,7 +199,13 @@ impl FitContext {
         self.fit_iterations(rgb, start, max_iterations, TOLERANCE)
     }
 
-    fn fit_iterations(&self, rgb: [f64; 3], start: [f64; 3], max_iterations: u32, tolerance: f64) -> Fit {
+    fn fit_iterations(
+        &self,
+        rgb: [f64; 3],
+        start: [f64; 3],
+        max_iterations: u32,
+        tolerance: f64,
+    ) -> Fit {
         let target_xyz = self.rgb_xyz(rgb);
         let target_lab = Lab::from_xyz(target_xyz, self.white);
         let target = Vector3::new(target_lab.l, target_lab.a, target_lab.b);

@@ -41,3 +41,6 @@ pub use fit::{Fit, FitContext, denormalize};
 pub use model::{SigmoidPolynomial, inverse_sigmoid};
 pub use rgb::{RgbKind, RgbSpectrum, normalized_illuminant};
 pub use table::{CoefficientTable, FitStatistics};
+mod table_file;
+pub use table::TableSpace;
+pub use table_file::FORMAT_VERSION;

@@ -46,9 +46,22 @@ pub fn sigmoid_derivative(x: f64) -> f64 {
 #[inline]
 pub fn sigmoid_with_derivative(x: f64) -> (f64, f64) {
     let a = x.abs();
-    let r = if a > 1.0 { a * (1.0 + 1.0 / (a * a)).sqrt() } else { (1.0 + a * a).sqrt() };
+    let r = if a > 1.0 {
+        a * (1.0 + 1.0 / (a * a)).sqrt()
+    } else {
+        (1.0 + a * a).sqrt()
+    };
     if !r.is_finite() {
-        return (if x > 0.0 { 1.0 } else if x < 0.0 { 0.0 } else { 0.5 }, if x.is_nan() { 0.5 } else { 0.0 });
+        return (
+            if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                0.0
+            } else {
+                0.5
+            },
+            if x.is_nan() { 0.5 } else { 0.0 },
+        );
     }
     let inverse = 1.0 / r;
     let lower = 0.5 * inverse / (r + a);

@@ -5,7 +5,7 @@
 
 use rayon::prelude::*;
 
-use crate::fit::{denormalize, FitContext};
+use crate::fit::{FitContext, denormalize};
 use crate::model::SigmoidPolynomial;
 
 /// Lab tolerance of table nodes: a hundred times below the interpolation error at 64^3.
@@ -14,12 +14,49 @@ const TABLE_TOLERANCE: f64 = 1e-4;
 /// A fitted table for one colour space.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CoefficientTable {
+    /// The space the table was fitted for (name, primaries, white).
+    pub(crate) space: TableSpace,
     pub(crate) resolution: usize,
     /// Brightness nodes, increasing from 0 to 1.
     pub(crate) z_nodes: Vec<f32>,
     /// Normalized coefficients (t = (l - 360) / 470), indexed
     /// [largest channel][z][y][x][coefficient].
     pub(crate) data: Vec<f32>,
+}
+
+/// The colour space a table belongs to, as stored in its file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableSpace {
+    /// The space's name.
+    pub name: String,
+    /// Red, green, blue primaries (x, y).
+    pub primaries: [[f64; 2]; 3],
+    /// The white the table was fitted for (the illuminant's chromaticity).
+    pub white: [f64; 2],
+}
+
+impl TableSpace {
+    pub(crate) fn of(context: &FitContext) -> Self {
+        let space = context.space();
+        Self {
+            name: space.name().to_string(),
+            primaries: space.primaries().map(|p| [p.x, p.y]),
+            white: [space.white().xy().x, space.white().xy().y],
+        }
+    }
+
+    /// Whether `context` fits for this space (same primaries and white to 1e-9).
+    pub fn matches(&self, context: &FitContext) -> bool {
+        let other = Self::of(context);
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        self.primaries
+            .iter()
+            .flatten()
+            .zip(other.primaries.iter().flatten())
+            .all(|(a, b)| close(*a, *b))
+            && close(self.white[0], other.white[0])
+            && close(self.white[1], other.white[1])
+    }
 }
 
 /// The smoothstep remap of the brightness axis.
@@ -62,14 +99,21 @@ impl CoefficientTable {
         }
         let res = resolution;
         let scale = (res - 1) as f64;
-        let z_nodes: Vec<f64> = (0..res).map(|i| smoothstep(smoothstep(i as f64 / scale))).collect();
+        let z_nodes: Vec<f64> = (0..res)
+            .map(|i| smoothstep(smoothstep(i as f64 / scale)))
+            .collect();
         let done = std::sync::atomic::AtomicUsize::new(0);
         let rows: Vec<(Vec<f32>, FitStatistics)> = (0..3 * res)
             .into_par_iter()
             .map(|row| {
                 let (channel, yi) = (row / res, row % res);
                 let mut out = vec![0f32; res * res * 3];
-                let mut stats = FitStatistics { nodes: 0, max_residual: 0.0, unreachable: 0, iterations: 0 };
+                let mut stats = FitStatistics {
+                    nodes: 0,
+                    max_residual: 0.0,
+                    unreachable: 0,
+                    iterations: 0,
+                };
                 let mut column_start = [0.0; 3];
                 let middle = res / 5;
                 for xi in 0..res {
@@ -113,7 +157,12 @@ impl CoefficientTable {
         // Rows come back in order: row = channel * res + y, each [z][x][3]; reorder to
         // [channel][z][y][x][3].
         let mut data = vec![0f32; 3 * res * res * res * 3];
-        let mut total = FitStatistics { nodes: 0, max_residual: 0.0, unreachable: 0, iterations: 0 };
+        let mut total = FitStatistics {
+            nodes: 0,
+            max_residual: 0.0,
+            unreachable: 0,
+            iterations: 0,
+        };
         for (row, (values, stats)) in rows.into_iter().enumerate() {
             let (channel, yi) = (row / res, row % res);
             for zi in 0..res {
@@ -130,6 +179,7 @@ impl CoefficientTable {
         }
         Ok((
             Self {
+                space: TableSpace::of(context),
                 resolution: res,
                 z_nodes: z_nodes.iter().map(|&z| z as f32).collect(),
                 data,
@@ -143,12 +193,23 @@ impl CoefficientTable {
         self.resolution
     }
 
+    /// The colour space the table was fitted for.
+    pub fn space(&self) -> &TableSpace {
+        &self.space
+    }
+
     /// Trilinearly interpolated normalized coefficients for `rgb` (components in [0, 1],
     /// not all zero; others are clamped). Black has no sigmoid: callers handle it first.
     pub fn lookup_normalized(&self, rgb: [f64; 3]) -> [f64; 3] {
         let rgb = rgb.map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
         let res = self.resolution;
-        let channel = if rgb[0] >= rgb[1] && rgb[0] >= rgb[2] { 0 } else if rgb[1] >= rgb[2] { 1 } else { 2 };
+        let channel = if rgb[0] >= rgb[1] && rgb[0] >= rgb[2] {
+            0
+        } else if rgb[1] >= rgb[2] {
+            1
+        } else {
+            2
+        };
         let z = rgb[channel];
         if z == 0.0 {
             return [0.0, 0.0, f64::NEG_INFINITY];
@@ -163,7 +224,9 @@ impl CoefficientTable {
         let yi = (y as usize).min(res - 2);
         let (tx, ty) = (x - xi as f64, y - yi as f64);
         let at = |dz: usize, dy: usize, dx: usize, k: usize| {
-            f64::from(self.data[((((channel * res + zi + dz) * res + yi + dy) * res) + xi + dx) * 3 + k])
+            f64::from(
+                self.data[((((channel * res + zi + dz) * res + yi + dy) * res) + xi + dx) * 3 + k],
+            )
         };
         std::array::from_fn(|k| {
             let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
@@ -177,12 +240,21 @@ impl CoefficientTable {
 
     /// The interpolated spectrum for `rgb` (l in nm).
     pub fn lookup(&self, rgb: [f64; 3]) -> SigmoidPolynomial {
-        SigmoidPolynomial { coefficients: denormalize(self.lookup_normalized(rgb)) }
+        SigmoidPolynomial {
+            coefficients: denormalize(self.lookup_normalized(rgb)),
+        }
     }
 
     /// The refined lookup: the interpolated coefficients improved by `steps`
     /// Levenberg-Marquardt steps of the exact fit (accuracy over speed).
-    pub fn lookup_refined(&self, context: &FitContext, rgb: [f64; 3], steps: u32) -> SigmoidPolynomial {
-        context.fit_with_budget(rgb, self.lookup_normalized(rgb), steps).spectrum
+    pub fn lookup_refined(
+        &self,
+        context: &FitContext,
+        rgb: [f64; 3],
+        steps: u32,
+    ) -> SigmoidPolynomial {
+        context
+            .fit_with_budget(rgb, self.lookup_normalized(rgb), steps)
+            .spectrum
     }
 }

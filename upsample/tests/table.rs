@@ -3,12 +3,16 @@
 //! ignored test `table_accuracy_report` (PRISM_TABLE_RES=64 cargo test --release ...).
 
 use prism_spectrum::color::RgbSpaceId;
-use prism_spectrum::colorimetry::{ciede2000, reflectance_xyz, Lab, Observer};
+use prism_spectrum::colorimetry::{Lab, Observer, ciede2000, reflectance_xyz};
 use prism_spectrum::illuminant::StandardIlluminant;
 use prism_upsample::{CoefficientTable, FitContext};
 
 fn srgb() -> FitContext {
-    FitContext::new(RgbSpaceId::Srgb.space(), &StandardIlluminant::D65.spectrum()).unwrap()
+    FitContext::new(
+        RgbSpaceId::Srgb.space(),
+        &StandardIlluminant::D65.spectrum(),
+    )
+    .unwrap()
 }
 
 fn random_colours(n: usize, seed: u64) -> Vec<[f64; 3]> {
@@ -26,19 +30,30 @@ fn random_colours(n: usize, seed: u64) -> Vec<[f64; 3]> {
 }
 
 /// Mean, 99th percentile and max CIEDE2000 of `spectrum_of(rgb)` against `rgb`.
-fn accuracy(context: &FitContext, colours: &[[f64; 3]], spectrum_of: impl Fn([f64; 3]) -> prism_upsample::SigmoidPolynomial) -> (f64, f64, f64) {
+fn accuracy(
+    context: &FitContext,
+    colours: &[[f64; 3]],
+    spectrum_of: impl Fn([f64; 3]) -> prism_upsample::SigmoidPolynomial,
+) -> (f64, f64, f64) {
     let d65 = StandardIlluminant::D65.spectrum();
     let white = context.white();
     let mut errors: Vec<f64> = colours
         .iter()
         .map(|&rgb| {
             let xyz = reflectance_xyz(&spectrum_of(rgb), &d65, Observer::Cie1931).unwrap();
-            ciede2000(Lab::from_xyz(xyz, white), Lab::from_xyz(context.rgb_xyz(rgb), white))
+            ciede2000(
+                Lab::from_xyz(xyz, white),
+                Lab::from_xyz(context.rgb_xyz(rgb), white),
+            )
         })
         .collect();
     errors.sort_by(f64::total_cmp);
     let mean = errors.iter().sum::<f64>() / errors.len() as f64;
-    (mean, errors[errors.len() * 99 / 100], errors[errors.len() - 1])
+    (
+        mean,
+        errors[errors.len() * 99 / 100],
+        errors[errors.len() - 1],
+    )
 }
 
 #[test]
@@ -46,20 +61,33 @@ fn nodes_are_exact_and_interpolation_is_close() {
     let context = srgb();
     let (table, stats) = CoefficientTable::fit(&context, 16, &|_| {}).unwrap();
     assert_eq!(stats.nodes, 3 * 16 * 16 * 15);
-    assert_eq!(stats.unreachable, 0, "sRGB lies inside the reflectance gamut: {stats:?}");
+    assert_eq!(
+        stats.unreachable, 0,
+        "sRGB lies inside the reflectance gamut: {stats:?}"
+    );
     // At the nodes the lookup returns the fitted coefficients: exact colour.
     let node = [0.5f64.powf(0.0) * 1.0, 0.4, 0.2];
-    let (mean, _, max) = accuracy(&context, &[node, [1.0, 1.0, 1.0], [0.0, 0.0, 1.0]], |rgb| table.lookup(rgb));
+    let (mean, _, max) = accuracy(&context, &[node, [1.0, 1.0, 1.0], [0.0, 0.0, 1.0]], |rgb| {
+        table.lookup(rgb)
+    });
     assert!(max < 1e-3, "nodes: mean {mean} max {max}");
     // Between nodes at 16^3: a coarse table, so a loose bound; the refined lookup recovers
     // the exact fit's accuracy.
     let colours = random_colours(500, 7);
     let (mean, p99, max) = accuracy(&context, &colours, |rgb| table.lookup(rgb));
     eprintln!("16^3 trilinear: mean {mean:.4} p99 {p99:.4} max {max:.4}");
-    assert!(mean < 0.5 && max < 5.0, "16^3 trilinear: mean {mean} max {max}");
-    let (mean_r, _, max_r) = accuracy(&context, &colours, |rgb| table.lookup_refined(&context, rgb, 3));
+    assert!(
+        mean < 0.5 && max < 5.0,
+        "16^3 trilinear: mean {mean} max {max}"
+    );
+    let (mean_r, _, max_r) = accuracy(&context, &colours, |rgb| {
+        table.lookup_refined(&context, rgb, 3)
+    });
     eprintln!("16^3 refined (3 steps): mean {mean_r:.2e} max {max_r:.2e}");
-    assert!(mean_r < 0.01 * mean && max_r < 0.1 * max, "refinement must improve: mean {mean_r} max {max_r}");
+    assert!(
+        mean_r < 0.01 * mean && max_r < 0.1 * max,
+        "refinement must improve: mean {mean_r} max {max_r}"
+    );
 }
 
 /// The accuracy-versus-resolution report (slow at 64^3 in debug builds):
@@ -67,14 +95,19 @@ fn nodes_are_exact_and_interpolation_is_close() {
 #[test]
 #[ignore]
 fn table_accuracy_report() {
-    let res: usize = std::env::var("PRISM_TABLE_RES").ok().and_then(|v| v.parse().ok()).unwrap_or(64);
+    let res: usize = std::env::var("PRISM_TABLE_RES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(64);
     let context = srgb();
     let start = std::time::Instant::now();
     let (table, stats) = CoefficientTable::fit(&context, res, &|_| {}).unwrap();
     let seconds = start.elapsed().as_secs_f64();
     let colours = random_colours(20_000, 11);
     let (mean, p99, max) = accuracy(&context, &colours, |rgb| table.lookup(rgb));
-    let (mean_r, p99_r, max_r) = accuracy(&context, &colours, |rgb| table.lookup_refined(&context, rgb, 1));
+    let (mean_r, p99_r, max_r) = accuracy(&context, &colours, |rgb| {
+        table.lookup_refined(&context, rgb, 1)
+    });
     eprintln!(
         "{res}^3 sRGB: fit {seconds:.1} s wall, {} nodes, {:.2} iterations/node, max node residual {:.1e}\n  trilinear: mean {mean:.4} p99 {p99:.4} max {max:.4}\n  refined (1 step): mean {mean_r:.4} p99 {p99_r:.4} max {max_r:.4}",
         stats.nodes,
