@@ -2,6 +2,12 @@
 //! choice of largest channel, a grid over that channel's value (the brightness axis,
 //! remapped by smoothstep(smoothstep(t)) so that dark colours get more nodes) and the two
 //! other channels divided by it.
+//!
+//! One departure, measured: the ratio axes are smoothstep-remapped too (node i at ratio
+//! smoothstep(i / (r - 1)); lookups invert it in closed form) instead of uniform. The
+//! coefficients diverge as a ratio goes to 0 (a saturated colour needs a steep sigmoid)
+//! and, for bright colours, as it goes to 1 (a spectrum close to 1 everywhere): the ends
+//! of the ratio axes are where rgb2spec's uniform axes make their largest errors.
 
 use rayon::prelude::*;
 
@@ -57,6 +63,16 @@ impl TableSpace {
             && close(self.white[0], other.white[0])
             && close(self.white[1], other.white[1])
     }
+}
+
+/// The ratio at node `i` of a ratio axis (see the module documentation).
+fn ratio_node(i: usize, scale: f64) -> f64 {
+    smoothstep(i as f64 / scale)
+}
+
+/// The inverse of smoothstep on [0, 1]: u = 1/2 - sin(asin(1 - 2r) / 3).
+fn inverse_smoothstep(r: f64) -> f64 {
+    (0.5 - ((1.0 - 2.0 * r.clamp(0.0, 1.0)).asin() / 3.0).sin()).clamp(0.0, 1.0)
 }
 
 /// The smoothstep remap of the brightness axis.
@@ -117,7 +133,7 @@ impl CoefficientTable {
                 let mut column_start = [0.0; 3];
                 let middle = res / 5;
                 for xi in 0..res {
-                    let (x, y) = (xi as f64 / scale, yi as f64 / scale);
+                    let (x, y) = (ratio_node(xi, scale), ratio_node(yi, scale));
                     let mut fit_node = |zi: usize, start: [f64; 3]| {
                         let z = z_nodes[zi];
                         let mut rgb = [0.0; 3];
@@ -215,11 +231,14 @@ impl CoefficientTable {
             return [0.0, 0.0, f64::NEG_INFINITY];
         }
         let scale = (res - 1) as f64;
-        let x = (rgb[(channel + 1) % 3] / z * scale).clamp(0.0, scale);
-        let y = (rgb[(channel + 2) % 3] / z * scale).clamp(0.0, scale);
-        let zi = (self.z_nodes.partition_point(|&n| f64::from(n) <= z).max(1) - 1).min(res - 2);
-        let (z0, z1) = (f64::from(self.z_nodes[zi]), f64::from(self.z_nodes[zi + 1]));
-        let tz = ((z - z0) / (z1 - z0)).clamp(0.0, 1.0);
+        let x = (inverse_smoothstep(rgb[(channel + 1) % 3] / z) * scale).clamp(0.0, scale);
+        let y = (inverse_smoothstep(rgb[(channel + 2) % 3] / z) * scale).clamp(0.0, scale);
+        // Interpolate in the axis parameter u (z = smoothstep(smoothstep(u))), in which the
+        // nodes are uniform, rather than in z: the coefficients vary much more evenly in u
+        // (dark colours especially), and no search is needed.
+        let u = inverse_smoothstep(inverse_smoothstep(z)) * scale;
+        let zi = (u as usize).min(res - 2);
+        let tz = (u - zi as f64).clamp(0.0, 1.0);
         let xi = (x as usize).min(res - 2);
         let yi = (y as usize).min(res - 2);
         let (tx, ty) = (x - xi as f64, y - yi as f64);

@@ -9,7 +9,7 @@
 //! | primaries r, g, b (x, y) and white (x, y) | 8 x f64 |
 //! | resolution r | u32 |
 //! | brightness nodes | r x f32 |
-//! | normalized coefficients [channel][z][y][x][3] | 9 r^3 x f32 |
+//! | normalized coefficients [channel][z][y][x][3], ratio axes smoothstep-remapped | 9 r^3 x f32 |
 //! | FNV-1a 64 checksum of everything above | u64 |
 //!
 //! Reading checks every field, the exact length and the checksum, so a truncated,

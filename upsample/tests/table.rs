@@ -108,6 +108,30 @@ fn table_accuracy_report() {
     let (mean_r, p99_r, max_r) = accuracy(&context, &colours, |rgb| {
         table.lookup_refined(&context, rgb, 1)
     });
+    // Where the worst interpolation errors are, to guide the layout.
+    let d65 = StandardIlluminant::D65.spectrum();
+    let white = context.white();
+    let mut worst: Vec<(f64, [f64; 3])> = colours
+        .iter()
+        .map(|&rgb| {
+            let xyz = reflectance_xyz(&table.lookup(rgb), &d65, Observer::Cie1931).unwrap();
+            (
+                ciede2000(
+                    Lab::from_xyz(xyz, white),
+                    Lab::from_xyz(context.rgb_xyz(rgb), white),
+                ),
+                rgb,
+            )
+        })
+        .collect();
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for (de, rgb) in worst.iter().take(8) {
+        let m = rgb.iter().copied().fold(0.0, f64::max);
+        eprintln!(
+            "  worst: dE {de:.3} rgb {rgb:.4?} max {m:.4} ratios {:.4?}",
+            rgb.map(|c| c / m)
+        );
+    }
     eprintln!(
         "{res}^3 sRGB: fit {seconds:.1} s wall, {} nodes, {:.2} iterations/node, max node residual {:.1e}\n  trilinear: mean {mean:.4} p99 {p99:.4} max {max:.4}\n  refined (1 step): mean {mean_r:.4} p99 {p99_r:.4} max {max_r:.4}",
         stats.nodes,
