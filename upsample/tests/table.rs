@@ -66,7 +66,8 @@ fn nodes_are_exact_and_interpolation_is_close() {
         "sRGB lies inside the reflectance gamut: {stats:?}"
     );
     // At the nodes the lookup returns the fitted coefficients: exact colour.
-    let node = [0.5f64.powf(0.0) * 1.0, 0.4, 0.2];
+    // Ratio nodes are smoothstep(i / 15): smoothstep(1/3) = 7/27, smoothstep(2/3) = 20/27.
+    let node = [1.0, 7.0 / 27.0, 20.0 / 27.0];
     let (mean, _, max) = accuracy(&context, &[node, [1.0, 1.0, 1.0], [0.0, 0.0, 1.0]], |rgb| {
         table.lookup(rgb)
     });
