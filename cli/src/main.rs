@@ -5,6 +5,7 @@
 //! code: 2 for a malformed command line, 1 for anything else.
 
 mod commands;
+mod output;
 mod spectrum_spec;
 
 use std::process::ExitCode;
@@ -23,6 +24,11 @@ struct Cli {
 enum Command {
     /// Print the colorimetry of one spectrum: XYZ, chromaticity, RGB and CCT.
     Color(commands::color::ColorArgs),
+    /// Turn RGB colours into sigmoid-polynomial spectra (Jakob and Hanika 2019).
+    Upsample(commands::upsample::UpsampleArgs),
+    /// Fit and inspect RGB-to-spectrum coefficient tables.
+    #[command(subcommand)]
+    Table(commands::table::TableCommand),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +38,8 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Color(args) => commands::color::run(&args),
+        Command::Upsample(args) => commands::upsample::run(&args),
+        Command::Table(command) => commands::table::run(&command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

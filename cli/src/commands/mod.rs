@@ -1,3 +1,5 @@
 //! One module per subcommand.
 
 pub mod color;
+pub mod table;
+pub mod upsample;

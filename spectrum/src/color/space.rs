@@ -180,6 +180,28 @@ impl RgbSpaceId {
             })
     }
 
+    /// The illuminant whose white the space is defined for, as a spectrum: CIE D65 for
+    /// sRGB, Rec.709, Display P3, Rec.2020 and Adobe RGB; CIE D50 for ProPhoto; CIE
+    /// daylight near the ACES white for ACES2065-1 and ACEScg (6000 K on the old
+    /// radiation-constant scale, like the CIE's own D-names: xy (0.3217, 0.3378) against
+    /// the ACES white (0.32168, 0.33767)); and for DCI-P3, whose theatrical white
+    /// (0.314, 0.351) is no CIE illuminant (it lies 0.019 above the daylight locus in y),
+    /// CIE daylight at 6300 K. Reflectance upsampling fits relative to this spectrum's own
+    /// white, so RGB (1, 1, 1) is the perfect reflector under it in every case.
+    pub fn illuminant(self) -> crate::spectra::PiecewiseLinear {
+        use crate::illuminant::{StandardIlluminant, daylight};
+        let nominal = |kelvin: f64| {
+            daylight(kelvin * 1.4388 / 1.4380)
+                .unwrap_or_else(|_| StandardIlluminant::D65.spectrum())
+        };
+        match self {
+            RgbSpaceId::ProPhoto => StandardIlluminant::D50.spectrum(),
+            RgbSpaceId::Aces2065_1 | RgbSpaceId::AcesCg => nominal(6000.0),
+            RgbSpaceId::DciP3 => nominal(6300.0),
+            _ => StandardIlluminant::D65.spectrum(),
+        }
+    }
+
     /// The colour space, built once on first use.
     pub fn space(self) -> &'static RgbColorSpace {
         static SPACES: LazyLock<Vec<RgbColorSpace>> =

@@ -1,0 +1,137 @@
+//! `prism table`: fit and inspect coefficient tables.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Subcommand;
+use prism_spectrum::color::RgbSpaceId;
+use prism_spectrum::colorimetry::{Lab, Observer, ciede2000, reflectance_xyz};
+use prism_upsample::{CoefficientTable, FitContext};
+
+#[derive(Debug, Subcommand)]
+pub enum TableCommand {
+    /// Fit a table for a colour space and write it to a file.
+    #[command(after_help = "Example:\n  prism table fit --space srgb --res 64 -o srgb-64.bin")]
+    Fit {
+        /// The colour space.
+        #[arg(long, default_value = "srgb")]
+        space: String,
+        /// Nodes per axis (2-256; 64 is the usual trade).
+        #[arg(long, default_value_t = 64)]
+        res: usize,
+        /// Output file.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// Describe a table file.
+    Info {
+        /// The table file.
+        file: PathBuf,
+    },
+}
+
+pub fn run(command: &TableCommand) -> Result<(), String> {
+    match command {
+        TableCommand::Fit { space, res, output } => fit(space, *res, output),
+        TableCommand::Info { file } => info(file),
+    }
+}
+
+fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> {
+    let id = RgbSpaceId::from_name(space).map_err(|e| e.to_string())?;
+    let context = FitContext::new(id.space(), &id.illuminant()).map_err(|e| e.to_string())?;
+    let rows = 3 * res;
+    let start = Instant::now();
+    let progress = |done: usize| {
+        if done * 20 / rows.max(1) != (done - 1) * 20 / rows.max(1) || done == rows {
+            eprint!(
+                "\rfitting {} {res}^3: {:3}%",
+                id.name(),
+                done * 100 / rows.max(1)
+            );
+        }
+    };
+    let (table, stats) =
+        CoefficientTable::fit(&context, res, &progress).map_err(|e| e.to_string())?;
+    let seconds = start.elapsed().as_secs_f64();
+    eprintln!();
+    let bytes = table.to_bytes();
+    crate::output::write_atomically(output, &bytes)?;
+    let (mean, p99, max) = accuracy(&context, id, &table);
+    println!("wrote {} ({} bytes)", output.display(), bytes.len());
+    println!(
+        "fit: {seconds:.2} s wall, {} nodes, {:.2} iterations per node",
+        stats.nodes,
+        stats.iterations as f64 / stats.nodes as f64
+    );
+    println!(
+        "reachable nodes: {:.4}% ({} of {} beyond 1e-3 Lab: outside what reflectances can reach), largest residual {:.2e}",
+        100.0 * (1.0 - stats.unreachable as f64 / stats.nodes as f64),
+        stats.unreachable,
+        stats.nodes,
+        stats.max_residual
+    );
+    println!(
+        "trilinear lookup, 2000 random colours, dE2000: mean {mean:.4}, p99 {p99:.4}, max {max:.4}"
+    );
+    Ok(())
+}
+
+/// dE2000 statistics of trilinear lookups of 2000 pseudo-random colours of the cube.
+fn accuracy(context: &FitContext, id: RgbSpaceId, table: &CoefficientTable) -> (f64, f64, f64) {
+    let illuminant = id.illuminant();
+    let white = context.white();
+    let mut x = 0x853c_49e6_748f_ea9bu64;
+    let mut errors: Vec<f64> = (0..2000)
+        .filter_map(|_| {
+            let rgb: [f64; 3] = std::array::from_fn(|_| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                (x >> 11) as f64 / (1u64 << 53) as f64
+            });
+            let xyz = reflectance_xyz(&table.lookup(rgb), &illuminant, Observer::Cie1931).ok()?;
+            Some(ciede2000(
+                Lab::from_xyz(xyz, white),
+                Lab::from_xyz(context.rgb_xyz(rgb), white),
+            ))
+        })
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    let n = errors.len().max(1);
+    (
+        errors.iter().sum::<f64>() / n as f64,
+        errors[n * 99 / 100],
+        errors[n - 1],
+    )
+}
+
+fn info(file: &std::path::Path) -> Result<(), String> {
+    let bytes =
+        std::fs::read(file).map_err(|e| format!("cannot read '{}': {e}", file.display()))?;
+    let table =
+        CoefficientTable::from_bytes(&bytes).map_err(|e| format!("'{}': {e}", file.display()))?;
+    let s = table.space();
+    println!("file          {} ({} bytes)", file.display(), bytes.len());
+    println!(
+        "format        prism coefficient table, version {}",
+        prism_upsample::FORMAT_VERSION
+    );
+    println!("colour space  {}", s.name);
+    println!(
+        "primaries     r ({}, {})  g ({}, {})  b ({}, {})",
+        s.primaries[0][0],
+        s.primaries[0][1],
+        s.primaries[1][0],
+        s.primaries[1][1],
+        s.primaries[2][0],
+        s.primaries[2][1]
+    );
+    println!("white         ({:.6}, {:.6})", s.white[0], s.white[1]);
+    println!("observer      CIE 1931 2 degree");
+    println!(
+        "resolution    {0} ({0}^3 nodes per largest channel)",
+        table.resolution()
+    );
+    Ok(())
+}

@@ -1,0 +1,197 @@
+//! `prism upsample`: RGB to sigmoid-polynomial coefficients.
+
+use std::io::{BufRead, Write};
+
+use clap::Args;
+use prism_spectrum::color::RgbSpaceId;
+use prism_spectrum::colorimetry::{Lab, Observer, ciede2000, reflectance_xyz};
+use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum, SigmoidPolynomial};
+use serde_json::json;
+
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  prism upsample 0.8 0.2 0.1\n  prism upsample --space rec2020 0.1 0.6 0.2 --json\n  \
+prism upsample --table srgb-64.bin 0.8 0.2 0.1\n  printf '0.8 0.2 0.1\\n0.5 0.5 0.5\\n' | prism upsample --stdin"
+)]
+pub struct UpsampleArgs {
+    /// Linear RGB components in [0, 1] (omit with --stdin).
+    #[arg(num_args = 0..=3, allow_negative_numbers = true)]
+    pub rgb: Vec<f64>,
+    /// The RGB colour space.
+    #[arg(long, default_value = "srgb")]
+    pub space: String,
+    /// Fit each colour exactly (the default without --table).
+    #[arg(long, conflicts_with = "table")]
+    pub exact: bool,
+    /// Look colours up in a coefficient table made by `prism table fit`.
+    #[arg(long)]
+    pub table: Option<std::path::PathBuf>,
+    /// With --table: refine the interpolated coefficients with one solver step.
+    #[arg(long, requires = "table")]
+    pub refine: bool,
+    /// Read lines `r g b` from stdin and write `c0 c1 c2` per line (l in nm), nothing else.
+    #[arg(long)]
+    pub stdin: bool,
+    /// Print one JSON object.
+    #[arg(long, conflicts_with = "stdin")]
+    pub json: bool,
+}
+
+/// How colours become coefficients.
+enum Method {
+    Exact,
+    Table {
+        table: CoefficientTable,
+        refine: bool,
+    },
+}
+
+pub fn run(args: &UpsampleArgs) -> Result<(), String> {
+    let id = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
+    let context = FitContext::new(id.space(), &id.illuminant()).map_err(|e| e.to_string())?;
+    let method = match &args.table {
+        None => Method::Exact,
+        Some(path) => {
+            let bytes = std::fs::read(path)
+                .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            let table = CoefficientTable::from_bytes(&bytes)
+                .map_err(|e| format!("'{}': {e}", path.display()))?;
+            if !table.space().matches(&context) {
+                return Err(format!(
+                    "'{}' is a table for '{}', not for --space {}",
+                    path.display(),
+                    table.space().name,
+                    id.name()
+                ));
+            }
+            Method::Table {
+                table,
+                refine: args.refine,
+            }
+        }
+    };
+    if args.stdin {
+        if !args.rgb.is_empty() {
+            return Err("give RGB on the command line or with --stdin, not both".into());
+        }
+        return stream(&context, &method);
+    }
+    let rgb: [f64; 3] = args
+        .rgb
+        .clone()
+        .try_into()
+        .map_err(|_| format!("expected three components R G B, got {}", args.rgb.len()))?;
+    let (spectrum, clamped) = upsample(&context, &method, rgb)?;
+    let c = spectrum.map_or([0.0, 0.0, f64::NEG_INFINITY], |s| s.coefficients);
+    let (round_trip, de) = round_trip(&context, id, rgb, spectrum)?;
+    if args.json {
+        let finite = |v: f64| if v.is_finite() { json!(v) } else { json!(null) };
+        println!(
+            "{}",
+            json!({
+                "space": id.name(),
+                "rgb": rgb,
+                "coefficients": c.map(finite),
+                "black": spectrum.is_none(),
+                "clamped": clamped,
+                "round_trip_rgb": round_trip,
+                "delta_e_2000": de,
+            })
+        );
+    } else {
+        println!("space         {}", id.name());
+        if spectrum.is_none() {
+            println!("spectrum      black (exactly zero)");
+        } else {
+            println!(
+                "coefficients  {:e} {:e} {:e}  (f(l) = S(c0 l^2 + c1 l + c2), l in nm)",
+                c[0], c[1], c[2]
+            );
+        }
+        if clamped {
+            println!("warning       the input was outside [0, 1] and was clamped");
+        }
+        println!(
+            "round trip    {:.6} {:.6} {:.6}",
+            round_trip[0], round_trip[1], round_trip[2]
+        );
+        println!("dE2000        {de:.2e}");
+    }
+    Ok(())
+}
+
+/// The spectrum for one colour (None for black) and whether the input was clamped.
+fn upsample(
+    context: &FitContext,
+    method: &Method,
+    rgb: [f64; 3],
+) -> Result<(Option<SigmoidPolynomial>, bool), String> {
+    let exact = RgbSpectrum::fit(context, rgb, RgbKind::Albedo, None).map_err(|e| e.to_string())?;
+    let Method::Table { table, refine } = method else {
+        return Ok((exact.shape(), exact.clamped()));
+    };
+    // Black and greys stay exact; everything else comes from the table.
+    let clean = rgb.map(|c| c.clamp(0.0, 1.0));
+    if exact.shape().is_none() || (clean[0] == clean[1] && clean[1] == clean[2]) {
+        return Ok((exact.shape(), exact.clamped()));
+    }
+    let s = if *refine {
+        table.lookup_refined(context, clean, 1)
+    } else {
+        table.lookup(clean)
+    };
+    Ok((Some(s), exact.clamped()))
+}
+
+fn round_trip(
+    context: &FitContext,
+    id: RgbSpaceId,
+    rgb: [f64; 3],
+    spectrum: Option<SigmoidPolynomial>,
+) -> Result<([f64; 3], f64), String> {
+    let illuminant = id.illuminant();
+    let xyz = match spectrum {
+        Some(s) => {
+            reflectance_xyz(&s, &illuminant, Observer::Cie1931).map_err(|e| e.to_string())?
+        }
+        None => prism_spectrum::colorimetry::Xyz::default(),
+    };
+    let back = context.space().xyz_to_rgb(xyz);
+    let white = context.white();
+    let target = context.rgb_xyz(rgb.map(|c| c.clamp(0.0, 1.0)));
+    Ok((
+        back,
+        ciede2000(Lab::from_xyz(xyz, white), Lab::from_xyz(target, white)),
+    ))
+}
+
+/// `--stdin`: one `c0 c1 c2` line per `r g b` line, in order.
+fn stream(context: &FitContext, method: &Method) -> Result<(), String> {
+    let stdin = std::io::stdin();
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    for (index, line) in stdin.lock().lines().enumerate() {
+        let line = line.map_err(|e| format!("reading stdin: {e}"))?;
+        let fields: Vec<f64> = line
+            .split_whitespace()
+            .map(str::parse)
+            .collect::<Result<_, _>>()
+            .map_err(|_| {
+                format!(
+                    "stdin line {}: expected three numbers 'r g b', got '{line}'",
+                    index + 1
+                )
+            })?;
+        let rgb: [f64; 3] = fields.try_into().map_err(|_| {
+            format!(
+                "stdin line {}: expected three numbers 'r g b', got '{line}'",
+                index + 1
+            )
+        })?;
+        let (spectrum, _) =
+            upsample(context, method, rgb).map_err(|e| format!("stdin line {}: {e}", index + 1))?;
+        let c = spectrum.map_or([0.0, 0.0, f64::NEG_INFINITY], |s| s.coefficients);
+        writeln!(out, "{:e} {:e} {:e}", c[0], c[1], c[2])
+            .map_err(|e| format!("writing stdout: {e}"))?;
+    }
+    out.flush().map_err(|e| format!("writing stdout: {e}"))
+}
