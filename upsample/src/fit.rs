@@ -129,20 +129,9 @@ impl FitContext {
         )?;
         let m = adapted.rgb_to_xyz_matrix().0;
         let t: Vec<f64> = lambdas.iter().map(|l| (l - LAMBDA_MIN) / SPAN).collect();
+        let doubled: Vec<[f64; 3]> = weights.iter().map(|w| w.map(|v| 2.0 * v)).collect();
         Ok(Self {
-            table_grid: Grid::new(
-                t.iter()
-                    .copied()
-                    .zip(
-                        weights
-                            .iter()
-                            .map(|w| w.map(|v| 2.0 * v))
-                            .collect::<Vec<_>>()
-                            .iter(),
-                    )
-                    .step_by(2)
-                    .map(|(t, w)| (t, w)),
-            ),
+            table_grid: Grid::new(t.iter().copied().zip(&doubled).step_by(2)),
             fine: Grid::new(t.iter().copied().zip(&weights)),
             white,
             rgb_to_xyz: Matrix3::from_fn(|r, c| m[r][c]),
