@@ -66,13 +66,23 @@ fn usage_error(error: clap::Error) -> ExitCode {
             }
         }
         _ => {
+            // clap's message may continue on indented lines (for example the names of the
+            // missing arguments) before its usage block: join them into one line.
             let rendered = error.render().to_string();
-            let first = rendered
+            let message = rendered
                 .lines()
-                .next()
-                .unwrap_or("invalid arguments")
-                .trim_start_matches("error: ");
-            eprintln!("prism: error: {first} (see 'prism --help')");
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .collect::<Vec<_>>()
+                .join(" ");
+            let message = message.trim_start_matches("error: ");
+            let message = if message.is_empty() {
+                "invalid arguments"
+            } else {
+                message
+            };
+            eprintln!("prism: error: {message} (see 'prism --help')");
             ExitCode::from(2)
         }
     }

@@ -22,3 +22,21 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
         format!("cannot write '{}': {e}", path.display())
     })
 }
+
+/// Fails early, before expensive work, if `path` cannot be written: its directory must
+/// exist and be a directory.
+pub fn check_writable(path: &Path) -> Result<(), String> {
+    let parent = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if parent.is_dir() {
+        Ok(())
+    } else {
+        Err(format!(
+            "cannot write '{}': directory '{}' does not exist",
+            path.display(),
+            parent.display()
+        ))
+    }
+}

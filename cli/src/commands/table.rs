@@ -1,5 +1,6 @@
 //! `prism table`: fit and inspect coefficient tables.
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -40,10 +41,14 @@ pub fn run(command: &TableCommand) -> Result<(), String> {
 fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> {
     let id = RgbSpaceId::from_name(space).map_err(|e| e.to_string())?;
     let context = FitContext::new(id.space(), &id.illuminant()).map_err(|e| e.to_string())?;
+    crate::output::check_writable(output)?;
     let rows = 3 * res;
     let start = Instant::now();
+    // A progress line only on a terminal; scripts and logs get the summary alone.
+    let terminal = std::io::stderr().is_terminal();
     let progress = |done: usize| {
-        if done * 20 / rows.max(1) != (done - 1) * 20 / rows.max(1) || done == rows {
+        let step = |d: usize| d * 20 / rows.max(1);
+        if terminal && (step(done) != step(done - 1) || done == rows) {
             eprint!(
                 "\rfitting {} {res}^3: {:3}%",
                 id.name(),
@@ -54,7 +59,9 @@ fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> 
     let (table, stats) =
         CoefficientTable::fit(&context, res, &progress).map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();
-    eprintln!();
+    if terminal {
+        eprintln!();
+    }
     let bytes = table.to_bytes();
     crate::output::write_atomically(output, &bytes)?;
     let (mean, p99, max) = accuracy(&context, id, &table);

@@ -1,0 +1,176 @@
+//! End-to-end tests of `prism upsample` and `prism table`.
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+fn prism(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(args)
+        .output()
+        .expect("prism runs")
+}
+
+fn prism_stdin(args: &[&str], input: &str) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("prism runs");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("prism-cli-{}-{name}", std::process::id()))
+}
+
+#[test]
+fn exact_upsampling_round_trips() {
+    let out = prism(&["upsample", "0.8", "0.2", "0.1", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["delta_e_2000"].as_f64().unwrap() < 1e-3);
+    assert_eq!(v["coefficients"].as_array().unwrap().len(), 3);
+    for space in [
+        "srgb",
+        "display-p3",
+        "rec2020",
+        "acescg",
+        "aces2065-1",
+        "prophoto",
+        "adobe-rgb",
+        "dci-p3",
+    ] {
+        let out = prism(&["upsample", "--space", space, "0.3", "0.5", "0.2", "--json"]);
+        assert!(
+            out.status.success(),
+            "{space}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert!(v["delta_e_2000"].as_f64().unwrap() < 1e-3, "{space}: {v}");
+    }
+    let black: serde_json::Value =
+        serde_json::from_slice(&prism(&["upsample", "0", "0", "0", "--json"]).stdout).unwrap();
+    assert_eq!(black["black"], true);
+}
+
+#[test]
+fn stdin_mode_writes_one_line_per_colour_and_nothing_else() {
+    let out = prism_stdin(
+        &["upsample", "--stdin"],
+        "0.8 0.2 0.1\n0 0 0\n0.5 0.5 0.5\n1 1 1\n",
+    );
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 4, "{text}");
+    for line in &lines {
+        assert_eq!(line.split_whitespace().count(), 3, "{line}");
+    }
+    assert!(lines[1].ends_with("-inf"), "black: {}", lines[1]);
+    let bad = prism_stdin(&["upsample", "--stdin"], "0.1 0.2 0.3\n0.5 nope 0.1\n");
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("line 2"));
+}
+
+#[test]
+fn tables_fit_describe_and_look_up() {
+    let path = temp("srgb-8.bin");
+    let p = path.to_str().unwrap();
+    let out = prism(&["table", "fit", "--space", "srgb", "--res", "8", "-o", p]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("reachable nodes: 100.0000%"));
+    let info = prism(&["table", "info", p]);
+    assert!(String::from_utf8_lossy(&info.stdout).contains("resolution    8"));
+    let lookup = prism(&["upsample", "--table", p, "0.8", "0.2", "0.1", "--json"]);
+    assert!(lookup.status.success());
+    let refined = prism(&[
+        "upsample", "--table", p, "--refine", "0.8", "0.2", "0.1", "--json",
+    ]);
+    let de = |o: &Output| {
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()["delta_e_2000"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(
+        de(&refined) < de(&lookup),
+        "refinement improves on the 8^3 lookup"
+    );
+    // A table for another space is refused.
+    let wrong = prism(&[
+        "upsample", "--table", p, "--space", "rec2020", "0.5", "0.5", "0.4",
+    ]);
+    assert_eq!(wrong.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&wrong.stderr).contains("not for --space rec2020"));
+    // A corrupted table is refused with a reason.
+    let mut bytes = std::fs::read(&path).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 1;
+    let broken = temp("broken.bin");
+    std::fs::write(&broken, &bytes).unwrap();
+    let out = prism(&["table", "info", broken.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("checksum"));
+    let _ = std::fs::remove_file(path);
+    let _ = std::fs::remove_file(broken);
+}
+
+#[test]
+fn bad_input_is_one_clear_line() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["upsample", "0.5", "0.5"], "three components"),
+        (&["upsample", "nan", "0.5", "0.5"], "not finite"),
+        (
+            &["upsample", "--space", "cmyk", "0.5", "0.5", "0.5"],
+            "colour space",
+        ),
+        (
+            &[
+                "upsample",
+                "--table",
+                "/no/such/table.bin",
+                "0.1",
+                "0.2",
+                "0.3",
+            ],
+            "cannot read",
+        ),
+        (&["upsample", "--refine", "0.1", "0.2", "0.3"], "--table"),
+        (
+            &["table", "fit", "--res", "1", "-o", "/tmp/x.bin"],
+            "resolution",
+        ),
+        (
+            &["table", "fit", "--res", "4", "-o", "/no/such/dir/x.bin"],
+            "cannot write",
+        ),
+        (&["table", "info", "/no/such/file"], "cannot read"),
+    ];
+    for (args, needle) in cases {
+        let out = prism(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: '{stderr}' lacks '{needle}'"
+        );
+        assert!(!stderr.contains("panicked"));
+    }
+}
