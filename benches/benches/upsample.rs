@@ -1,0 +1,80 @@
+//! prism-upsample: one exact fit, a table lookup (trilinear and refined), and evaluation
+//! of a sigmoid polynomial per wavelength in packages of 4 and 16 lanes.
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use prism_spectrum::color::RgbSpaceId;
+use prism_upsample::sigmoid::sigmoid_polynomial_lanes;
+use prism_upsample::{CoefficientTable, FitContext};
+
+fn colours() -> Vec<[f64; 3]> {
+    let mut x = 0x2545_f491_4f6c_dd1du64;
+    (0..1024)
+        .map(|_| {
+            std::array::from_fn(|_| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                (x >> 11) as f64 / (1u64 << 53) as f64
+            })
+        })
+        .collect()
+}
+
+fn upsample(c: &mut Criterion) {
+    let id = RgbSpaceId::Srgb;
+    let context = FitContext::new(id.space(), &id.illuminant()).expect("valid");
+    let rgb = colours();
+    let mut i = 0usize;
+    c.bench_function("exact fit (neutral start)", |b| {
+        b.iter(|| {
+            i = (i + 1) % rgb.len();
+            black_box(context.fit(black_box(rgb[i]), [0.0; 3]))
+        })
+    });
+    let mut group = c.benchmark_group("table lookup");
+    group.throughput(Throughput::Elements(1));
+    for res in [16usize, 32, 64] {
+        let (table, _) = CoefficientTable::fit(&context, res, &|_| {}).expect("valid");
+        group.bench_function(BenchmarkId::new("trilinear", res), |b| {
+            b.iter(|| {
+                i = (i + 1) % rgb.len();
+                black_box(table.lookup(black_box(rgb[i])))
+            })
+        });
+        group.bench_function(BenchmarkId::new("refined 1 step", res), |b| {
+            b.iter(|| {
+                i = (i + 1) % rgb.len();
+                black_box(table.lookup_refined(&context, black_box(rgb[i]), 1))
+            })
+        });
+    }
+    group.finish();
+    let coefficients = [6.98e-5f32, -6.48e-2, 13.8];
+    let mut group = c.benchmark_group("sigmoid polynomial evaluation");
+    let lanes4 = [450.0f32, 550.0, 650.0, 750.0];
+    let lanes16: [f32; 16] = std::array::from_fn(|k| 360.0 + 29.0 * k as f32);
+    group.throughput(Throughput::Elements(4));
+    group.bench_function("4 wavelengths", |b| {
+        b.iter(|| {
+            black_box(sigmoid_polynomial_lanes(
+                black_box(coefficients),
+                black_box(&lanes4),
+            ))
+        })
+    });
+    group.throughput(Throughput::Elements(16));
+    group.bench_function("16 wavelengths", |b| {
+        b.iter(|| {
+            black_box(sigmoid_polynomial_lanes(
+                black_box(coefficients),
+                black_box(&lanes16),
+            ))
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, upsample);
+criterion_main!(benches);
