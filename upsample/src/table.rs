@@ -200,9 +200,10 @@ impl CoefficientTable {
                         stats.iterations += u64::from(fit.iterations);
                         stats.max_residual = stats.max_residual.max(fit.residual);
                         stats.unreachable += usize::from(fit.residual > 1e-3);
+                        // Stored premultiplied by sqrt(z) (see `lookup_normalized`).
                         let at = (zi * res + xi) * 3;
                         for k in 0..3 {
-                            out[at + k] = fit.normalized[k] as f32;
+                            out[at + k] = (fit.normalized[k] * z.sqrt()) as f32;
                         }
                         fit.normalized
                     };
@@ -219,7 +220,8 @@ impl CoefficientTable {
                     }
                     (previous, current) = (first, first);
                     // Down to z node 1; node 0 is black, which no sigmoid reaches: it keeps
-                    // node 1's shape (lookups of black are exact zeros before the table).
+                    // node 1's premultiplied values (lookups of black are exact zeros before
+                    // the table; colours below node 1 darken as z^(-1/2) scales them).
                     for zi in (1..middle).rev() {
                         let next = fit_node(zi, extrapolate(previous, current));
                         (previous, current) = (current, next);
@@ -305,6 +307,12 @@ impl CoefficientTable {
         let xi = (x as usize).min(res - 2);
         let yi = (y as usize).min(res - 2);
         let (tx, ty) = (x - xi as f64, y - yi as f64);
+        // The table holds coefficients premultiplied by sqrt(z): a dark colour's sigmoid
+        // tail is ~1 / (4 x^2), so its coefficients grow like z^(-1/2) and the product is
+        // nearly constant in z, which linear interpolation follows (it halved the largest
+        // error of dark saturated colours). Below the first node the premultiplied values
+        // stay constant, so colours keep darkening towards black.
+        let unmultiply = 1.0 / z.sqrt();
         // One base index and fixed strides for the eight corners.
         let base = (((channel * res + zi) * res + yi) * res + xi) * 3;
         let (sx, sy, sz) = (3, 3 * res, 3 * res * res);
@@ -324,7 +332,7 @@ impl CoefficientTable {
                 out[k] += weight * f64::from(corner[k]);
             }
         }
-        out
+        out.map(|c| c * unmultiply)
     }
 
     /// The interpolated spectrum for `rgb` (l in nm).

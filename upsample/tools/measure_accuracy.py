@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""Measure prism's RGB -> spectrum upsampling with an independent colorimetry library.
+
+    cargo build --release -p prism-cli
+    pip install colour-science==0.4.6 numpy
+    python3 upsample/tools/measure_accuracy.py [--prism target/release/prism] [--out docs/upsample-accuracy.md]
+
+Colours: 20 000 uniformly random sRGB values (fixed seed), the cube's 8 corners, 9 interior
+points on each of its 12 edges, and near-black and near-white greys and colours.
+Each is upsampled by `prism upsample --stdin` (exact fits, and tables of 16^3 to 128^3
+made by `prism table fit`, plain and refined), the coefficients are evaluated at 1 nm
+over 360-830 nm here, integrated against colour-science's CIE 1931 tables under CIE D65
+(its 5 nm table interpolated linearly to 1 nm and zero beyond 780 nm, the convention
+prism uses), and compared with the target by colour-science's CIEDE2000.
+
+RGB is taken relative to the illuminant's own white (the D65 table's chromaticity
+(0.31273, 0.32902) rather than the rounded (0.3127, 0.3290)): that is what a perfect
+white reflector under D65 is, and what prism fits.
+"""
+
+import argparse
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+warnings.filterwarnings("ignore")
+import colour  # noqa: E402
+
+WL = np.arange(360, 831, 1.0)
+
+
+def colours():
+    rng = np.random.default_rng(20261124)
+    random = rng.random((20_000, 3))
+    corners = np.array([[r, g, b] for r in (0, 1) for g in (0, 1) for b in (0, 1)], float)
+    edges = []
+    for axis in range(3):
+        for a in (0.0, 1.0):
+            for b in (0.0, 1.0):
+                for t in np.linspace(0.1, 0.9, 9):
+                    p = [a, b]
+                    p.insert(axis, t)
+                    edges.append(p)
+    near = []
+    for v in (1e-4, 1e-3, 1e-2):
+        near += [[v, v, v], [v, 0.5 * v, 0.2 * v], [0.1 * v, v, 0.3 * v]]
+    for v in (0.99, 0.999, 0.9999):
+        near += [[v, v, v], [v, 0.98 * v, 0.95 * v], [0.97 * v, v, 0.99 * v]]
+    return np.vstack([random, corners, np.array(edges), np.array(near)])
+
+
+def run_prism(prism, args, rgb):
+    text = "\n".join(f"{r!r} {g!r} {b!r}" for r, g, b in rgb) + "\n"
+    out = subprocess.run([prism, "upsample", "--stdin", *args], input=text, capture_output=True, text=True, check=True)
+    return np.array([[float(v) for v in line.split()] for line in out.stdout.splitlines()])
+
+
+def scores(coefficients, rgb):
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    d65 = colour.SDS_ILLUMINANTS["D65"]
+    illuminant = np.interp(WL, d65.wavelengths, d65.values, left=0.0, right=0.0)
+    weights = cmfs.values * illuminant[:, None]
+    k = 1.0 / weights[:, 1].sum()
+    white_xyz = weights.sum(axis=0) * k
+    white_xy = white_xyz[:2] / white_xyz.sum()
+    cs = colour.RGB_COLOURSPACES["sRGB"]
+    m = colour.normalised_primary_matrix(cs.primaries, white_xy)
+    c = coefficients
+    x = (c[:, 0:1] * WL + c[:, 1:2]) * WL + c[:, 2:3]
+    # S(x) with its limits at +-inf (white is c2 = +inf, black c2 = -inf); the finite
+    # part in the cancellation-free form.
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        r = np.sqrt(1.0 + x * x)
+        tail = 0.5 / (r * (r + np.abs(x)))
+        s = np.where(x < 0, tail, 1.0 - tail)
+    s = np.where(np.isposinf(x), 1.0, np.where(np.isneginf(x), 0.0, s))
+    xyz = s @ weights * k
+    target = rgb @ m.T
+    lab = colour.XYZ_to_Lab(xyz, white_xy)
+    lab_target = colour.XYZ_to_Lab(target, white_xy)
+    return colour.delta_E(lab, lab_target, method="CIE 2000")
+
+
+def summary(de):
+    de = np.sort(de)
+    return de.mean(), de[int(len(de) * 0.99)], de.max()
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--prism", default="target/release/prism")
+    parser.add_argument("--out", default=None)
+    args = parser.parse_args()
+    rgb = colours()
+    rows = []
+    start = time.time()
+    rows.append(("exact fit", "-", *summary(scores(run_prism(args.prism, [], rgb), rgb))))
+    with tempfile.TemporaryDirectory() as tmp:
+        for res in (16, 32, 64, 128):
+            table = Path(tmp) / f"srgb-{res}.bin"
+            t0 = time.time()
+            subprocess.run([args.prism, "table", "fit", "--space", "srgb", "--res", str(res), "-o", str(table)], check=True, capture_output=True)
+            fit_seconds = time.time() - t0
+            size = table.stat().st_size
+            for label, extra in (("trilinear", []), ("refined (1 step)", ["--refine"])):
+                de = scores(run_prism(args.prism, ["--table", str(table), *extra], rgb), rgb)
+                rows.append((f"{res}^3 table, {label}", f"{size / 1e6:.2f} MB, fit {fit_seconds:.1f} s wall", *summary(de)))
+    lines = [
+        "# RGB to spectrum accuracy, measured with colour-science",
+        "",
+        f"Generated by `python3 upsample/tools/measure_accuracy.py` on {time.strftime('%Y-%m-%d')}, "
+        f"colour-science {colour.__version__}, {platform.machine()} with {len(__import__('os').sched_getaffinity(0))} cores.",
+        f"{len(rgb)} sRGB colours: 20 000 random, the cube's corners and edges, near black and near white. "
+        "CIEDE2000 between the target and the spectrum's colour under CIE D65 at 1 nm (see the script's docstring).",
+        "",
+        "| method | table | mean dE2000 | p99 | max |",
+        "| --- | --- | --- | --- | --- |",
+    ]
+    for name, table, mean, p99, mx in rows:
+        lines.append(f"| {name} | {table} | {mean:.4f} | {p99:.4f} | {mx:.4f} |")
+    lines += [
+        "",
+        "For reference, the issue measured rgb2spec's 64^3 sRGB table the same way: mean 0.023, p99 0.064, "
+        "max 0.49 (refined: mean 0.015, max 0.068).",
+        f"Total measurement time {time.time() - start:.0f} s.",
+    ]
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if args.out:
+        Path(args.out).write_text(text)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
