@@ -72,7 +72,7 @@ fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> 
         stats.iterations as f64 / stats.nodes as f64
     );
     println!(
-        "reachable nodes: {:.4}% ({} of {} beyond 1e-3 Lab: outside what reflectances can reach), largest residual {:.2e}",
+        "reachable nodes: {:.4}% ({} of {} beyond 1e-3 Lab: beyond the reach of sigmoid-polynomial reflectances), largest residual {:.2e}",
         100.0 * (1.0 - stats.unreachable as f64 / stats.nodes as f64),
         stats.unreachable,
         stats.nodes,

@@ -1,0 +1,71 @@
+//! Extremes: every RGB input (0, 1, subnormals, 1e30, negative, NaN, inf) gives a finite
+//! spectrum or a clear error; albedo spectra stay in [0, 1]; table lookups are continuous.
+
+use std::sync::LazyLock;
+
+use prism_spectrum::Spectrum;
+use prism_spectrum::color::RgbSpaceId;
+use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum};
+use proptest::prelude::*;
+
+static CONTEXT: LazyLock<FitContext> = LazyLock::new(|| {
+    FitContext::new(RgbSpaceId::Srgb.space(), &RgbSpaceId::Srgb.illuminant()).unwrap()
+});
+static TABLE: LazyLock<CoefficientTable> =
+    LazyLock::new(|| CoefficientTable::fit(&CONTEXT, 16, &|_| {}).unwrap().0);
+
+fn component() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(0.0),
+        Just(-0.0),
+        Just(1.0),
+        Just(5e-324),
+        Just(f64::MIN_POSITIVE),
+        Just(1e-30),
+        Just(1e30),
+        Just(-1e-3),
+        Just(-1.0),
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        0.0..1.0f64,
+        -2.0..3.0f64,
+    ]
+}
+
+proptest! {
+    #[test]
+    fn every_input_is_finite_or_an_error(r in component(), g in component(), b in component(), kind in 0..2usize, lambda in 200.0..1200.0f64) {
+        let rgb = [r, g, b];
+        let kind = [RgbKind::Albedo, RgbKind::Unbounded][kind];
+        match RgbSpectrum::fit(&CONTEXT, rgb, kind, None) {
+            Ok(s) => {
+                let v = s.evaluate(lambda);
+                prop_assert!(v.is_finite() && v >= 0.0, "{rgb:?} -> {v}");
+                prop_assert!(s.max_value().is_finite());
+                if kind == RgbKind::Albedo {
+                    prop_assert!(v <= 1.0);
+                }
+                let clean = rgb.iter().all(|c| (0.0..=if kind == RgbKind::Albedo { 1.0 } else { f64::MAX }).contains(c));
+                prop_assert_eq!(s.clamped(), !clean);
+            }
+            Err(_) => prop_assert!(rgb.iter().any(|c| !c.is_finite())),
+        }
+    }
+
+    /// Table lookups are continuous: a small change of colour changes the spectrum a little.
+    #[test]
+    fn lookups_are_continuous(rgb in prop::array::uniform3(0.02..1.0f64), d in prop::array::uniform3(-1e-6..1e-6f64), lambda in 360.0..830.0f64) {
+        let moved = [rgb[0] + d[0], rgb[1] + d[1], rgb[2] + d[2]];
+        let (a, b) = (TABLE.lookup(rgb).evaluate(lambda), TABLE.lookup(moved).evaluate(lambda));
+        prop_assert!((a - b).abs() < 1e-3, "{rgb:?}: {a} vs {b}");
+        prop_assert!((0.0..=1.0).contains(&a));
+    }
+
+    #[test]
+    fn lookups_are_total(rgb in prop::array::uniform3(component())) {
+        let c = TABLE.lookup_normalized(rgb);
+        // Black (and anything clamping to it) has no sigmoid: -inf in c2 says so.
+        prop_assert!(c.iter().all(|v| v.is_finite()) || c[2] == f64::NEG_INFINITY);
+    }
+}
