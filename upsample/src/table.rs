@@ -87,19 +87,46 @@ struct AxisInverse {
     power: i32,
     v_max: f64,
     values: [f64; AXIS_TABLE_INTERVALS + 1],
+    /// The same table in f32 for the lookup hot path.
+    values_f32: [f32; AXIS_TABLE_INTERVALS + 1],
 }
 
 impl AxisInverse {
     fn new(power: i32, exact: impl Fn(f64) -> f64) -> Self {
         let v_max = 0.5f64.powf(1.0 / f64::from(power));
-        let values = std::array::from_fn(|i| {
+        let values: [f64; AXIS_TABLE_INTERVALS + 1] = std::array::from_fn(|i| {
             exact((v_max * i as f64 / AXIS_TABLE_INTERVALS as f64).powi(power))
         });
         Self {
             power,
             v_max,
             values,
+            values_f32: values.map(|v| v as f32),
         }
+    }
+
+    /// The table at v = a^(1/p) (given by the caller, who may have the root at hand) for
+    /// a <= 1/2, in f32.
+    #[inline]
+    fn eval_root_f32(&self, v: f32) -> f32 {
+        let x = (v * (AXIS_TABLE_INTERVALS as f64 / self.v_max) as f32)
+            .min(AXIS_TABLE_INTERVALS as f32);
+        let i = (x as usize).min(AXIS_TABLE_INTERVALS - 1);
+        let t = x - i as f32;
+        self.values_f32[i] + t * (self.values_f32[i + 1] - self.values_f32[i])
+    }
+
+    /// [`AxisInverse::eval`] in f32 for a in [0, 1].
+    #[inline]
+    fn eval_f32(&self, a: f32) -> f32 {
+        let low = a.min(1.0 - a).max(0.0);
+        let root = if self.power == 2 {
+            low.sqrt()
+        } else {
+            low.sqrt().sqrt()
+        };
+        let u = self.eval_root_f32(root);
+        if a > 0.5 { 1.0 - u } else { u }
     }
 
     #[inline]
@@ -281,7 +308,16 @@ impl CoefficientTable {
     /// Trilinearly interpolated normalized coefficients for `rgb` (components in [0, 1],
     /// not all zero; others are clamped). Black has no sigmoid: callers handle it first.
     pub fn lookup_normalized(&self, rgb: [f64; 3]) -> [f64; 3] {
-        let rgb = rgb.map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
+        // The hot path runs in f32 (the table is f32; interpolation weights need no more),
+        // and shares square roots: sqrt(z) serves the brightness axis and the
+        // un-premultiplication, 1 / sqrt(z) = sqrt(z) / z.
+        let rgb = rgb.map(|c| {
+            if c.is_nan() {
+                0.0
+            } else {
+                c.clamp(0.0, 1.0) as f32
+            }
+        });
         let res = self.resolution;
         let channel = if rgb[0] >= rgb[1] && rgb[0] >= rgb[2] {
             0
@@ -294,45 +330,48 @@ impl CoefficientTable {
         if z == 0.0 {
             return [0.0, 0.0, f64::NEG_INFINITY];
         }
-        let scale = (res - 1) as f64;
+        let scale = (res - 1) as f32;
         let inverse_z = 1.0 / z;
-        let x = (RATIO_AXIS.eval(rgb[(channel + 1) % 3] * inverse_z) * scale).clamp(0.0, scale);
-        let y = (RATIO_AXIS.eval(rgb[(channel + 2) % 3] * inverse_z) * scale).clamp(0.0, scale);
+        let sqrt_z = z.sqrt();
+        let x = (RATIO_AXIS.eval_f32(rgb[(channel + 1) % 3] * inverse_z) * scale).clamp(0.0, scale);
+        let y = (RATIO_AXIS.eval_f32(rgb[(channel + 2) % 3] * inverse_z) * scale).clamp(0.0, scale);
         // Interpolate in the axis parameter u (z = smoothstep(smoothstep(u))), in which the
         // nodes are uniform, rather than in z: the coefficients vary much more evenly in u
         // (dark colours especially), and no search is needed.
-        let u = BRIGHTNESS_AXIS.eval(z) * scale;
+        let u = if z <= 0.5 {
+            BRIGHTNESS_AXIS.eval_root_f32(sqrt_z.sqrt())
+        } else {
+            1.0 - BRIGHTNESS_AXIS.eval_root_f32((1.0 - z).sqrt().sqrt())
+        } * scale;
         let zi = (u as usize).min(res - 2);
-        let tz = (u - zi as f64).clamp(0.0, 1.0);
+        let tz = (u - zi as f32).clamp(0.0, 1.0);
         let xi = (x as usize).min(res - 2);
         let yi = (y as usize).min(res - 2);
-        let (tx, ty) = (x - xi as f64, y - yi as f64);
+        let (tx, ty) = (x - xi as f32, y - yi as f32);
         // The table holds coefficients premultiplied by sqrt(z): a dark colour's sigmoid
         // tail is ~1 / (4 x^2), so its coefficients grow like z^(-1/2) and the product is
         // nearly constant in z, which linear interpolation follows (it halved the largest
         // error of dark saturated colours). Below the first node the premultiplied values
         // stay constant, so colours keep darkening towards black.
-        let unmultiply = 1.0 / z.sqrt();
+        let unmultiply = sqrt_z * inverse_z;
         // One base index and fixed strides for the eight corners.
         let base = (((channel * res + zi) * res + yi) * res + xi) * 3;
         let (sx, sy, sz) = (3, 3 * res, 3 * res * res);
-        let mut out = [0.0f64; 3];
-        for (offset, weight) in [
-            (0, (1.0 - tx) * (1.0 - ty) * (1.0 - tz)),
-            (sx, tx * (1.0 - ty) * (1.0 - tz)),
-            (sy, (1.0 - tx) * ty * (1.0 - tz)),
-            (sx + sy, tx * ty * (1.0 - tz)),
-            (sz, (1.0 - tx) * (1.0 - ty) * tz),
-            (sx + sz, tx * (1.0 - ty) * tz),
-            (sy + sz, (1.0 - tx) * ty * tz),
-            (sx + sy + sz, tx * ty * tz),
-        ] {
-            let corner = &self.data[base + offset..base + offset + 3];
-            for k in 0..3 {
-                out[k] += weight * f64::from(corner[k]);
+        let (wx, wy, wz) = ([1.0 - tx, tx], [1.0 - ty, ty], [1.0 - tz, tz]);
+        let mut out = [0.0f32; 3];
+        for (dz, weight_z) in wz.iter().enumerate() {
+            for (dy, weight_y) in wy.iter().enumerate() {
+                for (dx, weight_x) in wx.iter().enumerate() {
+                    let weight = weight_x * weight_y * weight_z;
+                    let at = base + dx * sx + dy * sy + dz * sz;
+                    let corner = &self.data[at..at + 3];
+                    for k in 0..3 {
+                        out[k] += weight * corner[k];
+                    }
+                }
             }
         }
-        out.map(|c| c * unmultiply)
+        out.map(|c| f64::from(c * unmultiply))
     }
 
     /// The interpolated spectrum for `rgb` (l in nm).
