@@ -7,6 +7,7 @@
 mod commands;
 mod output;
 mod spectrum_spec;
+mod table_cache;
 
 use std::process::ExitCode;
 

@@ -174,3 +174,51 @@ fn bad_input_is_one_clear_line() {
         assert!(!stderr.contains("panicked"));
     }
 }
+
+/// `--table auto` fits the default table on first use, caches it, reuses it, and replaces
+/// a damaged cache file.
+#[test]
+fn default_tables_are_cached() {
+    let cache = temp("cache");
+    let _ = std::fs::remove_dir_all(&cache);
+    let run = || {
+        Command::new(env!("CARGO_BIN_EXE_prism"))
+            .args(["upsample", "--table", "auto", "--json", "0.8", "0.2", "0.1"])
+            .env("PRISM_CACHE_DIR", &cache)
+            .output()
+            .unwrap()
+    };
+    let first = run();
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let file = cache
+        .join("tables")
+        .join(format!("srgb-64-v{}.bin", prism_format_version()));
+    let written = std::fs::metadata(&file)
+        .expect("the table was cached")
+        .modified()
+        .unwrap();
+    let second = run();
+    assert_eq!(
+        first.stdout, second.stdout,
+        "the cached table gives the same answer"
+    );
+    assert_eq!(
+        std::fs::metadata(&file).unwrap().modified().unwrap(),
+        written,
+        "not refitted"
+    );
+    std::fs::write(&file, b"garbage").unwrap();
+    let third = run();
+    assert!(third.status.success());
+    assert!(String::from_utf8_lossy(&third.stderr).contains("refitting"));
+    assert_eq!(first.stdout, third.stdout);
+    let _ = std::fs::remove_dir_all(&cache);
+}
+
+fn prism_format_version() -> u32 {
+    1
+}

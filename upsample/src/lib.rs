@@ -29,8 +29,9 @@
 //!   parameter, and coefficients premultiplied by sqrt(brightness) cut the largest 64^3
 //!   error from 0.43 to 0.04 dE2000 at the same size.
 //!
-//! Not yet here (see the issue tracker): the policy for default tables (where a renderer
-//! gets them without fitting at build time), and a lookup within 25 ns (it is ~60 ns).
+//! Default tables are fitted on first use and cached by the command line (`--table auto`;
+//! this crate touches no files). Not yet here (see the issue tracker): a lookup within
+//! 25 ns (it is ~54 ns).
 //!
 //! ## References
 //! - W. Jakob, J. Hanika, CGF 38(2), 2019, §3 (model), §4 (optimization), §5 (tables).

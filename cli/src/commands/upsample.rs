@@ -23,7 +23,8 @@ pub struct UpsampleArgs {
     /// Fit each colour exactly (the default without --table).
     #[arg(long, conflicts_with = "table")]
     pub exact: bool,
-    /// Look colours up in a coefficient table made by `prism table fit`.
+    /// Look colours up in a coefficient table made by `prism table fit`, or `auto` for the
+    /// space's default table (fitted on first use, then cached; see PRISM_CACHE_DIR).
     #[arg(long)]
     pub table: Option<std::path::PathBuf>,
     /// With --table: refine the interpolated coefficients with one solver step.
@@ -51,6 +52,10 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
     let context = FitContext::new(id.space(), &id.illuminant()).map_err(|e| e.to_string())?;
     let method = match &args.table {
         None => Method::Exact,
+        Some(path) if path.as_os_str() == "auto" => Method::Table {
+            table: crate::table_cache::default_table(id, &context)?,
+            refine: args.refine,
+        },
         Some(path) => {
             let bytes = std::fs::read(path)
                 .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
