@@ -1,13 +1,8 @@
 //! End-to-end tests of `prism color`: the binary as a user runs it.
 
-use std::process::{Command, Output};
+mod common;
 
-fn prism(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_prism"))
-        .args(args)
-        .output()
-        .expect("the prism binary runs")
-}
+use common::{assert_one_line_errors, prism};
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = prism(args);
@@ -135,17 +130,7 @@ fn bad_input_is_one_clear_line() {
         (&["color", "blackbody:6500", "--bogus"], "--bogus"),
         (&["frobnicate"], "frobnicate"),
     ];
-    for (args, needle) in cases {
-        let out = prism(args);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(!out.status.success(), "{args:?} succeeded");
-        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
-        assert!(
-            stderr.contains(needle),
-            "{args:?}: '{stderr}' lacks '{needle}'"
-        );
-        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
-    }
+    assert_one_line_errors(cases);
 }
 
 #[test]

@@ -1,14 +1,10 @@
 //! End-to-end tests of `prism upsample` and `prism table`.
 
 use std::io::Write;
-use std::process::{Command, Output, Stdio};
+mod common;
 
-fn prism(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_prism"))
-        .args(args)
-        .output()
-        .expect("prism runs")
-}
+use common::{assert_one_line_errors, prism};
+use std::process::{Command, Output, Stdio};
 
 fn prism_stdin(args: &[&str], input: &str) -> Output {
     let mut child = Command::new(env!("CARGO_BIN_EXE_prism"))
@@ -162,17 +158,7 @@ fn bad_input_is_one_clear_line() {
         ),
         (&["table", "info", "/no/such/file"], "cannot read"),
     ];
-    for (args, needle) in cases {
-        let out = prism(args);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(!out.status.success(), "{args:?} succeeded");
-        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
-        assert!(
-            stderr.contains(needle),
-            "{args:?}: '{stderr}' lacks '{needle}'"
-        );
-        assert!(!stderr.contains("panicked"));
-    }
+    assert_one_line_errors(cases);
 }
 
 /// `--table auto` fits the default table on first use, caches it, reuses it, and replaces

@@ -10,6 +10,7 @@ use prism_spectrum::constants::{LAMBDA_MAX, LAMBDA_MIN};
 
 use crate::error::UpsampleError;
 use crate::model::SigmoidPolynomial;
+use crate::sigmoid::sigmoid_with_derivative;
 
 /// Everything the fitter needs about a colour space, precomputed once: the CIE 1931
 /// colour-matching functions weighted by the space's illuminant on the 1 nm grid
@@ -159,18 +160,11 @@ impl FitContext {
     /// respect to c.
     fn xyz_and_jacobian(grid: &Grid, c: [f64; 3]) -> (Vector3<f64>, Matrix3<f64>) {
         // Twelve scalar accumulators over structure-of-arrays input, and a branch-free
-        // sigmoid, so the loop vectorizes. |x| is capped at 1e100, where S is 0 or 1 to
-        // 1e-200, so x^2 cannot overflow.
+        // sigmoid, so the loop vectorizes.
         let mut acc = [0.0f64; 12];
         for i in 0..grid.t.len() {
             let (t, t2) = (grid.t[i], grid.t2[i]);
-            let x = (c[0] * t2 + c[1] * t + c[2]).clamp(-1e100, 1e100);
-            let a = x.abs();
-            let r = (1.0 + x * x).sqrt();
-            let inverse = 1.0 / r;
-            let lower = 0.5 * inverse / (r + a);
-            let s = if x < 0.0 { lower } else { 1.0 - lower };
-            let ds = 0.5 * inverse * inverse * inverse;
+            let (s, ds) = sigmoid_with_derivative(c[0] * t2 + c[1] * t + c[2]);
             let (d2, d1) = (ds * t2, ds * t);
             for (k, w) in [grid.wx[i], grid.wy[i], grid.wz[i]].into_iter().enumerate() {
                 acc[4 * k] += w * s;

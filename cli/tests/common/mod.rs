@@ -1,0 +1,29 @@
+//! Shared by the binary's end-to-end tests.
+
+#![allow(dead_code)]
+
+use std::process::{Command, Output};
+
+/// Runs the `prism` binary with `args`.
+pub fn prism(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(args)
+        .output()
+        .expect("the prism binary runs")
+}
+
+/// Each case must fail with exactly one line on stderr that contains its needle, and
+/// never panic.
+pub fn assert_one_line_errors(cases: &[(&[&str], &str)]) {
+    for (args, needle) in cases {
+        let out = prism(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: '{stderr}' lacks '{needle}'"
+        );
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+}
