@@ -1,0 +1,11 @@
+//! Rays, the watertight ray-triangle test, robust spawn offsets and the BVH.
+
+mod bvh;
+mod offset;
+mod ray;
+mod triangle;
+
+pub use bvh::{Bvh, BvhQuality, SurfaceHit};
+pub use offset::{offset_ray_origin, triangle_point_error};
+pub use ray::Ray;
+pub use triangle::{TriangleHit, intersect_triangle};

@@ -1,0 +1,39 @@
+use glam::Vec3;
+
+/// gamma(n) = n eps / (1 - n eps), the bound on the relative error of n floating-point
+/// operations (*PBR* 4th ed. §6.8.1), eps = f32::EPSILON / 2.
+fn gamma(n: i32) -> f32 {
+    let e = f32::EPSILON * 0.5 * n as f32;
+    e / (1.0 - e)
+}
+
+/// The absolute error bound of a point computed from barycentrics as b0 p0 + b1 p1 + b2 p2
+/// (*PBR* 4th ed. §6.8.5): gamma(7) (|b0 p0| + |b1 p1| + |b2 p2|).
+pub fn triangle_point_error(p: [Vec3; 3], barycentric: [f32; 3]) -> Vec3 {
+    let sum = (p[0] * barycentric[0]).abs()
+        + (p[1] * barycentric[1]).abs()
+        + (p[2] * barycentric[2]).abs();
+    gamma(7) * sum
+}
+
+/// The origin for a ray leaving surface point `p` (with error bound `error`) towards
+/// `direction`: `p` pushed along the geometric normal `n` by the projection of the error
+/// box, to the side the ray leaves on, then rounded away from `p` so that it is certainly
+/// outside the error box (*PBR* 4th ed. §6.8.6). A spawned ray then cannot re-hit the
+/// surface it starts on through rounding.
+pub fn offset_ray_origin(p: Vec3, error: Vec3, n: Vec3, direction: Vec3) -> Vec3 {
+    let distance = n.abs().dot(error);
+    let mut offset = distance * n;
+    if direction.dot(n) < 0.0 {
+        offset = -offset;
+    }
+    let mut origin = p + offset;
+    for axis in 0..3 {
+        if offset[axis] > 0.0 {
+            origin[axis] = origin[axis].next_up();
+        } else if offset[axis] < 0.0 {
+            origin[axis] = origin[axis].next_down();
+        }
+    }
+    origin
+}

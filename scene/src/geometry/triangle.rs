@@ -1,0 +1,73 @@
+use glam::{DVec3, Vec3};
+
+use super::Ray;
+
+/// Where a ray meets a triangle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriangleHit {
+    /// Ray parameter of the hit.
+    pub t: f32,
+    /// Barycentric coordinates (b0, b1, b2) of the hit point, summing to 1.
+    pub barycentric: [f32; 3],
+}
+
+/// The watertight ray-triangle test of Woop, Benthin and Wald, "Watertight ray/triangle
+/// intersection", JCGT 2(1), 2013 (as arranged in *PBR* 4th ed. §6.5.3): the vertices are
+/// translated to the ray origin, permuted so the ray's largest direction component is z,
+/// and sheared so the ray is +z; the edge functions are then evaluated in 2D and, where
+/// one is exactly 0 in f32 (a ray through an edge or a vertex), recomputed in f64, so a
+/// ray through a shared edge is never lost between the two triangles. Degenerate
+/// triangles are never hit. Hits with t <= 0 or t >= `ray.t_max` are ignored.
+pub fn intersect_triangle(ray: &Ray, p: [Vec3; 3]) -> Option<TriangleHit> {
+    let d = ray.direction;
+    if !(d.is_finite() && d != Vec3::ZERO && ray.origin.is_finite()) {
+        return None;
+    }
+    // Permute so that the largest |direction| component is z.
+    let kz = d.abs().max_position();
+    let kx = if kz == 2 { 0 } else { kz + 1 };
+    let ky = if kx == 2 { 0 } else { kx + 1 };
+    let permute = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
+    let d = permute(d);
+    let [mut p0, mut p1, mut p2] = p.map(|v| permute(v - ray.origin));
+    // Shear so the ray direction is +z.
+    let (sx, sy, sz) = (-d.x / d.z, -d.y / d.z, 1.0 / d.z);
+    for q in [&mut p0, &mut p1, &mut p2] {
+        q.x += sx * q.z;
+        q.y += sy * q.z;
+    }
+    // Edge functions; fall back to f64 where one is exactly zero.
+    let mut e0 = p1.x * p2.y - p1.y * p2.x;
+    let mut e1 = p2.x * p0.y - p2.y * p0.x;
+    let mut e2 = p0.x * p1.y - p0.y * p1.x;
+    if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
+        let (a, b, c) = (p0.as_dvec3(), p1.as_dvec3(), p2.as_dvec3());
+        let edge = |u: DVec3, v: DVec3| (u.x * v.y - u.y * v.x) as f32;
+        (e0, e1, e2) = (edge(b, c), edge(c, a), edge(a, b));
+    }
+    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+        return None;
+    }
+    let det = e0 + e1 + e2;
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    // Scaled distance, compared against the range without dividing first.
+    let (z0, z1, z2) = (sz * p0.z, sz * p1.z, sz * p2.z);
+    let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
+    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < ray.t_max * det) {
+        return None;
+    }
+    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > ray.t_max * det) {
+        return None;
+    }
+    let inverse = 1.0 / det;
+    let t = t_scaled * inverse;
+    if !(t > 0.0 && t < ray.t_max) {
+        return None;
+    }
+    Some(TriangleHit {
+        t,
+        barycentric: [e0 * inverse, e1 * inverse, e2 * inverse],
+    })
+}
