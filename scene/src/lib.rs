@@ -1,9 +1,10 @@
 //! # prism-scene
 //!
-//! The world prism renders. This first part is the geometry: rays, the watertight
-//! ray-triangle test, robust spawn offsets and a compressed wide BVH built by obvhs.
-//! glTF loading, cameras, lights, materials and BSDFs are not built yet (see the issue
-//! tracker).
+//! The world prism renders. Built so far: the geometry (rays, the watertight ray-triangle
+//! test, robust spawn offsets, a compressed wide BVH built by obvhs) and glTF geometry
+//! loading (node hierarchies, transforms, indexed and non-indexed triangles, GLB, data
+//! URIs). Cameras, lights, materials, spectral descriptions and BSDFs are not built yet
+//! (see the issue tracker).
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit
@@ -22,3 +23,4 @@
 //!   (floating-point error bounds and ray origins).
 
 pub mod geometry;
+pub mod load;

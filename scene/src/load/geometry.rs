@@ -1,0 +1,202 @@
+use glam::{Mat4, Vec3};
+
+use super::{LoadError, base64};
+
+/// The triangles of one mesh primitive placed by one node.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshInstance {
+    /// The node's name (or `node N`).
+    pub node: String,
+    /// The glTF material index, if any.
+    pub material: Option<usize>,
+    /// First triangle in [`LoadedGeometry::triangles`].
+    pub first: usize,
+    /// Number of triangles.
+    pub count: usize,
+}
+
+/// The world-space triangles of the selected scene.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LoadedGeometry {
+    /// Triangles in world space, instance after instance.
+    pub triangles: Vec<[Vec3; 3]>,
+    /// Which node and primitive each range of triangles came from.
+    pub instances: Vec<MeshInstance>,
+}
+
+/// The geometry of scene `scene` (default: the file's default scene, else scene 0) of a
+/// glTF (`.gltf` JSON or `.glb`) given as bytes, instancing every mesh under the scene's
+/// node hierarchy with the composed transforms (TRS or matrix; mirroring transforms keep
+/// their winding by swapping two vertices). `resolve` returns the bytes of an external
+/// buffer URI (relative to the file); `data:` URIs and the GLB binary chunk are handled
+/// here. Non-triangle primitive modes are errors.
+pub fn load_geometry(
+    bytes: &[u8],
+    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    scene: Option<usize>,
+) -> Result<LoadedGeometry, LoadError> {
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| LoadError::Invalid(e.to_string()))?;
+    let buffers = gltf
+        .buffers()
+        .map(|buffer| {
+            let data = match buffer.source() {
+                gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
+                    LoadError::Buffer(format!(
+                        "buffer {} refers to a missing GLB binary chunk",
+                        buffer.index()
+                    ))
+                })?,
+                gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
+                    Some(rest) => {
+                        let payload =
+                            rest.split_once(";base64,").map(|(_, p)| p).ok_or_else(|| {
+                                LoadError::Buffer(format!(
+                                    "buffer {}: only base64 data URIs are supported",
+                                    buffer.index()
+                                ))
+                            })?;
+                        base64::decode(payload).ok_or_else(|| {
+                            LoadError::Buffer(format!(
+                                "buffer {}: malformed base64 data URI",
+                                buffer.index()
+                            ))
+                        })?
+                    }
+                    None => resolve(uri).map_err(|e| {
+                        LoadError::Buffer(format!("buffer {} ('{uri}'): {e}", buffer.index()))
+                    })?,
+                },
+            };
+            if data.len() < buffer.length() {
+                return Err(LoadError::Buffer(format!(
+                    "buffer {} has {} bytes but declares {}",
+                    buffer.index(),
+                    data.len(),
+                    buffer.length()
+                )));
+            }
+            Ok(data)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let scene = match scene {
+        Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
+            LoadError::Scene(format!(
+                "no scene {i} (the file has {})",
+                gltf.scenes().count()
+            ))
+        })?,
+        None => gltf
+            .default_scene()
+            .or_else(|| gltf.scenes().next())
+            .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
+    };
+    let mut out = LoadedGeometry::default();
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> =
+        scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    while let Some((node, parent, depth)) = stack.pop() {
+        if depth > 256 {
+            return Err(LoadError::Scene(
+                "node hierarchy deeper than 256 (a cycle?)".into(),
+            ));
+        }
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local;
+        if !world.is_finite() {
+            return Err(LoadError::Geometry(format!(
+                "node {} has a non-finite transform",
+                node_name(&node)
+            )));
+        }
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                add_primitive(&mut out, &node, &primitive, world, &buffers)?;
+            }
+        }
+        stack.extend(node.children().map(|c| (c, world, depth + 1)));
+    }
+    if out.triangles.is_empty() {
+        return Err(LoadError::Scene(format!(
+            "scene {} has no triangles",
+            scene.index()
+        )));
+    }
+    Ok(out)
+}
+
+fn node_name(node: &gltf::Node) -> String {
+    node.name()
+        .map_or_else(|| format!("node {}", node.index()), str::to_string)
+}
+
+fn add_primitive(
+    out: &mut LoadedGeometry,
+    node: &gltf::Node,
+    primitive: &gltf::Primitive,
+    world: Mat4,
+    buffers: &[Vec<u8>],
+) -> Result<(), LoadError> {
+    let name = node_name(node);
+    if primitive.mode() != gltf::mesh::Mode::Triangles {
+        return Err(LoadError::Geometry(format!(
+            "{name}: primitive mode {:?} is not supported (only TRIANGLES)",
+            primitive.mode()
+        )));
+    }
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    let positions: Vec<Vec3> = reader
+        .read_positions()
+        .ok_or_else(|| {
+            let accessor = primitive.get(&gltf::Semantic::Positions).map(|a| a.index());
+            LoadError::Geometry(match accessor {
+                Some(i) => format!("{name}: POSITION accessor {i} cannot be read (it runs past its buffer view or buffer)"),
+                None => format!("{name}: a primitive has no POSITION attribute"),
+            })
+        })?
+        .map(Vec3::from)
+        .collect();
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(LoadError::Geometry(format!(
+            "{name}: position {i} is not finite"
+        )));
+    }
+    let indices: Vec<u32> = match (reader.read_indices(), primitive.indices()) {
+        (Some(i), _) => i.into_u32().collect(),
+        (None, None) => (0..positions.len() as u32).collect(),
+        // Declared but unreadable: not a non-indexed primitive.
+        (None, Some(accessor)) => {
+            return Err(LoadError::Geometry(format!(
+                "{name}: index accessor {} cannot be read (it runs past its buffer view or buffer)",
+                accessor.index()
+            )));
+        }
+    };
+    if !indices.len().is_multiple_of(3) {
+        return Err(LoadError::Geometry(format!(
+            "{name}: {} indices do not form triangles",
+            indices.len()
+        )));
+    }
+    if let Some(bad) = indices.iter().find(|&&i| i as usize >= positions.len()) {
+        return Err(LoadError::Geometry(format!(
+            "{name}: index {bad} is past the {} vertices",
+            positions.len()
+        )));
+    }
+    // A mirroring transform flips the winding; swapping two vertices restores it so that
+    // front faces stay front faces.
+    let mirrored = world.determinant() < 0.0;
+    let first = out.triangles.len();
+    for tri in indices.chunks_exact(3) {
+        let [a, b, c] =
+            [tri[0], tri[1], tri[2]].map(|i| world.transform_point3(positions[i as usize]));
+        out.triangles
+            .push(if mirrored { [a, c, b] } else { [a, b, c] });
+    }
+    out.instances.push(MeshInstance {
+        node: name,
+        material: primitive.material().index(),
+        first,
+        count: out.triangles.len() - first,
+    });
+    Ok(())
+}

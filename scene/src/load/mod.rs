@@ -1,0 +1,9 @@
+//! Loading glTF 2.0 scenes. This crate touches no files: the caller hands over the bytes
+//! of the `.gltf` or `.glb` and a resolver for external buffer URIs.
+
+mod base64;
+mod error;
+mod geometry;
+
+pub use error::LoadError;
+pub use geometry::{LoadedGeometry, MeshInstance, load_geometry};

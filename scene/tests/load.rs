@@ -1,0 +1,226 @@
+//! glTF geometry loading: the canonical scenes, transforms, and a corpus of broken files.
+
+use glam::Vec3;
+use prism_scene::geometry::{Bvh, BvhQuality, Ray};
+use prism_scene::load::{LoadError, LoadedGeometry, load_geometry};
+use serde_json::{Value, json};
+
+fn scenes_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes")
+}
+
+fn load_file(name: &str) -> Result<LoadedGeometry, LoadError> {
+    let dir = scenes_dir();
+    let bytes = std::fs::read(dir.join(name)).unwrap();
+    load_geometry(
+        &bytes,
+        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+        None,
+    )
+}
+
+fn load_json(doc: &Value, bin: &[u8]) -> Result<LoadedGeometry, LoadError> {
+    let text = serde_json::to_vec(doc).unwrap();
+    let bin = bin.to_vec();
+    load_geometry(&text, &move |_| Ok(bin.clone()), None)
+}
+
+#[test]
+fn canonical_scenes_load() {
+    let bunny = load_file("cornell-bunny.gltf").unwrap();
+    let bunny_tris = bunny
+        .instances
+        .iter()
+        .find(|i| i.node == "bunny")
+        .unwrap()
+        .count;
+    assert_eq!(bunny_tris, 69_451);
+    assert!(
+        bunny
+            .instances
+            .iter()
+            .all(|i| i.node != "small-box" && i.node != "large-box"),
+        "only the scene's nodes"
+    );
+    // The bunny sits inside the box (walls at +-1) after its node transform.
+    let inst = bunny.instances.iter().find(|i| i.node == "bunny").unwrap();
+    for t in &bunny.triangles[inst.first..inst.first + inst.count] {
+        for v in t {
+            assert!(v.abs().max_element() <= 1.0 + 1e-4, "{v}");
+        }
+    }
+    let boxes = load_file("cornell-box.gltf").unwrap();
+    assert!(boxes.instances.iter().any(|i| i.node == "small-box"));
+    // A ray from the camera position hits something.
+    let bvh = Bvh::build(&boxes.triangles, BvhQuality::Medium);
+    assert!(
+        bvh.intersect(&Ray::new(Vec3::new(0.0, 0.0, 3.9), -Vec3::Z, f32::INFINITY))
+            .is_some()
+    );
+}
+
+/// A one-triangle document with its buffer as a data URI, for transform tests.
+fn triangle_doc(node: Value) -> Value {
+    // Three f32 positions: (0,0,0), (1,0,0), (0,1,0), base64-encoded.
+    let bytes: Vec<u8> = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .iter()
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    let b64 = {
+        const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut s = String::new();
+        for c in bytes.chunks(3) {
+            let n = (u32::from(c[0]) << 16)
+                | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+                | u32::from(*c.get(2).unwrap_or(&0));
+            for k in 0..=c.len() {
+                s.push(A[((n >> (18 - 6 * k)) & 63) as usize] as char);
+            }
+        }
+        while s.len() % 4 != 0 {
+            s.push('=');
+        }
+        s
+    };
+    json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [node],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "buffers": [{"byteLength": 36, "uri": format!("data:application/octet-stream;base64,{b64}")}]
+    })
+}
+
+#[test]
+fn transforms_compose_and_mirroring_keeps_winding() {
+    let normal = |g: &LoadedGeometry| {
+        let t = g.triangles[0];
+        (t[1] - t[0]).cross(t[2] - t[0]).normalize()
+    };
+    let plain = load_json(&triangle_doc(json!({"mesh": 0})), &[]).unwrap();
+    assert_eq!(normal(&plain), Vec3::Z);
+    let moved = load_json(
+        &triangle_doc(json!({"mesh": 0, "translation": [1, 2, 3], "scale": [2, 2, 2]})),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(moved.triangles[0][1], Vec3::new(3.0, 2.0, 3.0));
+    let mirrored = load_json(&triangle_doc(json!({"mesh": 0, "scale": [-1, 1, 1]})), &[]).unwrap();
+    assert_eq!(
+        normal(&mirrored),
+        Vec3::Z,
+        "a mirrored triangle keeps facing +z"
+    );
+    let matrix = load_json(
+        &triangle_doc(json!({"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,0,0,1]})),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(matrix.triangles[0][0], Vec3::new(5.0, 0.0, 0.0));
+}
+
+/// The corpus of broken files: each a named edit of the Cornell box, each an error that
+/// names the problem, none a panic.
+#[test]
+fn broken_files_are_clear_errors() {
+    let dir = scenes_dir();
+    let base: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("cornell-box.gltf")).unwrap()).unwrap();
+    let bin = std::fs::read(dir.join("cornell-box.bin")).unwrap();
+    let edit = |f: &dyn Fn(&mut Value)| {
+        let mut doc = base.clone();
+        f(&mut doc);
+        doc
+    };
+    let cases: Vec<(&str, Value, Vec<u8>, &str)> = vec![
+        (
+            "short buffer",
+            base.clone(),
+            bin[..bin.len() / 2].to_vec(),
+            "declares",
+        ),
+        (
+            "accessor past its view",
+            edit(&|d| d["accessors"][0]["count"] = json!(100_000)),
+            bin.clone(),
+            "cannot be read",
+        ),
+        (
+            "index past the vertices",
+            edit(&|d| {
+                // Point an indices accessor at a position accessor's view: indices become floats' bits.
+                let idx = d["meshes"][0]["primitives"][0]["indices"].as_u64().unwrap() as usize;
+                d["accessors"][idx]["count"] = json!(3);
+                d["accessors"][idx]["bufferView"] = d["accessors"][0]["bufferView"].clone();
+                d["accessors"][idx]["componentType"] = json!(5125);
+                d["accessors"][idx]["type"] = json!("SCALAR");
+            }),
+            bin.clone(),
+            "past the",
+        ),
+        (
+            "unreadable indices",
+            edit(&|d| {
+                let idx = d["meshes"][0]["primitives"][0]["indices"].as_u64().unwrap() as usize;
+                d["accessors"][idx]["count"] = json!(1_000_000);
+            }),
+            bin.clone(),
+            "index accessor",
+        ),
+        (
+            "lines instead of triangles",
+            edit(&|d| d["meshes"][0]["primitives"][0]["mode"] = json!(1)),
+            bin.clone(),
+            "TRIANGLES",
+        ),
+        (
+            "no such scene",
+            edit(&|d| d["scene"] = json!(3)),
+            bin.clone(),
+            "invalid glTF",
+        ),
+        (
+            "empty scene",
+            edit(&|d| d["scenes"][0]["nodes"] = json!([])),
+            bin.clone(),
+            "no triangles",
+        ),
+        (
+            "malformed data URI",
+            edit(&|d| d["buffers"][0]["uri"] = json!("data:application/octet-stream;base64,@@@@")),
+            bin.clone(),
+            "base64",
+        ),
+        (
+            "not JSON",
+            json!("this is not a glTF document"),
+            bin.clone(),
+            "invalid glTF",
+        ),
+    ];
+    for (name, doc, bytes, needle) in cases {
+        match load_json(&doc, &bytes) {
+            Ok(_) => panic!("{name}: loaded"),
+            Err(e) => assert!(
+                e.to_string().contains(needle),
+                "{name}: '{e}' lacks '{needle}'"
+            ),
+        }
+    }
+    // NaN positions.
+    let mut nan_bin = bin.clone();
+    nan_bin[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
+    let e = load_json(&base, &nan_bin).unwrap_err().to_string();
+    assert!(e.contains("not finite") || e.contains("invalid"), "{e}");
+    // A missing external buffer names the URI.
+    let text = serde_json::to_vec(&base).unwrap();
+    let e = load_geometry(&text, &|uri| Err(format!("cannot read '{uri}'")), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cornell-box.bin"), "{e}");
+    // Garbage bytes.
+    assert!(load_geometry(b"\x00\x01garbage", &|_| Err(String::new()), None).is_err());
+}
