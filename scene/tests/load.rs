@@ -77,7 +77,7 @@ fn triangle_doc(node: Value) -> Value {
                 s.push(A[((n >> (18 - 6 * k)) & 63) as usize] as char);
             }
         }
-        while s.len() % 4 != 0 {
+        while !s.len().is_multiple_of(4) {
             s.push('=');
         }
         s
