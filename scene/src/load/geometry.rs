@@ -1,5 +1,7 @@
 use glam::{Mat4, Vec3};
 
+use crate::camera::{Camera, Projection};
+
 use super::{LoadError, base64};
 
 /// The triangles of one mesh primitive placed by one node.
@@ -15,13 +17,54 @@ pub struct MeshInstance {
     pub count: usize,
 }
 
-/// The world-space triangles of the selected scene.
+/// The world-space triangles and cameras of the selected scene.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LoadedGeometry {
     /// Triangles in world space, instance after instance.
     pub triangles: Vec<[Vec3; 3]>,
     /// Which node and primitive each range of triangles came from.
     pub instances: Vec<MeshInstance>,
+    /// The cameras placed by the scene's nodes, in traversal order.
+    pub cameras: Vec<Camera>,
+}
+
+impl LoadedGeometry {
+    /// The camera called `name`, or the first one, or (for a scene without cameras) a
+    /// default camera framing the geometry. Errors for an unknown name.
+    pub fn camera(&self, name: Option<&str>) -> Result<Camera, LoadError> {
+        match name {
+            Some(n) => self
+                .cameras
+                .iter()
+                .find(|c| c.name == n)
+                .cloned()
+                .ok_or_else(|| {
+                    let names: Vec<&str> = self.cameras.iter().map(|c| c.name.as_str()).collect();
+                    LoadError::Scene(format!(
+                        "no camera '{n}' (cameras: {})",
+                        if names.is_empty() {
+                            "none".into()
+                        } else {
+                            names.join(", ")
+                        }
+                    ))
+                }),
+            None => Ok(self.cameras.first().cloned().unwrap_or_else(|| {
+                let (lo, hi) = self.bounds();
+                Camera::framing(lo, hi)
+            })),
+        }
+    }
+
+    /// The bounding box of the triangles.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.triangles
+            .iter()
+            .flatten()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(*v), hi.max(*v))
+            })
+    }
 }
 
 /// The geometry of scene `scene` (default: the file's default scene, else scene 0) of a
@@ -107,6 +150,9 @@ pub fn load_geometry(
                 node_name(&node)
             )));
         }
+        if let Some(camera) = node.camera() {
+            out.cameras.push(make_camera(&node, &camera, world)?);
+        }
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
                 add_primitive(&mut out, &node, &primitive, world, &buffers)?;
@@ -121,6 +167,40 @@ pub fn load_geometry(
         )));
     }
     Ok(out)
+}
+
+fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<Camera, LoadError> {
+    let name = node
+        .name()
+        .map_or_else(|| format!("camera {}", camera.index()), str::to_string);
+    let projection = match camera.projection() {
+        gltf::camera::Projection::Perspective(p) => {
+            let yfov = p.yfov();
+            if !(yfov > 0.0 && yfov < std::f32::consts::PI) {
+                return Err(LoadError::Geometry(format!(
+                    "camera {name}: yfov {yfov} is not in (0, pi)"
+                )));
+            }
+            Projection::Perspective { yfov }
+        }
+        gltf::camera::Projection::Orthographic(o) => {
+            let (xmag, ymag) = (o.xmag(), o.ymag());
+            if !(xmag.is_finite() && ymag.is_finite() && xmag != 0.0 && ymag != 0.0) {
+                return Err(LoadError::Geometry(format!(
+                    "camera {name}: xmag {xmag}, ymag {ymag} must be finite and non-zero"
+                )));
+            }
+            Projection::Orthographic {
+                xmag: xmag.abs(),
+                ymag: ymag.abs(),
+            }
+        }
+    };
+    Ok(Camera {
+        name,
+        to_world: world,
+        projection,
+    })
 }
 
 fn node_name(node: &gltf::Node) -> String {
