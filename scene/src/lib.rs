@@ -22,6 +22,7 @@
 //! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §6.5.3 (triangle test), §6.8
 //!   (floating-point error bounds and ray origins).
 
+pub mod bsdf;
 pub mod camera;
 pub mod geometry;
 pub mod load;

@@ -1,0 +1,41 @@
+//! BSDFs in a local shading frame (z is the shading normal), evaluated, sampled and given
+//! a density per wavelength lane.
+//!
+//! A BSDF is built per hit with its spectral parameters already sampled at the path's
+//! wavelengths (a `SampledSpectrum<N>`), as in *PBR* 4th ed. §9.1: the integrator never
+//! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
+
+mod diffuse;
+
+pub use diffuse::Diffuse;
+
+use glam::Vec3;
+use prism_spectrum::SampledSpectrum;
+
+/// A sampled incident direction with its value and density.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BsdfSample<const N: usize> {
+    /// Incident direction (local frame), unit length.
+    pub wi: Vec3,
+    /// The BSDF value f(wo, wi) per lane (for a delta lobe, the weight of the delta).
+    pub f: SampledSpectrum<N>,
+    /// The density of `wi` per lane, with respect to solid angle (for a delta lobe, the
+    /// discrete probability of choosing it). Lanes differ only where the direction depends
+    /// on wavelength (dispersion).
+    pub pdf: [f32; N],
+    /// Whether the lobe is a Dirac delta (specular): not reachable by light sampling.
+    pub delta: bool,
+    /// Whether the direction was chosen for the hero wavelength only (a dispersive delta):
+    /// the path must terminate its secondary wavelengths.
+    pub wavelength_dependent: bool,
+}
+
+/// cos(theta) of a local direction.
+pub(crate) fn cos_theta(w: Vec3) -> f32 {
+    w.z
+}
+
+/// Whether two local directions lie in the same hemisphere.
+pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}

@@ -1,0 +1,154 @@
+//! BSDFs: chi-square tests of sampling against the density, reciprocity, and white-furnace
+//! energy tests.
+
+use glam::{Vec2, Vec3};
+use prism_sampling::stats::chi_square_test;
+use prism_sampling::stream::{IndependentStream, SampleStream};
+use prism_scene::bsdf::Diffuse;
+use prism_spectrum::SampledSpectrum;
+
+/// One significance level for the crate's BSDF chi-square tests (Bonferroni over at most
+/// 40 tests, family-wise 1%).
+const ALPHA: f64 = 0.01 / 40.0;
+
+fn outgoing_directions() -> Vec<Vec3> {
+    vec![
+        Vec3::Z,
+        Vec3::new(0.3, 0.1, 0.9).normalize(),
+        Vec3::new(0.9, -0.2, 0.1).normalize(),
+        Vec3::new(0.2, 0.3, -0.8).normalize(),
+    ]
+}
+
+/// Chi-square of sampled directions against the density integrated over a (cos theta,
+/// phi) grid of the sphere, the density integrated numerically per cell.
+fn chi_square_directions(
+    name: &str,
+    sample: impl Fn(Vec2) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64,
+) {
+    let p = chi_square_p_value(name, sample, pdf);
+    assert!(p > ALPHA, "{name}: p = {p:.2e}");
+}
+
+fn chi_square_p_value(
+    name: &str,
+    sample: impl Fn(Vec2) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64,
+) -> f64 {
+    let (nt, np, samples) = (20usize, 40usize, 200_000usize);
+    let mut stream = IndependentStream::new(name.len() as u64, 0, 0);
+    let mut counts = vec![0u64; nt * np];
+    let mut valid = 0u64;
+    for _ in 0..samples {
+        if let Some(w) = sample(stream.next_2d()) {
+            let t = (((w.z + 1.0) / 2.0 * nt as f32) as usize).min(nt - 1);
+            let p = ((w.y.atan2(w.x) / std::f32::consts::TAU).rem_euclid(1.0) * np as f32) as usize;
+            counts[t * np + p.min(np - 1)] += 1;
+            valid += 1;
+        }
+    }
+    // Expected counts: integrate the pdf over each cell by a 6 x 6 midpoint rule.
+    let expected: Vec<f64> = (0..nt * np)
+        .map(|cell| {
+            let (ti, pi) = (cell / np, cell % np);
+            let mut mass = 0.0;
+            for a in 0..6 {
+                for b in 0..6 {
+                    let z = -1.0 + 2.0 * (ti as f64 + (a as f64 + 0.5) / 6.0) / nt as f64;
+                    let phi =
+                        std::f64::consts::TAU * (pi as f64 + (b as f64 + 0.5) / 6.0) / np as f64;
+                    let r = (1.0 - z * z).max(0.0).sqrt();
+                    let w = Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32);
+                    mass += pdf(w);
+                }
+            }
+            mass / 36.0 * (2.0 / nt as f64) * (std::f64::consts::TAU / np as f64) * samples as f64
+        })
+        .collect();
+    let total: f64 = expected.iter().sum();
+    assert!(
+        (total / samples as f64 - valid as f64 / samples as f64).abs() < 0.01,
+        "{name}: pdf mass {total} vs valid samples {valid}"
+    );
+    chi_square_test(&counts, &expected).p_value
+}
+
+/// The harness has power: judged against the uniform-hemisphere density, the cosine
+/// sampler fails.
+#[test]
+fn chi_square_rejects_a_wrong_density() {
+    let bsdf = Diffuse::new(SampledSpectrum([0.5; 4]));
+    let uniform = |wi: Vec3| {
+        if wi.z > 0.0 {
+            1.0 / std::f64::consts::TAU
+        } else {
+            0.0
+        }
+    };
+    let p = chi_square_p_value(
+        "wrong density",
+        |u| bsdf.sample(Vec3::Z, u).map(|s| s.wi),
+        uniform,
+    );
+    assert!(p < 1e-12, "p = {p}");
+}
+
+#[test]
+fn diffuse_sampling_matches_its_density() {
+    let bsdf = Diffuse::new(SampledSpectrum([0.5, 0.7, 0.2, 0.9]));
+    for (k, wo) in outgoing_directions().into_iter().enumerate() {
+        chi_square_directions(
+            &format!("diffuse wo {k}"),
+            |u| bsdf.sample(wo, u).map(|s| s.wi),
+            |wi| f64::from(bsdf.pdf(wo, wi)),
+        );
+    }
+}
+
+#[test]
+fn diffuse_is_reciprocal_and_consistent() {
+    let bsdf = Diffuse::new(SampledSpectrum([0.5, 0.7, 0.2, 0.9]));
+    let mut stream = IndependentStream::new(5, 0, 0);
+    for wo in outgoing_directions() {
+        for _ in 0..1000 {
+            let s = bsdf.sample(wo, stream.next_2d()).unwrap();
+            assert_eq!(bsdf.f(wo, s.wi), bsdf.f(s.wi, wo), "reciprocity");
+            assert!(
+                (s.pdf[0] - bsdf.pdf(wo, s.wi)).abs() < 1e-6,
+                "sample and pdf agree"
+            );
+            assert_eq!(s.f, bsdf.f(wo, s.wi));
+            assert!(!s.delta && !s.wavelength_dependent);
+        }
+    }
+}
+
+/// White furnace: the directional albedo, E[f cos / pdf], equals the reflectance: 1 for a
+/// white diffuse surface, never more (values above 1 are clamped at construction).
+#[test]
+fn diffuse_conserves_energy() {
+    for (reflectance, expected) in [
+        ([1.0f32; 4], [1.0f32; 4]),
+        ([0.3, 0.6, 2.0, -1.0], [0.3, 0.6, 1.0, 0.0]),
+    ] {
+        let bsdf = Diffuse::new(SampledSpectrum(reflectance));
+        let mut stream = IndependentStream::new(9, 0, 0);
+        for wo in outgoing_directions() {
+            let mut albedo = [0.0f64; 4];
+            let n = 10_000;
+            for _ in 0..n {
+                let s = bsdf.sample(wo, stream.next_2d()).unwrap();
+                for (k, a) in albedo.iter_mut().enumerate() {
+                    *a += f64::from(s.f[k] * s.wi.z.abs() / s.pdf[k]);
+                }
+            }
+            for k in 0..4 {
+                assert!(
+                    (albedo[k] / f64::from(n) - f64::from(expected[k])).abs() < 1e-5,
+                    "{reflectance:?} lane {k}"
+                );
+            }
+        }
+    }
+}
