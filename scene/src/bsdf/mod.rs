@@ -5,8 +5,10 @@
 //! wavelengths (a `SampledSpectrum<N>`), as in *PBR* 4th ed. §9.1: the integrator never
 //! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
 
+mod dielectric;
 mod diffuse;
 
+pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
 
 use glam::Vec3;
