@@ -259,3 +259,65 @@ mod dielectric {
         assert!(s.wi.z < 0.0, "TIR stays inside");
     }
 }
+
+mod conductor {
+    use glam::Vec3;
+    use prism_scene::bsdf::{SmoothConductor, fresnel_conductor, fresnel_dielectric};
+    use prism_spectrum::optics::named_metal;
+    use prism_spectrum::{SampledSpectrum, Spectrum};
+    use proptest::prelude::*;
+
+    /// At normal incidence the complex Fresnel equations reduce to
+    /// ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2), prism-spectrum's normal reflectance of the
+    /// measured metals; with k = 0 they are the dielectric equations.
+    #[test]
+    fn complex_fresnel_reduces_to_known_cases() {
+        for metal in ["au", "ag", "cu", "al"] {
+            let m = named_metal(metal).unwrap();
+            for lambda in [400.0, 550.0, 700.0] {
+                let (n, k) = (m.eta.evaluate(lambda) as f32, m.k.evaluate(lambda) as f32);
+                let expected = m.normal_reflectance(lambda) as f32;
+                assert!(
+                    (fresnel_conductor(1.0, n, k) - expected).abs() < 1e-5,
+                    "{metal} {lambda}"
+                );
+                assert!(
+                    (fresnel_conductor(1e-4, n, k) - 1.0).abs() < 1e-3,
+                    "{metal} grazing"
+                );
+            }
+        }
+        for cos in [1.0f32, 0.8, 0.5, 0.2] {
+            assert!(
+                (fresnel_conductor(cos, 1.5, 0.0) - fresnel_dielectric(cos, 1.5)).abs() < 1e-6,
+                "k = 0 at {cos}"
+            );
+        }
+    }
+
+    #[test]
+    fn gold_mirror_reflects_red_more_than_blue() {
+        let gold = named_metal("au").unwrap();
+        let lanes = [450.0, 550.0, 650.0, 700.0];
+        let mirror: SmoothConductor<4> = SmoothConductor {
+            eta: SampledSpectrum::from_fn(|i| gold.eta.evaluate(lanes[i]) as f32),
+            k: SampledSpectrum::from_fn(|i| gold.k.evaluate(lanes[i]) as f32),
+        };
+        let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+        let s = mirror.sample(wo).unwrap();
+        assert_eq!(s.wi, Vec3::new(-wo.x, -wo.y, wo.z));
+        let albedo = s.f * s.wi.z;
+        assert!(
+            albedo[0] < albedo[2] && albedo[2] < 1.0 && albedo.is_finite(),
+            "{albedo:?}"
+        );
+    }
+
+    proptest! {
+        #[test]
+        fn conductor_fresnel_is_in_unit_range(cos in -1.0..=1.0f32, n in 0.0..10.0f32, k in 0.0..20.0f32) {
+            let r = fresnel_conductor(cos, n, k);
+            prop_assert!((0.0..=1.0).contains(&r), "{r}");
+        }
+    }
+}

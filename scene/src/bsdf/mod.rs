@@ -5,9 +5,11 @@
 //! wavelengths (a `SampledSpectrum<N>`), as in *PBR* 4th ed. §9.1: the integrator never
 //! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
 
+mod conductor;
 mod dielectric;
 mod diffuse;
 
+pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
 
