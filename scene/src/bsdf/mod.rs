@@ -8,10 +8,14 @@
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod microfacet;
+mod rough_conductor;
 
 pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
+pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use rough_conductor::RoughConductor;
 
 use glam::Vec3;
 use prism_spectrum::SampledSpectrum;
