@@ -10,12 +10,14 @@ mod dielectric;
 mod diffuse;
 mod microfacet;
 mod rough_conductor;
+mod rough_dielectric;
 
 pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
+pub use rough_dielectric::RoughDielectric;
 
 use glam::Vec3;
 use prism_spectrum::SampledSpectrum;
