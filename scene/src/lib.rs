@@ -1,10 +1,12 @@
 //! # prism-scene
 //!
 //! The world prism renders. Built so far: the geometry (rays, the watertight ray-triangle
-//! test, robust spawn offsets, a compressed wide BVH built by obvhs) and glTF geometry
-//! loading (node hierarchies, transforms, indexed and non-indexed triangles, GLB, data
-//! URIs). Cameras, lights, materials, spectral descriptions and BSDFs are not built yet
-//! (see the issue tracker).
+//! test, robust spawn offsets, a compressed wide BVH built by obvhs), glTF geometry and
+//! camera loading (node hierarchies, transforms, indexed and non-indexed triangles, GLB,
+//! data URIs), cameras, and BSDFs (Lambertian, smooth and rough conductors with complex
+//! Fresnel, smooth and rough dielectrics with per-wavelength IOR). Lights, materials,
+//! textures, the glTF metallic-roughness mix, fluorescent BSDFs and the spectral
+//! descriptions are not built yet (see the issue tracker).
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit
@@ -20,7 +22,9 @@
 //! - H. Ylitie, T. Karras, S. Laine, "Efficient incoherent ray traversal on GPUs through
 //!   compressed wide BVHs", HPG 2017 (the CWBVH obvhs builds).
 //! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §6.5.3 (triangle test), §6.8
-//!   (floating-point error bounds and ray origins).
+//!   (floating-point error bounds and ray origins), §9 (BSDFs, Fresnel).
+//! - E. Heitz, "Sampling the GGX distribution of visible normals", JCGT 7(4), 2018.
+//! - B. Walter et al., "Microfacet models for refraction through rough surfaces", EGSR 2007.
 
 pub mod bsdf;
 pub mod camera;
