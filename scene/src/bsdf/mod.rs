@@ -5,16 +5,20 @@
 //! wavelengths (a `SampledSpectrum<N>`), as in *PBR* 4th ed. §9.1: the integrator never
 //! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
 
+mod coating_albedo;
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod metallic_roughness;
 mod microfacet;
 mod rough_conductor;
 mod rough_dielectric;
 
+pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
+pub use metallic_roughness::MetallicRoughness;
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
