@@ -618,3 +618,201 @@ mod metallic_roughness {
         }
     }
 }
+
+mod fluorescence {
+    use glam::{Vec2, Vec3};
+    use prism_sampling::stream::{IndependentStream, SampleStream};
+    use prism_sampling::wavelength::{ReradiationSampler, WavelengthRange};
+    use prism_scene::bsdf::{FluorescentDiffuse, reradiation_matrix};
+    use prism_spectrum::spectra::{Constant, Extrapolation, Gaussian, PiecewiseLinear};
+
+    const BINS: usize = 100;
+
+    fn range() -> WavelengthRange {
+        WavelengthRange::new(300.0, 800.0).unwrap()
+    }
+    fn step(below: f64, above: f64) -> PiecewiseLinear {
+        PiecewiseLinear::new(
+            vec![300.0, 399.999, 400.0, 800.0],
+            vec![below, below, above, above],
+            Extrapolation::Clamp,
+        )
+        .unwrap()
+    }
+    fn centre(k: usize) -> f64 {
+        300.0 + (k as f64 + 0.5) * 5.0
+    }
+
+    /// Per unit energy absorbed at l_i, Q photons come out distributed by e, so the energy
+    /// out is a Q l_i E[1 / l_o]; photons out per photon absorbed is a Q.
+    #[test]
+    fn energy_and_photons_are_accounted_for() {
+        let (r, a) = (step(0.1, 0.5), step(0.8, 0.0));
+        let e = Gaussian::new(460.0, 40.0, 1.0).unwrap();
+        let q = 0.9;
+        let m = reradiation_matrix(range(), BINS, &r, &a, &e, q).unwrap();
+        let w = 5.0;
+        let e_bins: Vec<f64> = (0..BINS)
+            .map(|k| prism_spectrum::Spectrum::evaluate(&e, centre(k)))
+            .collect();
+        let e_area: f64 = e_bins.iter().sum::<f64>() * w;
+        for i in 0..BINS {
+            let (ri, ai) = (
+                if centre(i) < 400.0 { 0.1 } else { 0.5 },
+                if centre(i) < 400.0 { 0.8 } else { 0.0 },
+            );
+            let energy: f64 = (0..BINS).map(|o| m[i * BINS + o] * w).sum();
+            let expected = ri
+                + ai * q
+                    * centre(i)
+                    * (0..BINS)
+                        .map(|o| e_bins[o] / e_area / centre(o) * w)
+                        .sum::<f64>();
+            assert!(
+                (energy - expected).abs() < 1e-9,
+                "row {i}: {energy} vs {expected}"
+            );
+            assert!(energy <= 1.0, "row {i} creates energy: {energy}");
+            let photons: f64 = (0..BINS)
+                .filter(|&o| o != i)
+                .map(|o| m[i * BINS + o] * w * centre(o) / centre(i))
+                .sum();
+            let diagonal_fluorescence = ai * q * (e_bins[i] / e_area) * w;
+            assert!(
+                (photons + diagonal_fluorescence - ai * q).abs() < 1e-9,
+                "row {i}: photons {photons}"
+            );
+        }
+    }
+
+    /// A blacklight: UV only. The fluorescent surface sends visible light back; with
+    /// quantum yield 0 (no fluorescence) the same surface sends none.
+    #[test]
+    fn blacklight_makes_only_fluorescent_surfaces_glow() {
+        let (r, a) = (step(0.1, 0.5), step(0.8, 0.0));
+        let e = Gaussian::new(460.0, 40.0, 1.0).unwrap();
+        for (q, glows) in [(0.9, true), (0.0, false)] {
+            let m = reradiation_matrix(range(), BINS, &r, &a, &e, q).unwrap();
+            let visible: f64 = (0..BINS)
+                .filter(|&i| centre(i) < 380.0)
+                .flat_map(|i| {
+                    (0..BINS)
+                        .filter(|&o| centre(o) >= 400.0)
+                        .map(move |o| (i, o))
+                })
+                .map(|(i, o)| m[i * BINS + o])
+                .sum();
+            assert_eq!(visible > 0.0, glows, "quantum yield {q}: {visible}");
+        }
+    }
+
+    /// With quantum yield 0 the material is its reflectance: every camera-path sample keeps
+    /// its wavelength's bin and weighs exactly R there, like a plain diffuse surface.
+    #[test]
+    fn identity_reradiation_is_plain_diffuse() {
+        let r =
+            PiecewiseLinear::new(vec![300.0, 800.0], vec![0.2, 0.9], Extrapolation::Clamp).unwrap();
+        let m = reradiation_matrix(
+            range(),
+            BINS,
+            &r,
+            &Constant::new(0.0).unwrap(),
+            &Constant::new(1.0).unwrap(),
+            0.0,
+        )
+        .unwrap();
+        let sampler = ReradiationSampler::new(range(), BINS, &m).unwrap();
+        let bsdf = FluorescentDiffuse { sampler: &sampler };
+        let mut stream = IndependentStream::new(61, 0, 0);
+        let lambda_out = [420.0f32, 530.0, 610.0, 790.0];
+        for _ in 0..1000 {
+            let s = bsdf
+                .sample(
+                    Vec3::Z,
+                    stream.next_2d(),
+                    f64::from(stream.next_1d()),
+                    &lambda_out,
+                )
+                .unwrap();
+            let bin = |l: f32| ((l - 300.0) / 5.0) as usize;
+            for (lane, &out) in lambda_out.iter().enumerate() {
+                assert_eq!(
+                    bin(s.lambda_in[lane]),
+                    bin(out),
+                    "the wavelength stays in its bin"
+                );
+                let weight = s.bsdf.f[lane] * s.bsdf.wi.z / (s.bsdf.pdf[lane] * s.lambda_pdf[lane]);
+                let expected = 0.2 + 0.7 * (centre(bin(out)) - 300.0) / 500.0;
+                assert!(
+                    (f64::from(weight) - expected).abs() < 1e-5,
+                    "lane {lane}: {weight} vs {expected}"
+                );
+            }
+        }
+    }
+
+    /// A camera path at the emission peak finds its light in the UV as often as the column
+    /// of the matrix says.
+    #[test]
+    fn camera_paths_find_the_exciting_wavelengths() {
+        let (r, a) = (step(0.0, 0.5), step(0.8, 0.0));
+        let e = Gaussian::new(460.0, 40.0, 1.0).unwrap();
+        let m = reradiation_matrix(range(), BINS, &r, &a, &e, 0.9).unwrap();
+        let sampler = ReradiationSampler::new(range(), BINS, &m).unwrap();
+        let bsdf = FluorescentDiffuse { sampler: &sampler };
+        let o = ((460.0 - 300.0) / 5.0) as usize;
+        let column: f64 = (0..BINS).map(|i| m[i * BINS + o]).sum();
+        let uv: f64 = (0..BINS)
+            .filter(|&i| centre(i) < 400.0)
+            .map(|i| m[i * BINS + o])
+            .sum();
+        let mut stream = IndependentStream::new(67, 0, 0);
+        let n = 20_000;
+        let found = (0..n)
+            .filter(|_| {
+                bsdf.sample(
+                    Vec3::Z,
+                    Vec2::splat(0.5),
+                    f64::from(stream.next_1d()),
+                    &[460.0f32],
+                )
+                .unwrap()
+                .lambda_in[0]
+                    < 400.0
+            })
+            .count();
+        assert!(
+            ((found as f64 / n as f64) - uv / column).abs() < 0.01,
+            "{found} of {n} vs {}",
+            uv / column
+        );
+    }
+
+    #[test]
+    fn impossible_materials_are_errors() {
+        let e = Gaussian::new(460.0, 40.0, 1.0).unwrap();
+        let half = Constant::new(0.6).unwrap();
+        assert!(
+            reradiation_matrix(range(), BINS, &half, &half, &e, 0.5)
+                .unwrap_err()
+                .to_string()
+                .contains("exceeds 1")
+        );
+        assert!(
+            reradiation_matrix(range(), BINS, &half, &Constant::new(0.1).unwrap(), &e, 1.5)
+                .is_err()
+        );
+        assert!(
+            reradiation_matrix(
+                range(),
+                BINS,
+                &half,
+                &Constant::new(0.1).unwrap(),
+                &Constant::new(0.0).unwrap(),
+                0.5
+            )
+            .is_err()
+        );
+        assert!(reradiation_matrix(range(), 0, &half, &half, &e, 0.0).is_err());
+    }
+}

@@ -9,6 +9,7 @@ mod coating_albedo;
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod fluorescent;
 mod metallic_roughness;
 mod microfacet;
 mod rough_conductor;
@@ -18,6 +19,9 @@ pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
+pub use fluorescent::{
+    FluorescenceError, FluorescentDiffuse, FluorescentSample, reradiation_matrix,
+};
 pub use metallic_roughness::MetallicRoughness;
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
