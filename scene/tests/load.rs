@@ -224,3 +224,52 @@ fn broken_files_are_clear_errors() {
     // Garbage bytes.
     assert!(load_geometry(b"\x00\x01garbage", &|_| Err(String::new()), None).is_err());
 }
+
+/// Materials become spectra at load time: reflectances by exact fits of the constant
+/// colours, the light's emission as an illuminant spectrum whose colour is the emissive
+/// factor times its strength.
+#[test]
+fn materials_become_spectra() {
+    use prism_spectrum::Spectrum;
+    use prism_spectrum::color::RgbSpaceId;
+    use prism_spectrum::colorimetry::{Observer, emission_xyz, reflectance_xyz};
+    let scene = load_file("cornell-box.gltf").unwrap();
+    let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, ["white-emitter", "white", "green", "red"]);
+    let red = &scene.materials[3];
+    assert!(red.base_color.evaluate(650.0) > 5.0 * red.base_color.evaluate(450.0));
+    assert_eq!((red.metallic, red.roughness, red.ior), (0.0, 1.0, 1.5));
+    // The reflectance reproduces its RGB under D65 (the exact fit's accuracy).
+    let srgb = RgbSpaceId::Srgb;
+    let xyz = reflectance_xyz(&red.base_color, &srgb.illuminant(), Observer::Cie1931).unwrap();
+    let rgb = srgb.space().xyz_to_rgb(xyz);
+    for (got, want) in rgb.iter().zip([0.570068, 0.0430135, 0.0443706]) {
+        assert!((got - want).abs() < 2e-3, "{rgb:?}");
+    }
+    assert!(red.emission.is_none());
+    // The light: emissive (1, 0.7607, 0.3673) x 18.387; its spectrum's luminance is the
+    // colour's (relative units: Y of the spectrum equals Y of the RGB).
+    let light = scene.materials[0].emission.as_ref().unwrap();
+    let y = emission_xyz(light, Observer::Cie1931).y;
+    let weights = srgb.space().luminance_weights();
+    let expected = 18.387
+        * (weights[0]
+            + weights[1] * 0.760_716_810_790_232_1
+            + weights[2] * 0.367_301_354_217_653_75);
+    assert!(
+        ((y - expected) / expected).abs() < 5e-3,
+        "Y {y} vs {expected}"
+    );
+}
+
+#[test]
+fn non_finite_material_factors_are_errors() {
+    let dir = scenes_dir();
+    let mut doc: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("cornell-box.gltf")).unwrap()).unwrap();
+    doc["materials"][2]["pbrMetallicRoughness"]["roughnessFactor"] = json!(-1e39);
+    let bin = std::fs::read(dir.join("cornell-box.bin")).unwrap();
+    // -1e39 overflows f32 to -inf.
+    let e = load_json(&doc, &bin).unwrap_err().to_string();
+    assert!(e.contains("not finite") || e.contains("invalid"), "{e}");
+}

@@ -1,5 +1,6 @@
 use glam::{Mat4, Vec3};
 
+use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
 
 use super::{LoadError, base64};
@@ -18,7 +19,7 @@ pub struct MeshInstance {
 }
 
 /// The world-space triangles and cameras of the selected scene.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct LoadedGeometry {
     /// Triangles in world space, instance after instance.
     pub triangles: Vec<[Vec3; 3]>,
@@ -26,6 +27,8 @@ pub struct LoadedGeometry {
     pub instances: Vec<MeshInstance>,
     /// The cameras placed by the scene's nodes, in traversal order.
     pub cameras: Vec<Camera>,
+    /// Every material of the file, in file order ([`MeshInstance::material`] indexes it).
+    pub materials: Vec<MaterialDesc>,
 }
 
 impl LoadedGeometry {
@@ -134,6 +137,13 @@ pub fn load_geometry(
             .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
     };
     let mut out = LoadedGeometry::default();
+    if gltf.materials().len() > 0 {
+        let upsampler = Upsampler::new()?;
+        out.materials = gltf
+            .materials()
+            .map(|m| material(&m, &upsampler))
+            .collect::<Result<_, _>>()?;
+    }
     let mut stack: Vec<(gltf::Node, Mat4, usize)> =
         scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     while let Some((node, parent, depth)) = stack.pop() {

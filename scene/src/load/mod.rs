@@ -4,6 +4,7 @@
 mod base64;
 mod error;
 mod geometry;
+mod materials;
 
 pub use error::LoadError;
 pub use geometry::{LoadedGeometry, MeshInstance, load_geometry};

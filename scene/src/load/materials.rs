@@ -1,0 +1,124 @@
+//! glTF materials in spectral form: RGB factors become sigmoid-polynomial spectra here (RGB
+//! stops at the scene), constant colours by an exact fit rather than a table.
+
+use std::sync::Arc;
+
+use prism_spectrum::color::RgbSpaceId;
+use prism_spectrum::spectra::DenselySampled;
+use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
+
+use super::LoadError;
+
+/// A glTF metallic-roughness material, spectral.
+#[derive(Debug, Clone)]
+pub struct MaterialDesc {
+    /// The material's name (or `material N`).
+    pub name: String,
+    /// baseColorFactor (linear sRGB) as a reflectance spectrum.
+    pub base_color: RgbSpectrum,
+    /// metallicFactor in [0, 1].
+    pub metallic: f32,
+    /// roughnessFactor in [0, 1] (perceptual; alpha = roughness^2).
+    pub roughness: f32,
+    /// Index of refraction (`KHR_materials_ior`, default 1.5).
+    pub ior: f32,
+    /// transmissionFactor (`KHR_materials_transmission`, default 0).
+    pub transmission: f32,
+    /// emissiveFactor times `KHR_materials_emissive_strength` as an emission spectrum
+    /// (sigmoid times the D65 illuminant normalized to luminance 1, so its XYZ is the
+    /// colour's), or None when black.
+    pub emission: Option<RgbSpectrum>,
+    /// Whether both faces are front faces (emission from both sides).
+    pub double_sided: bool,
+    /// Whether a base colour texture is referenced (textures are not evaluated yet).
+    pub has_base_color_texture: bool,
+}
+
+/// Everything upsampling needs, built once per load: glTF colours are linear sRGB.
+pub(crate) struct Upsampler {
+    context: FitContext,
+    illuminant: Arc<DenselySampled>,
+}
+
+impl Upsampler {
+    pub(crate) fn new() -> Result<Self, LoadError> {
+        let id = RgbSpaceId::Srgb;
+        let to_error = |e: prism_upsample::UpsampleError| {
+            LoadError::Geometry(format!("upsampling setup: {e}"))
+        };
+        Ok(Self {
+            context: FitContext::new(id.space(), &id.illuminant()).map_err(to_error)?,
+            illuminant: normalized_illuminant(&id.illuminant()).map_err(to_error)?,
+        })
+    }
+}
+
+fn finite(name: &str, what: &str, values: &[f32]) -> Result<(), LoadError> {
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(v) => Err(LoadError::Geometry(format!(
+            "material {name}: {what} {v} is not finite"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The spectral description of `material`.
+pub(crate) fn material(
+    material: &gltf::Material,
+    upsampler: &Upsampler,
+) -> Result<MaterialDesc, LoadError> {
+    let name = material.name().map_or_else(
+        || format!("material {}", material.index().map_or(-1, |i| i as i64)),
+        str::to_string,
+    );
+    let pbr = material.pbr_metallic_roughness();
+    let base = pbr.base_color_factor();
+    let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
+    let emissive = material.emissive_factor();
+    let strength = material.emissive_strength().unwrap_or(1.0);
+    let ior = material.ior().unwrap_or(1.5);
+    let transmission = material
+        .transmission()
+        .map_or(0.0, |t| t.transmission_factor());
+    finite(&name, "baseColorFactor component", &base)?;
+    finite(&name, "metallic/roughness factor", &[metallic, roughness])?;
+    finite(
+        &name,
+        "emissive factor or strength",
+        &[emissive[0], emissive[1], emissive[2], strength],
+    )?;
+    finite(&name, "ior or transmission", &[ior, transmission])?;
+    if ior < 1.0 {
+        return Err(LoadError::Geometry(format!(
+            "material {name}: ior {ior} is below 1"
+        )));
+    }
+    let rgb = |c: [f32; 3]| c.map(f64::from);
+    let fit = |c: [f64; 3], kind: RgbKind, illuminant| {
+        RgbSpectrum::fit(&upsampler.context, c, kind, illuminant)
+            .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))
+    };
+    let base_color = fit(rgb([base[0], base[1], base[2]]), RgbKind::Albedo, None)?;
+    let emitted = rgb(emissive).map(|c| c * f64::from(strength.max(0.0)));
+    let emission = if emitted.iter().all(|&c| c <= 0.0) {
+        None
+    } else {
+        Some(fit(
+            emitted,
+            RgbKind::Illuminant,
+            Some(upsampler.illuminant.clone()),
+        )?)
+    };
+    let unit = |v: f32| v.clamp(0.0, 1.0);
+    Ok(MaterialDesc {
+        name,
+        base_color,
+        metallic: unit(metallic),
+        roughness: unit(roughness),
+        ior,
+        transmission: unit(transmission),
+        emission,
+        double_sided: material.double_sided(),
+        has_base_color_texture: pbr.base_color_texture().is_some(),
+    })
+}
