@@ -6,6 +6,7 @@
 
 mod commands;
 mod output;
+mod scene_file;
 mod spectrum_spec;
 mod table_cache;
 
@@ -27,6 +28,8 @@ enum Command {
     Color(commands::color::ColorArgs),
     /// Turn RGB colours into sigmoid-polynomial spectra (Jakob and Hanika 2019).
     Upsample(commands::upsample::UpsampleArgs),
+    /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
+    Info(commands::info::InfoArgs),
     /// Fit and inspect RGB-to-spectrum coefficient tables.
     #[command(subcommand)]
     Table(commands::table::TableCommand),
@@ -40,6 +43,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Color(args) => commands::color::run(&args),
         Command::Upsample(args) => commands::upsample::run(&args),
+        Command::Info(args) => commands::info::run(&args),
         Command::Table(command) => commands::table::run(&command),
     };
     match result {

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
 pub mod color;
+pub mod info;
 pub mod table;
 pub mod upsample;

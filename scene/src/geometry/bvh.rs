@@ -80,6 +80,16 @@ impl Bvh {
         }
     }
 
+    /// Bytes held: BVH nodes and indices, triangles, index map.
+    pub fn memory_bytes(&self) -> usize {
+        let tree = self.bvh.as_ref().map_or(0, |b| {
+            std::mem::size_of_val(b.nodes.as_slice())
+                + std::mem::size_of_val(b.primitive_indices.as_slice())
+        });
+        tree + std::mem::size_of_val(self.triangles.as_slice())
+            + std::mem::size_of_val(self.original.as_slice())
+    }
+
     /// Triangles left out as degenerate.
     pub fn skipped(&self) -> usize {
         self.skipped

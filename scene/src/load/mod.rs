@@ -5,6 +5,7 @@ mod base64;
 mod error;
 mod geometry;
 mod materials;
+mod summary;
 
 pub use error::LoadError;
 pub use geometry::{LoadedGeometry, MeshInstance, load_geometry};

@@ -1,0 +1,60 @@
+//! `prism info`: what a scene contains.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use prism_scene::geometry::{Bvh, BvhQuality};
+
+#[derive(Debug, Args)]
+#[command(after_help = "Example:\n  prism info scenes/cornell-bunny.gltf")]
+pub struct InfoArgs {
+    /// A .gltf or .glb file.
+    pub scene: PathBuf,
+    /// Which scene of the file (default: its default scene).
+    #[arg(long)]
+    pub scene_index: Option<usize>,
+}
+
+pub fn run(args: &InfoArgs) -> Result<(), String> {
+    let loaded = crate::scene_file::load(&args.scene, args.scene_index)?;
+    let s = loaded.summary();
+    let start = std::time::Instant::now();
+    let bvh = Bvh::build(&loaded.triangles, BvhQuality::Medium);
+    let build = start.elapsed().as_secs_f64();
+    println!("scene          {}", args.scene.display());
+    println!(
+        "triangles      {} ({} degenerate skipped)",
+        s.triangles,
+        bvh.skipped()
+    );
+    println!("instances      {}", s.instances);
+    println!("materials      {}", s.materials);
+    println!(
+        "area lights    {} instances, {} triangles",
+        s.emissive_instances, s.emissive_triangles
+    );
+    println!(
+        "cameras        {}",
+        if s.cameras.is_empty() {
+            "none (a default camera frames the scene)".into()
+        } else {
+            s.cameras.join(", ")
+        }
+    );
+    println!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
+    println!(
+        "features       transmission: {}, textures: {} (not evaluated yet)",
+        yes(s.uses_transmission),
+        yes(s.uses_textures)
+    );
+    println!(
+        "memory         {:.1} MB triangles + BVH (built in {:.0} ms)",
+        bvh.memory_bytes() as f64 / 1e6,
+        build * 1e3
+    );
+    Ok(())
+}
+
+fn yes(b: bool) -> &'static str {
+    if b { "yes" } else { "no" }
+}
