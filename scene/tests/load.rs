@@ -273,3 +273,79 @@ fn non_finite_material_factors_are_errors() {
     let e = load_json(&doc, &bin).unwrap_err().to_string();
     assert!(e.contains("not finite") || e.contains("invalid"), "{e}");
 }
+
+#[test]
+fn lights_are_emissive_instances_then_punctual_lights() {
+    use prism_scene::load::LightDesc;
+    use prism_spectrum::optics::luminous_flux;
+    let scene = load_file("cornell-box.gltf").unwrap();
+    let area: Vec<usize> = scene
+        .lights
+        .iter()
+        .map(|l| match l {
+            LightDesc::Area { instance, .. } => *instance,
+            other => panic!("the Cornell box has only an area light, got {other:?}"),
+        })
+        .collect();
+    assert_eq!(area.len(), 1);
+    let emitter = &scene.instances[area[0]];
+    assert_eq!(
+        scene.materials[emitter.material.unwrap()].name,
+        "white-emitter"
+    );
+
+    // A 100 cd orange point light and a 3 lx directional light, in photometric units.
+    let mut doc = triangle_doc(json!({"children": [1, 2]}));
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    doc["nodes"] = json!([
+        {"mesh": 0, "children": [1, 2]},
+        {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"rotation": [-h, 0, 0, h], "extensions": {"KHR_lights_punctual": {"light": 1}}}
+    ]);
+    doc["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    doc["extensions"] = json!({"KHR_lights_punctual": {"lights": [
+        {"type": "point", "color": [1.0, 0.5, 0.2], "intensity": 100.0},
+        {"type": "directional", "intensity": 3.0}
+    ]}});
+    let loaded = load_json(&doc, &[]).unwrap();
+    assert_eq!(loaded.lights.len(), 2);
+    let find = |point: bool| {
+        loaded
+            .lights
+            .iter()
+            .find(|l| matches!(l, LightDesc::Point { .. }) == point)
+            .unwrap()
+    };
+    match find(true) {
+        LightDesc::Point {
+            position,
+            spectrum,
+            scale,
+        } => {
+            assert!((*position - Vec3::new(0.0, 2.0, 0.0)).length() < 1e-6);
+            let candela = luminous_flux(spectrum) * scale;
+            assert!((candela - 100.0).abs() < 1e-6 * 100.0, "{candela}");
+        }
+        other => panic!("{other:?}"),
+    }
+    match find(false) {
+        LightDesc::Directional {
+            direction,
+            spectrum,
+            scale,
+        } => {
+            // -z rotated -90 degrees about x points down.
+            assert!(
+                (*direction - Vec3::new(0.0, -1.0, 0.0)).length() < 1e-5,
+                "{direction}"
+            );
+            assert!((luminous_flux(spectrum) * scale - 3.0).abs() < 1e-6);
+        }
+        other => panic!("{other:?}"),
+    }
+
+    // Negative intensity is an error naming the light.
+    doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = json!(-1.0);
+    let e = load_json(&doc, &[]).unwrap_err().to_string();
+    assert!(e.contains("light") && e.contains("intensity"), "{e}");
+}

@@ -1,5 +1,6 @@
 use glam::{Mat4, Vec3};
 
+use super::lights::{LightDesc, punctual};
 use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
 
@@ -29,6 +30,8 @@ pub struct LoadedGeometry {
     pub cameras: Vec<Camera>,
     /// Every material of the file, in file order ([`MeshInstance::material`] indexes it).
     pub materials: Vec<MaterialDesc>,
+    /// The lights: emissive instances, then punctual lights in traversal order.
+    pub lights: Vec<LightDesc>,
 }
 
 impl LoadedGeometry {
@@ -137,13 +140,18 @@ pub fn load_geometry(
             .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
     };
     let mut out = LoadedGeometry::default();
-    if gltf.materials().len() > 0 {
-        let upsampler = Upsampler::new()?;
+    // Fitting needs a context; scenes without colours never build one.
+    let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
+    let upsampler = (gltf.materials().len() > 0 || has_lights)
+        .then(Upsampler::new)
+        .transpose()?;
+    if let Some(upsampler) = &upsampler {
         out.materials = gltf
             .materials()
-            .map(|m| material(&m, &upsampler))
+            .map(|m| material(&m, upsampler))
             .collect::<Result<_, _>>()?;
     }
+    let mut punctual_lights = Vec::new();
     let mut stack: Vec<(gltf::Node, Mat4, usize)> =
         scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     while let Some((node, parent, depth)) = stack.pop() {
@@ -159,6 +167,11 @@ pub fn load_geometry(
                 "node {} has a non-finite transform",
                 node_name(&node)
             )));
+        }
+        if let (Some(light), Some(upsampler)) = (node.light(), &upsampler) {
+            punctual_lights.push(punctual(&node, &light, world, &|rgb| {
+                upsampler.emission(rgb)
+            })?);
         }
         if let Some(camera) = node.camera() {
             out.cameras.push(make_camera(&node, &camera, world)?);
@@ -176,6 +189,23 @@ pub fn load_geometry(
             scene.index()
         )));
     }
+    let emissive = |i: &MeshInstance| {
+        i.material
+            .and_then(|m| out.materials.get(m))
+            .and_then(|m| m.emission.is_some().then_some(m.double_sided))
+    };
+    out.lights = out
+        .instances
+        .iter()
+        .enumerate()
+        .filter_map(|(instance, i)| {
+            emissive(i).map(|double_sided| LightDesc::Area {
+                instance,
+                double_sided,
+            })
+        })
+        .collect();
+    out.lights.extend(punctual_lights);
     Ok(out)
 }
 

@@ -51,6 +51,17 @@ impl Upsampler {
             illuminant: normalized_illuminant(&id.illuminant()).map_err(to_error)?,
         })
     }
+
+    /// A linear sRGB emission colour as an illuminant spectrum.
+    pub(crate) fn emission(&self, rgb: [f64; 3]) -> Result<RgbSpectrum, LoadError> {
+        RgbSpectrum::fit(
+            &self.context,
+            rgb,
+            RgbKind::Illuminant,
+            Some(self.illuminant.clone()),
+        )
+        .map_err(|e| LoadError::Geometry(format!("emission colour {rgb:?}: {e}")))
+    }
 }
 
 fn finite(name: &str, what: &str, values: &[f32]) -> Result<(), LoadError> {

@@ -4,8 +4,11 @@
 mod base64;
 mod error;
 mod geometry;
+mod lights;
 mod materials;
 mod summary;
 
 pub use error::LoadError;
 pub use geometry::{LoadedGeometry, MeshInstance, load_geometry};
+pub use lights::LightDesc;
+pub use materials::MaterialDesc;
