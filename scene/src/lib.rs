@@ -30,3 +30,4 @@ pub mod bsdf;
 pub mod camera;
 pub mod geometry;
 pub mod load;
+pub mod world;

@@ -1,0 +1,163 @@
+//! A render-ready scene from a loaded glTF file.
+
+use std::sync::Arc;
+
+use super::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use crate::bsdf::CoatingAlbedo;
+use crate::geometry::BvhQuality;
+use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
+
+/// Choices made when turning a loaded file into a scene.
+#[derive(Debug, Clone, Default)]
+pub struct SceneOptions {
+    /// The camera by name (default: the first, else one framing the scene).
+    pub camera: Option<String>,
+    /// A constant environment radiance, if any.
+    pub environment: Option<SceneSpectrum>,
+    /// BVH build effort.
+    pub quality: BvhQuality,
+}
+
+/// The material a glTF description becomes.
+///
+/// - transmissive (`KHR_materials_transmission` > 0): a dielectric of the material's index
+///   and roughness (partial transmission is treated as full: a glass, not a blend);
+/// - metallic 0 and roughness 1: Lambertian. This is what exporters write for a matte
+///   surface and what the canonical Cornell box means by its walls (Mitsuba's reference
+///   scene uses diffuse BSDFs there); glTF's rough coating would add a few percent of
+///   white, desaturating reflection that the scene's author did not ask for;
+/// - otherwise the glTF metallic-roughness BSDF.
+fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) -> Material {
+    let base = SceneSpectrum::Rgb(Arc::new(desc.base_color.clone()));
+    if desc.transmission > 0.0 {
+        return Material::Dielectric {
+            ior: SceneSpectrum::Constant(f64::from(desc.ior)),
+            roughness: desc.roughness,
+        };
+    }
+    if desc.metallic == 0.0 && desc.roughness == 1.0 {
+        return Material::Diffuse { reflectance: base };
+    }
+    Material::MetallicRoughness {
+        base,
+        metallic: desc.metallic,
+        roughness: desc.roughness,
+        coating: coating_for(desc.ior, coatings),
+    }
+}
+
+/// One coating table per distinct index (they take milliseconds to build).
+fn coating_for(ior: f32, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) -> Arc<CoatingAlbedo> {
+    if let Some((_, c)) = coatings.iter().find(|(i, _)| *i == ior) {
+        return c.clone();
+    }
+    let c = Arc::new(CoatingAlbedo::new(ior));
+    coatings.push((ior, c.clone()));
+    c
+}
+
+impl Scene {
+    /// The scene of a loaded glTF file.
+    pub fn from_loaded(loaded: &LoadedGeometry, options: &SceneOptions) -> Result<Self, LoadError> {
+        let mut coatings = Vec::new();
+        let mut materials: Vec<Material> = loaded
+            .materials
+            .iter()
+            .map(|m| material(m, &mut coatings))
+            .collect();
+        // glTF's default material: white, fully metallic, fully rough.
+        let default_material = materials.len() as u32;
+        materials.push(Material::MetallicRoughness {
+            base: SceneSpectrum::Constant(1.0),
+            metallic: 1.0,
+            roughness: 1.0,
+            coating: coating_for(1.5, &mut coatings),
+        });
+        let mut triangle_material = vec![default_material; loaded.triangles.len()];
+        for instance in &loaded.instances {
+            let m = instance.material.map_or(default_material, |m| m as u32);
+            triangle_material[instance.first..instance.first + instance.count].fill(m);
+        }
+        let mut emission = Vec::new();
+        let mut emission_of_material = vec![None; loaded.materials.len()];
+        let mut lights = Vec::new();
+        for desc in &loaded.lights {
+            match desc {
+                LightDesc::Area {
+                    instance,
+                    double_sided,
+                } => {
+                    let instance = &loaded.instances[*instance];
+                    let Some(m) = instance.material else { continue };
+                    let Some(spectrum) = &loaded.materials[m].emission else {
+                        continue;
+                    };
+                    let e = *emission_of_material[m].get_or_insert_with(|| {
+                        emission.push(SceneSpectrum::Rgb(Arc::new(spectrum.clone())));
+                        emission.len() as u32 - 1
+                    });
+                    for t in instance.first..instance.first + instance.count {
+                        lights.push(Light::Triangle {
+                            triangle: t as u32,
+                            emission: e,
+                            two_sided: *double_sided,
+                        });
+                    }
+                }
+                LightDesc::Point {
+                    position,
+                    spectrum,
+                    scale,
+                } => lights.push(Light::Point {
+                    position: *position,
+                    intensity: scaled(spectrum, *scale),
+                }),
+                LightDesc::Spot {
+                    position,
+                    direction,
+                    inner,
+                    outer,
+                    spectrum,
+                    scale,
+                } => lights.push(Light::Spot {
+                    position: *position,
+                    direction: *direction,
+                    cos_inner: inner.cos(),
+                    cos_outer: outer.cos(),
+                    intensity: scaled(spectrum, *scale),
+                }),
+                LightDesc::Directional {
+                    direction,
+                    spectrum,
+                    scale,
+                } => lights.push(Light::Directional {
+                    direction: *direction,
+                    irradiance: scaled(spectrum, *scale),
+                }),
+            }
+        }
+        if let Some(radiance) = &options.environment {
+            lights.push(Light::Environment {
+                radiance: radiance.clone(),
+            });
+        }
+        let camera = loaded.camera(options.camera.as_deref())?;
+        Scene::new(SceneParts {
+            triangles: loaded.triangles.clone(),
+            triangle_material,
+            materials,
+            emission,
+            lights,
+            camera,
+            quality: options.quality,
+        })
+        .map_err(LoadError::Scene)
+    }
+}
+
+fn scaled(spectrum: &prism_upsample::RgbSpectrum, scale: f64) -> SceneSpectrum {
+    SceneSpectrum::Scaled(
+        Arc::new(SceneSpectrum::Rgb(Arc::new(spectrum.clone()))),
+        scale,
+    )
+}

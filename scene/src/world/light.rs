@@ -1,0 +1,286 @@
+//! Lights of a render-ready scene: emissive triangles, KHR punctual lights and a constant
+//! environment, chosen in proportion to their power through an alias table.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+use prism_sampling::distribution::AliasTable;
+use prism_sampling::warp::{uniform_sphere, uniform_triangle};
+use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+use super::SceneSpectrum;
+
+/// One light.
+#[derive(Debug, Clone)]
+pub enum Light {
+    /// An emissive triangle with radiance `emission` (index into the scene's emission
+    /// spectra), from its front face (the side its counter-clockwise winding faces) only
+    /// unless `two_sided`.
+    Triangle {
+        /// Index of the triangle in the scene.
+        triangle: u32,
+        /// Index of its emission spectrum.
+        emission: u32,
+        /// Whether both faces emit.
+        two_sided: bool,
+    },
+    /// A point light of radiant intensity `intensity` (W sr^-1 nm^-1).
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Radiant intensity.
+        intensity: SceneSpectrum,
+    },
+    /// A spot light: a point light with glTF's smooth cone falloff.
+    Spot {
+        /// Position.
+        position: Vec3,
+        /// Unit axis.
+        direction: Vec3,
+        /// cos of the inner cone angle.
+        cos_inner: f32,
+        /// cos of the outer cone angle.
+        cos_outer: f32,
+        /// Radiant intensity on the axis.
+        intensity: SceneSpectrum,
+    },
+    /// A distant light travelling along `direction` with irradiance `irradiance`
+    /// (W m^-2 nm^-1) on a surface facing it.
+    Directional {
+        /// Unit direction of travel.
+        direction: Vec3,
+        /// Irradiance.
+        irradiance: SceneSpectrum,
+    },
+    /// Constant radiance from every direction at infinity.
+    Environment {
+        /// Radiance.
+        radiance: SceneSpectrum,
+    },
+}
+
+/// A light sample seen from a point.
+#[derive(Debug, Clone, Copy)]
+pub struct LightSample<const N: usize> {
+    /// Unit direction from the point to the light.
+    pub wi: Vec3,
+    /// Distance to the light (infinite for distant lights).
+    pub distance: f32,
+    /// Incident radiance (for delta lights, the delta's weight: intensity / distance^2 or
+    /// irradiance).
+    pub radiance: SampledSpectrum<N>,
+    /// Density of `wi` with respect to solid angle, times the light's selection
+    /// probability; for delta lights the selection probability alone.
+    pub pdf: f32,
+    /// Whether the light is a delta in direction (BSDF sampling can never hit it).
+    pub delta: bool,
+}
+
+/// The glTF spot light falloff (KHR_lights_punctual): a squared linear ramp in cos between
+/// the outer and inner cone.
+fn spot_falloff(cos: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+    let scale = 1.0 / (cos_inner - cos_outer).max(1e-3);
+    let t = ((cos - cos_outer) * scale).clamp(0.0, 1.0);
+    t * t
+}
+
+/// Every light of a scene with the distribution that chooses among them.
+#[derive(Debug, Clone)]
+pub struct Lights {
+    pub(crate) lights: Vec<Light>,
+    /// None when there is no light with power.
+    pub(crate) choice: Option<AliasTable>,
+    /// The light index of each triangle, u32::MAX where it does not emit.
+    pub(crate) of_triangle: Vec<u32>,
+    pub(crate) environment: Option<u32>,
+}
+
+impl Lights {
+    /// The lights, chosen in proportion to `power` (which must match `lights`).
+    pub(crate) fn new(lights: Vec<Light>, power: &[f64], triangles: usize) -> Self {
+        let mut of_triangle = vec![u32::MAX; triangles];
+        let mut environment = None;
+        for (i, light) in lights.iter().enumerate() {
+            match light {
+                Light::Triangle { triangle, .. } => of_triangle[*triangle as usize] = i as u32,
+                Light::Environment { .. } => environment = Some(i as u32),
+                _ => {}
+            }
+        }
+        let usable = power.iter().any(|&p| p > 0.0 && p.is_finite());
+        let weights: Vec<f64> = power
+            .iter()
+            .map(|&p| if p.is_finite() && p > 0.0 { p } else { 0.0 })
+            .collect();
+        Self {
+            lights,
+            choice: if usable {
+                AliasTable::new(&weights).ok()
+            } else {
+                None
+            },
+            of_triangle,
+            environment,
+        }
+    }
+
+    /// The lights.
+    pub fn all(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// The probability of choosing light `i`.
+    pub fn pmf(&self, i: u32) -> f32 {
+        self.choice
+            .as_ref()
+            .map_or(0.0, |c| c.pmf(i as usize) as f32)
+    }
+
+    /// The light of triangle `t`, if it emits.
+    pub fn of_triangle(&self, t: u32) -> Option<u32> {
+        self.of_triangle
+            .get(t as usize)
+            .copied()
+            .filter(|&l| l != u32::MAX)
+    }
+
+    /// The environment light's index, if the scene has one.
+    pub fn environment(&self) -> Option<u32> {
+        self.environment
+    }
+
+    /// Chooses a light with `u_choice` and samples it from `p` with `u`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn sample<const N: usize>(
+        &self,
+        p: Vec3,
+        u_choice: f32,
+        u: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        triangles: &[[Vec3; 3]],
+        emission: &[SceneSpectrum],
+    ) -> Option<LightSample<N>> {
+        let (index, pmf) = self.choice.as_ref()?.sample(f64::from(u_choice));
+        let pmf = pmf as f32;
+        if pmf <= 0.0 {
+            return None;
+        }
+        let sample = match &self.lights[index] {
+            Light::Triangle {
+                triangle,
+                emission: e,
+                two_sided,
+            } => {
+                let v = triangles[*triangle as usize];
+                let b = uniform_triangle(u);
+                let q = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+                let to = q - p;
+                let d2 = to.length_squared();
+                let distance = d2.sqrt();
+                let wi = to / distance;
+                let cross = (v[1] - v[0]).cross(v[2] - v[0]);
+                let area = 0.5 * cross.length();
+                let n = cross / (2.0 * area);
+                let cos = -n.dot(wi);
+                if !(cos > 0.0 || (*two_sided && cos < 0.0)) || !(distance > 0.0) {
+                    return None;
+                }
+                LightSample {
+                    wi,
+                    distance,
+                    radiance: emission[*e as usize].at(wavelengths),
+                    pdf: pmf * d2 / (cos.abs() * area),
+                    delta: false,
+                }
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let to = *position - p;
+                let d2 = to.length_squared();
+                let distance = d2.sqrt();
+                LightSample {
+                    wi: to / distance,
+                    distance,
+                    radiance: intensity.at(wavelengths) * (1.0 / d2),
+                    pdf: pmf,
+                    delta: true,
+                }
+            }
+            Light::Spot {
+                position,
+                direction,
+                cos_inner,
+                cos_outer,
+                intensity,
+            } => {
+                let to = *position - p;
+                let d2 = to.length_squared();
+                let distance = d2.sqrt();
+                let wi = to / distance;
+                let falloff = spot_falloff(-wi.dot(*direction), *cos_inner, *cos_outer);
+                LightSample {
+                    wi,
+                    distance,
+                    radiance: intensity.at(wavelengths) * (falloff / d2),
+                    pdf: pmf,
+                    delta: true,
+                }
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => LightSample {
+                wi: -*direction,
+                distance: f32::INFINITY,
+                radiance: irradiance.at(wavelengths),
+                pdf: pmf,
+                delta: true,
+            },
+            Light::Environment { radiance } => LightSample {
+                wi: uniform_sphere(u),
+                distance: f32::INFINITY,
+                radiance: radiance.at(wavelengths),
+                pdf: pmf / (4.0 * PI),
+                delta: false,
+            },
+        };
+        (sample.pdf.is_finite() && sample.pdf > 0.0 && sample.wi.is_finite()).then_some(sample)
+    }
+}
+
+/// The power of each light, for choosing among them: emitted flux for the emitters, and
+/// for distant lights the flux through a disk of the scene's radius.
+pub(crate) fn light_power(
+    light: &Light,
+    triangles: &[[Vec3; 3]],
+    emission: &[SceneSpectrum],
+    scene_radius: f32,
+) -> f64 {
+    let disk = f64::from(PI * scene_radius * scene_radius);
+    match light {
+        Light::Triangle {
+            triangle,
+            emission: e,
+            two_sided,
+        } => {
+            let v = triangles[*triangle as usize];
+            let area = 0.5 * f64::from((v[1] - v[0]).cross(v[2] - v[0]).length());
+            let sides = if *two_sided { 2.0 } else { 1.0 };
+            std::f64::consts::PI * area * sides * emission[*e as usize].mean_visible()
+        }
+        Light::Point { intensity, .. } => 4.0 * std::f64::consts::PI * intensity.mean_visible(),
+        Light::Spot {
+            cos_inner,
+            cos_outer,
+            intensity,
+            ..
+        } => {
+            let cos_mid = 0.5 * f64::from(cos_inner + cos_outer);
+            2.0 * std::f64::consts::PI * (1.0 - cos_mid) * intensity.mean_visible()
+        }
+        Light::Directional { irradiance, .. } => disk * irradiance.mean_visible(),
+        Light::Environment { radiance } => std::f64::consts::PI * disk * radiance.mean_visible(),
+    }
+}

@@ -1,0 +1,121 @@
+//! Materials of a render-ready scene and the BSDF each becomes at a hit.
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+use super::SceneSpectrum;
+use crate::bsdf::{
+    BsdfSample, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, RoughDielectric, TransportMode,
+};
+
+/// A surface's material, with spectral parameters not yet sampled.
+#[derive(Debug, Clone)]
+pub enum Material {
+    /// Lambertian reflection.
+    Diffuse {
+        /// Reflectance in [0, 1].
+        reflectance: SceneSpectrum,
+    },
+    /// The glTF metallic-roughness BSDF ([`MetallicRoughness`]).
+    MetallicRoughness {
+        /// Base colour (reflectance).
+        base: SceneSpectrum,
+        /// Metallic factor in [0, 1].
+        metallic: f32,
+        /// Perceptual roughness in [0, 1].
+        roughness: f32,
+        /// The coating's albedo table for its index.
+        coating: Arc<CoatingAlbedo>,
+    },
+    /// A dielectric interface (glass), smooth when `roughness` is 0. The index is inside
+    /// over outside, per wavelength when dispersive.
+    Dielectric {
+        /// Index of refraction of the inside.
+        ior: SceneSpectrum,
+        /// Perceptual roughness; alpha = roughness^2.
+        roughness: f32,
+    },
+}
+
+impl Material {
+    /// Whether the index of refraction varies with wavelength (dispersion).
+    pub fn dispersive(&self) -> bool {
+        matches!(self, Material::Dielectric { ior, .. } if !matches!(ior, SceneSpectrum::Constant(_)))
+    }
+
+    /// The BSDF at a hit, its parameters sampled at `wavelengths`.
+    pub fn bsdf<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> Bsdf<'_, N> {
+        match self {
+            Material::Diffuse { reflectance } => {
+                Bsdf::Diffuse(Diffuse::new(reflectance.at(wavelengths)))
+            }
+            Material::MetallicRoughness {
+                base,
+                metallic,
+                roughness,
+                coating,
+            } => Bsdf::MetallicRoughness(MetallicRoughness::new(
+                base.at(wavelengths),
+                *metallic,
+                *roughness,
+                coating,
+            )),
+            Material::Dielectric { ior, roughness } => {
+                let alpha = roughness * roughness;
+                let eta = ior.at(wavelengths).0.map(|e| e.max(1e-3));
+                Bsdf::Dielectric(RoughDielectric {
+                    distribution: Ggx::new(alpha, alpha),
+                    eta,
+                    mode: TransportMode::Radiance,
+                })
+            }
+        }
+    }
+}
+
+/// A BSDF at one hit, in the local frame whose z is the surface normal.
+#[derive(Debug, Clone, Copy)]
+pub enum Bsdf<'a, const N: usize> {
+    /// Lambertian.
+    Diffuse(Diffuse<N>),
+    /// glTF metallic-roughness.
+    MetallicRoughness(MetallicRoughness<'a, N>),
+    /// Smooth or rough dielectric.
+    Dielectric(RoughDielectric<N>),
+}
+
+impl<const N: usize> Bsdf<'_, N> {
+    /// f(wo, wi) per lane.
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
+        match self {
+            Bsdf::Diffuse(b) => b.f(wo, wi),
+            Bsdf::MetallicRoughness(b) => b.f(wo, wi),
+            Bsdf::Dielectric(b) => b.f(wo, wi),
+        }
+    }
+
+    /// The solid-angle density of sampling `wi` (the hero lane's, where lanes differ).
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self {
+            Bsdf::Diffuse(b) => b.pdf(wo, wi),
+            Bsdf::MetallicRoughness(b) => b.pdf(wo, wi),
+            Bsdf::Dielectric(b) => b.pdf(wo, wi),
+        }
+    }
+
+    /// Samples an incident direction with `uc` (lobe choice) and `u`.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample<N>> {
+        match self {
+            Bsdf::Diffuse(b) => b.sample(wo, u),
+            Bsdf::MetallicRoughness(b) => b.sample(wo, uc, u),
+            Bsdf::Dielectric(b) => b.sample(wo, uc, u),
+        }
+    }
+
+    /// Whether every lobe is a delta (light sampling cannot help).
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Bsdf::Dielectric(b) if b.distribution.effectively_smooth())
+    }
+}

@@ -1,0 +1,305 @@
+//! The render-ready world: geometry in a BVH, a material per triangle, lights with the
+//! distribution that chooses among them, a camera, and the features the scene uses. This
+//! is what the integrator sees: spectra to sample at its wavelengths and BSDFs to
+//! evaluate, never RGB.
+
+mod from_gltf;
+mod light;
+mod material;
+mod spectrum;
+
+pub use from_gltf::SceneOptions;
+pub use light::{Light, LightSample, Lights};
+pub use material::{Bsdf, Material};
+pub use spectrum::SceneSpectrum;
+
+use glam::{Vec2, Vec3};
+use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+use crate::camera::Camera;
+use crate::geometry::{Bvh, BvhQuality, Ray, offset_ray_origin, triangle_point_error};
+
+/// What a scene uses, so that the integrator pays only for what is there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Features {
+    /// A material whose index depends on wavelength: refraction splits the package.
+    pub dispersion: bool,
+    /// A re-radiating (fluorescent) material: wavelengths change along paths.
+    pub fluorescence: bool,
+    /// A transmissive material.
+    pub transmission: bool,
+}
+
+/// Everything a [`Scene`] is made of, for building scenes in code (tests, procedural
+/// content) as well as from files.
+#[derive(Debug, Clone)]
+pub struct SceneParts {
+    /// World-space triangles.
+    pub triangles: Vec<[Vec3; 3]>,
+    /// The material of each triangle (index into `materials`).
+    pub triangle_material: Vec<u32>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Emission spectra (radiance) that [`Light::Triangle`] refers to.
+    pub emission: Vec<SceneSpectrum>,
+    /// Lights.
+    pub lights: Vec<Light>,
+    /// The camera.
+    pub camera: Camera,
+    /// BVH build effort.
+    pub quality: BvhQuality,
+}
+
+/// Where a ray meets the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// The point.
+    pub p: Vec3,
+    /// Its floating-point error bound.
+    pub error: Vec3,
+    /// Unit geometric normal, on the side the triangle's counter-clockwise winding faces.
+    pub normal: Vec3,
+    /// The ray parameter.
+    pub t: f32,
+    /// The triangle.
+    pub triangle: u32,
+}
+
+impl Hit {
+    /// A ray leaving the hit along `direction`, offset so it cannot hit its own surface.
+    pub fn spawn(&self, direction: Vec3) -> Ray {
+        let origin = offset_ray_origin(self.p, self.error, self.normal, direction);
+        Ray::new(origin, direction, f32::INFINITY)
+    }
+
+    /// A shadow ray towards a point `distance` away along the unit `direction` (infinity
+    /// for distant lights), stopping just short of it.
+    pub fn spawn_to(&self, direction: Vec3, distance: f32) -> Ray {
+        let origin = offset_ray_origin(self.p, self.error, self.normal, direction);
+        let t_max = if distance.is_finite() {
+            (distance - (origin - self.p).length()) * (1.0 - 1e-4)
+        } else {
+            f32::INFINITY
+        };
+        Ray::new(origin, direction, t_max.max(0.0))
+    }
+}
+
+/// A scene ready to render.
+pub struct Scene {
+    bvh: Bvh,
+    triangles: Vec<[Vec3; 3]>,
+    triangle_material: Vec<u32>,
+    materials: Vec<Material>,
+    emission: Vec<SceneSpectrum>,
+    lights: Lights,
+    camera: Camera,
+    features: Features,
+    radius: f32,
+}
+
+impl Scene {
+    /// Builds the BVH and the light distribution. Triangle material indices past the
+    /// material list, and light references past the triangle or emission lists, are
+    /// errors.
+    pub fn new(parts: SceneParts) -> Result<Self, String> {
+        let SceneParts {
+            triangles,
+            triangle_material,
+            materials,
+            emission,
+            lights,
+            camera,
+            quality,
+        } = parts;
+        if triangle_material.len() != triangles.len() {
+            return Err(format!(
+                "{} triangle materials for {} triangles",
+                triangle_material.len(),
+                triangles.len()
+            ));
+        }
+        if let Some(m) = triangle_material
+            .iter()
+            .find(|&&m| m as usize >= materials.len())
+        {
+            return Err(format!(
+                "material {m} does not exist ({} materials)",
+                materials.len()
+            ));
+        }
+        for light in &lights {
+            if let Light::Triangle {
+                triangle,
+                emission: e,
+                ..
+            } = light
+                && (*triangle as usize >= triangles.len() || *e as usize >= emission.len())
+            {
+                return Err(format!(
+                    "area light on triangle {triangle} with emission {e} does not exist"
+                ));
+            }
+        }
+        let bvh = Bvh::build(&triangles, quality);
+        let (lo, hi) = triangles
+            .iter()
+            .flatten()
+            .filter(|v| v.is_finite())
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(*v), hi.max(*v))
+            });
+        let radius = if lo.x <= hi.x {
+            (0.5 * (hi - lo)).length().max(1e-3)
+        } else {
+            1.0
+        };
+        let power: Vec<f64> = lights
+            .iter()
+            .map(|l| light::light_power(l, &triangles, &emission, radius))
+            .collect();
+        let features = Features {
+            dispersion: materials.iter().any(Material::dispersive),
+            fluorescence: false,
+            transmission: materials
+                .iter()
+                .any(|m| matches!(m, Material::Dielectric { .. })),
+        };
+        let lights = Lights::new(lights, &power, triangles.len());
+        Ok(Self {
+            bvh,
+            triangles,
+            triangle_material,
+            materials,
+            emission,
+            lights,
+            camera,
+            features,
+            radius,
+        })
+    }
+
+    /// The features the scene uses.
+    pub fn features(&self) -> Features {
+        self.features
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The lights.
+    pub fn lights(&self) -> &Lights {
+        &self.lights
+    }
+
+    /// Bytes held by geometry and BVH.
+    pub fn memory_bytes(&self) -> usize {
+        self.bvh.memory_bytes()
+            + std::mem::size_of_val(self.triangles.as_slice())
+            + std::mem::size_of_val(self.triangle_material.as_slice())
+    }
+
+    /// The radius of the scene's bounding sphere.
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// The closest hit along `ray`.
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let hit = self.bvh.intersect(ray)?;
+        let v = self.triangles[hit.triangle];
+        let b = hit.hit.barycentric;
+        let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+        let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        Some(Hit {
+            p,
+            error: triangle_point_error(v, b),
+            normal,
+            t: hit.hit.t,
+            triangle: hit.triangle as u32,
+        })
+    }
+
+    /// Whether anything blocks `ray`.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        self.bvh.occluded(ray)
+    }
+
+    /// The material of a hit.
+    pub fn material(&self, hit: &Hit) -> &Material {
+        &self.materials[self.triangle_material[hit.triangle as usize] as usize]
+    }
+
+    /// Radiance emitted by the hit surface towards `wo` (unit, pointing away from it).
+    pub fn emitted<const N: usize>(
+        &self,
+        hit: &Hit,
+        wo: Vec3,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        let Some(l) = self.lights.of_triangle(hit.triangle) else {
+            return SampledSpectrum::splat(0.0);
+        };
+        match &self.lights.lights[l as usize] {
+            Light::Triangle {
+                emission,
+                two_sided,
+                ..
+            } if *two_sided || hit.normal.dot(wo) > 0.0 => {
+                self.emission[*emission as usize].at(wavelengths)
+            }
+            _ => SampledSpectrum::splat(0.0),
+        }
+    }
+
+    /// The density (solid angle, times the choice probability) with which light sampling
+    /// from `from` would have produced the direction to `hit`, an emitter.
+    pub fn light_pdf(&self, from: Vec3, hit: &Hit) -> f32 {
+        let Some(l) = self.lights.of_triangle(hit.triangle) else {
+            return 0.0;
+        };
+        let v = self.triangles[hit.triangle as usize];
+        let area = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length();
+        let to = hit.p - from;
+        let d2 = to.length_squared();
+        let cos = hit.normal.dot(to).abs() / d2.sqrt();
+        let pdf = self.lights.pmf(l) * d2 / (cos * area);
+        if pdf.is_finite() { pdf } else { 0.0 }
+    }
+
+    /// Radiance arriving along a ray that leaves the scene, and the density with which
+    /// light sampling would have chosen its direction.
+    pub fn escaped<const N: usize>(
+        &self,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> Option<(SampledSpectrum<N>, f32)> {
+        let l = self.lights.environment()?;
+        match &self.lights.lights[l as usize] {
+            Light::Environment { radiance } => Some((
+                radiance.at(wavelengths),
+                self.lights.pmf(l) / (4.0 * std::f32::consts::PI),
+            )),
+            _ => None,
+        }
+    }
+
+    /// Chooses a light with `u_choice` and samples a direction to it from `hit` with `u`.
+    pub fn sample_light<const N: usize>(
+        &self,
+        hit: &Hit,
+        u_choice: f32,
+        u: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> Option<LightSample<N>> {
+        self.lights.sample(
+            hit.p,
+            u_choice,
+            u,
+            wavelengths,
+            &self.triangles,
+            &self.emission,
+        )
+    }
+}
