@@ -28,6 +28,8 @@ enum Command {
     Color(commands::color::ColorArgs),
     /// Turn RGB colours into sigmoid-polynomial spectra (Jakob and Hanika 2019).
     Upsample(commands::upsample::UpsampleArgs),
+    /// Render a glTF scene (or the embedded Cornell box) to EXR and PNG images.
+    Render(commands::render::RenderArgs),
     /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
     Info(commands::info::InfoArgs),
     /// Fit and inspect RGB-to-spectrum coefficient tables.
@@ -44,6 +46,7 @@ fn main() -> ExitCode {
         Command::Color(args) => commands::color::run(&args),
         Command::Upsample(args) => commands::upsample::run(&args),
         Command::Info(args) => commands::info::run(&args),
+        Command::Render(args) => commands::render::run(&args),
         Command::Table(command) => commands::table::run(&command),
     };
     match result {

@@ -1,1 +1,45 @@
-//! prism-integrator: not built yet; see ARCHITECTURE.md and the issue tracker.
+//! # prism-integrator
+//!
+//! Renders a [`prism_scene::world::Scene`] by solving the rendering equation per
+//! wavelength: unidirectional path tracing with next-event estimation and multiple
+//! importance sampling (power heuristic) between light and BSDF sampling, Russian roulette,
+//! and hero-wavelength packages of 1 to 16 wavelengths (Wilkie et al. 2014). Each path's
+//! spectral radiance becomes XYZ with its wavelengths' densities and is accumulated on an
+//! f64 [`Film`]; the film is encoded as EXR or PNG bytes.
+//!
+//! ## Why it is designed so
+//! - **Deterministic by construction.** Every random number is a pure function of (seed,
+//!   pixel, sample index, dimension) (`prism-sampling`'s Owen-scrambled Sobol stream) and
+//!   every pixel sums its samples in index order on one thread, so an image depends only on
+//!   the scene, the settings and the seed, never on thread count or scheduling; a sample
+//!   range rendered elsewhere merges into the same sums.
+//! - **Light lost to a split package is not counted twice.** At a dispersive delta event
+//!   the radiance gathered so far goes to the film with the whole package's densities,
+//!   then the secondaries end and the hero carries on alone with its density divided by C
+//!   (the film never sees a terminated lane as if it had been traced).
+//! - **Non-finite samples are rejected and counted**, never written: they count as zero
+//!   in the pixel's normalization, and the count is reported.
+//! - **RGB never reaches here.** The scene hands over spectra and BSDFs; this crate does not
+//!   depend on `prism-upsample`.
+//!
+//! ## References
+//! - E. Veach, *Robust Monte Carlo Methods for Light Transport Simulation*, PhD thesis,
+//!   1997, §9 (multiple importance sampling, the power heuristic).
+//! - A. Wilkie, S. Nawaz, M. Droske, A. Weidlich, J. Hanika, "Hero wavelength spectral
+//!   sampling", EGSR 2014, §4 (packages, spectral MIS).
+//! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §13.4 (path tracing with NEE),
+//!   §5.4 (film), §4.5.4 (sampled spectra to XYZ).
+
+mod error;
+mod film;
+mod image;
+mod path;
+mod png;
+mod render;
+mod settings;
+
+pub use error::RenderError;
+pub use film::Film;
+pub use image::{DisplaySettings, ExrMetadata, encode_exr, encode_png};
+pub use render::{RenderStats, render, render_into};
+pub use settings::{LambdaSampler, RenderSettings};

@@ -2,5 +2,6 @@
 
 pub mod color;
 pub mod info;
+pub mod render;
 pub mod table;
 pub mod upsample;

@@ -182,7 +182,8 @@ impl Lights {
                 let area = 0.5 * cross.length();
                 let n = cross / (2.0 * area);
                 let cos = -n.dot(wi);
-                if !(cos > 0.0 || (*two_sided && cos < 0.0)) || !(distance > 0.0) {
+                let facing = cos > 0.0 || (*two_sided && cos < 0.0);
+                if !facing || distance.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                     return None;
                 }
                 LightSample {

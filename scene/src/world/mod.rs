@@ -201,6 +201,11 @@ impl Scene {
             + std::mem::size_of_val(self.triangle_material.as_slice())
     }
 
+    /// The emission spectra of the emissive triangles.
+    pub fn emission_spectra(&self) -> &[SceneSpectrum] {
+        &self.emission
+    }
+
     /// The radius of the scene's bounding sphere.
     pub fn radius(&self) -> f32 {
         self.radius

@@ -1,0 +1,177 @@
+//! `prism render`: a scene (or the embedded default) to EXR and PNG images.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::Args;
+use prism_integrator::{
+    DisplaySettings, ExrMetadata, LambdaSampler, RenderSettings, encode_exr, encode_png, render,
+};
+use prism_scene::load::{LoadedGeometry, load_geometry};
+use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
+use prism_spectrum::color::RgbSpaceId;
+
+use crate::output::{check_writable, write_atomically};
+
+/// The scene `prism render` renders without a SCENE argument: the repository's Cornell box.
+const DEFAULT_GLTF: &[u8] = include_bytes!("../../../scenes/cornell-box.gltf");
+const DEFAULT_BIN: &[u8] = include_bytes!("../../../scenes/cornell-box.bin");
+
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  prism render -o box.png\n  prism render scenes/cornell-bunny.gltf --spp 256 -o bunny.exr -o bunny.png --stats\n\nOutputs are chosen by extension: .exr (linear f32 RGB in --space, with chromaticities) or\n.png (tone mapped, 8-bit). The image depends only on the scene, the settings and --seed."
+)]
+pub struct RenderArgs {
+    /// A .gltf or .glb file (default: the embedded Cornell box).
+    pub scene: Option<PathBuf>,
+    /// Output file(s), .exr or .png; repeat for several.
+    #[arg(short = 'o', long = "output", default_value = "prism.png")]
+    pub outputs: Vec<PathBuf>,
+    /// Samples per pixel.
+    #[arg(long, default_value_t = 64)]
+    pub spp: u64,
+    /// Image width (default: 512, or the height times the camera's aspect).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height (default: 512).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Seed of the random streams.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Worker threads (default: one per core); never changes the image.
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Longest path in bounces (default: unbounded, ended by Russian roulette).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Wavelengths per path: 1, 2, 4, 8 or 16.
+    #[arg(long, default_value_t = 4)]
+    pub wavelengths: usize,
+    /// Hero wavelength sampler: uniform, visible, response or spd.
+    #[arg(long, default_value = "visible")]
+    pub lambda_sampler: String,
+    /// Output colour space of EXR and PNG files.
+    #[arg(long, default_value = "srgb")]
+    pub space: String,
+    /// The camera, by name (default: the file's first).
+    #[arg(long)]
+    pub camera: Option<String>,
+    /// A constant environment radiance (relative units, as emissive colours).
+    #[arg(long)]
+    pub environment: Option<f64>,
+    /// PNG exposure in stops.
+    #[arg(long, default_value_t = 0.0)]
+    pub exposure: f64,
+    /// Print one JSON object of statistics on stdout after the render.
+    #[arg(long)]
+    pub stats: bool,
+}
+
+fn load(path: Option<&Path>) -> Result<LoadedGeometry, String> {
+    match path {
+        Some(p) => crate::scene_file::load(p, None),
+        None => load_geometry(DEFAULT_GLTF, &|_| Ok(DEFAULT_BIN.to_vec()), None)
+            .map_err(|e| format!("embedded scene: {e}")),
+    }
+}
+
+/// The peak resident memory of this process, from /proc (Linux); None elsewhere.
+fn peak_memory_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+pub fn run(args: &RenderArgs) -> Result<(), String> {
+    let space_id = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
+    let lambda_sampler =
+        LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
+    for out in &args.outputs {
+        match out.extension().and_then(|e| e.to_str()) {
+            Some("exr" | "png") => check_writable(out)?,
+            _ => {
+                return Err(format!(
+                    "output '{}': the extension must be .exr or .png",
+                    out.display()
+                ));
+            }
+        }
+    }
+    if let Some(e) = args.environment
+        && !(e.is_finite() && e >= 0.0)
+    {
+        return Err(format!("--environment {e} must be finite and >= 0"));
+    }
+    let started = Instant::now();
+    let loaded = load(args.scene.as_deref())?;
+    let options = SceneOptions {
+        camera: args.camera.clone(),
+        environment: args.environment.map(SceneSpectrum::Constant),
+        ..SceneOptions::default()
+    };
+    let scene = Scene::from_loaded(&loaded, &options).map_err(|e| e.to_string())?;
+    let height = args.height.unwrap_or(512);
+    let width = args.width.unwrap_or(height);
+    let settings = RenderSettings {
+        width,
+        height,
+        samples: 0..args.spp,
+        seed: args.seed,
+        max_depth: args.max_depth,
+        wavelengths: args.wavelengths,
+        lambda_sampler,
+        threads: args.threads,
+        ..RenderSettings::default()
+    };
+    settings.validate().map_err(|e| e.to_string())?;
+    let render_started = Instant::now();
+    let (film, stats) = render(&scene, &settings).map_err(|e| e.to_string())?;
+    let seconds = render_started.elapsed().as_secs_f64();
+    let space = space_id.space();
+    for out in &args.outputs {
+        let bytes = if out.extension().and_then(|e| e.to_str()) == Some("exr") {
+            let metadata = ExrMetadata {
+                spp: film.samples(),
+                strings: vec![
+                    ("prismSeed".into(), args.seed.to_string()),
+                    ("prismWavelengths".into(), args.wavelengths.to_string()),
+                ],
+            };
+            encode_exr(&film, space, &metadata).map_err(|e| e.to_string())?
+        } else {
+            let display = DisplaySettings {
+                exposure: args.exposure,
+                ..DisplaySettings::default()
+            };
+            encode_png(&film, space, display)
+        };
+        write_atomically(out, &bytes)?;
+    }
+    if stats.nonfinite > 0 {
+        eprintln!(
+            "prism: warning: {} non-finite samples were rejected",
+            stats.nonfinite
+        );
+    }
+    if args.stats {
+        let json = serde_json::json!({
+            "spp": film.samples(),
+            "width": width,
+            "height": height,
+            "seconds": seconds,
+            "total_seconds": started.elapsed().as_secs_f64(),
+            "paths": stats.paths,
+            "paths_per_second": stats.paths as f64 / seconds.max(1e-9),
+            "rays": stats.rays,
+            "rays_per_second": stats.rays as f64 / seconds.max(1e-9),
+            "nonfinite_samples": stats.nonfinite,
+            "peak_memory_bytes": peak_memory_bytes(),
+            "wavelengths": args.wavelengths,
+            "lambda_sampler": args.lambda_sampler,
+        });
+        println!("{json}");
+    }
+    Ok(())
+}

@@ -1,0 +1,22 @@
+use std::fmt;
+
+/// Why a render could not be set up or its output encoded. Each variant is one line naming
+/// the offending input.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RenderError {
+    /// A setting out of its range.
+    Setting(String),
+    /// The image could not be encoded.
+    Encode(String),
+}
+
+impl fmt::Display for RenderError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RenderError::Setting(m) => write!(f, "render setting: {m}"),
+            RenderError::Encode(m) => write!(f, "image encoding: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for RenderError {}

@@ -1,0 +1,113 @@
+//! Encoding a film as image bytes: OpenEXR (linear f32 RGB in a chosen space, with the
+//! chromaticities attribute so readers know which) and PNG (exposure, tone map, the
+//! space's transfer function, 8 bits). Bytes only: writing files is the caller's.
+
+use std::io::Cursor;
+
+use exr::prelude::{
+    AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec, Text,
+    Vec2, WritableImage,
+};
+use prism_spectrum::color::{RgbColorSpace, ToneMap, display_8bit};
+
+use crate::{Film, RenderError};
+
+/// Extra facts recorded in an EXR header.
+#[derive(Debug, Clone, Default)]
+pub struct ExrMetadata {
+    /// Samples per pixel the image holds.
+    pub spp: u64,
+    /// Free-form `key = value` string attributes.
+    pub strings: Vec<(String, String)>,
+}
+
+/// The film as a linear RGB EXR in `space`, f32 channels R, G, B.
+pub fn encode_exr(
+    film: &Film,
+    space: &RgbColorSpace,
+    metadata: &ExrMetadata,
+) -> Result<Vec<u8>, RenderError> {
+    let (w, h) = (film.width() as usize, film.height() as usize);
+    let rgb = film.to_rgb(space);
+    let channel = |name: &str, k: usize| {
+        AnyChannel::new(name, FlatSamples::F32(rgb.iter().map(|p| p[k]).collect()))
+    };
+    let channels = AnyChannels::sort(SmallVec::from_vec(vec![
+        channel("R", 0),
+        channel("G", 1),
+        channel("B", 2),
+    ]));
+    let layer_attributes = LayerAttributes {
+        software_name: Some(Text::from("prism")),
+        ..LayerAttributes::default()
+    };
+    let layer = Layer::new((w, h), layer_attributes, Encoding::SMALL_LOSSLESS, channels);
+    let mut image = Image::from_layer(layer);
+    let xy = |c: prism_spectrum::colorimetry::Chromaticity| Vec2(c.x as f32, c.y as f32);
+    let p = space.primaries();
+    image.attributes.chromaticities = Some(exr::meta::attribute::Chromaticities {
+        red: xy(p[0]),
+        green: xy(p[1]),
+        blue: xy(p[2]),
+        white: xy(space.white().xy()),
+    });
+    let other = &mut image.attributes.other;
+    other.insert(
+        Text::from("prismSpp"),
+        exr::meta::attribute::AttributeValue::Text(Text::from(metadata.spp.to_string().as_str())),
+    );
+    for (k, v) in &metadata.strings {
+        other.insert(
+            Text::from(k.as_str()),
+            exr::meta::attribute::AttributeValue::Text(Text::from(v.as_str())),
+        );
+    }
+    let mut bytes = Cursor::new(Vec::new());
+    image
+        .write()
+        .to_buffered(&mut bytes)
+        .map_err(|e| RenderError::Encode(format!("EXR: {e}")))?;
+    Ok(bytes.into_inner())
+}
+
+/// How a film becomes a displayable 8-bit picture.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DisplaySettings {
+    /// Exposure in stops (the image is multiplied by 2^exposure).
+    pub exposure: f64,
+    /// Tone map.
+    pub tone_map: ToneMap,
+}
+
+impl Default for DisplaySettings {
+    fn default() -> Self {
+        Self {
+            exposure: 0.0,
+            tone_map: ToneMap::ReinhardExtended { white: 4.0 },
+        }
+    }
+}
+
+/// The film as an 8-bit RGB PNG in `space` (encoded with the space's transfer function).
+pub fn encode_png(film: &Film, space: &RgbColorSpace, display: DisplaySettings) -> Vec<u8> {
+    let (w, h) = (film.width(), film.height());
+    let weights = space.luminance_weights();
+    let transfer = space.transfer();
+    let rgb = film.to_rgb(space);
+    // Each scanline starts with filter type 0 (none).
+    let mut raw = Vec::with_capacity((w as usize * 3 + 1) * h as usize);
+    for row in rgb.chunks(w as usize) {
+        raw.push(0u8);
+        for p in row {
+            let px = display_8bit(
+                p.map(f64::from),
+                display.exposure,
+                display.tone_map,
+                weights,
+                transfer,
+            );
+            raw.extend_from_slice(&px);
+        }
+    }
+    crate::png::encode_rgb8(w, h, &raw)
+}

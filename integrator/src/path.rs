@@ -1,0 +1,195 @@
+//! One camera path: unidirectional path tracing with next-event estimation, MIS by the
+//! power heuristic between light and BSDF sampling, Russian roulette, and a package of
+//! wavelengths that is split at dispersive delta events.
+
+use glam::{Vec2, Vec3};
+use prism_sampling::mis::power_heuristic;
+use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
+use prism_scene::geometry::Ray;
+use prism_scene::world::Scene;
+use prism_spectrum::colorimetry::Observer;
+use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// What every path of a render shares.
+pub(crate) struct Tracer<'a> {
+    pub scene: &'a Scene,
+    pub distribution: &'a WavelengthDistribution,
+    pub scheme: PackageScheme,
+    pub observer: Observer,
+    /// Bounces after which a path ends (u32::MAX: unbounded).
+    pub max_depth: u32,
+}
+
+/// The sample-stream dimensions: the wavelength and the film position first, then a fixed
+/// block per bounce so that bounce k always draws from the same dimensions.
+pub(crate) const FIRST_BOUNCE_DIMENSION: u64 = 3;
+const DIMENSIONS_PER_BOUNCE: u64 = 8;
+
+/// An orthonormal frame whose z is a given unit normal.
+struct Frame {
+    x: Vec3,
+    y: Vec3,
+    z: Vec3,
+}
+
+impl Frame {
+    fn from_normal(z: Vec3) -> Self {
+        let (x, y) = z.any_orthonormal_pair();
+        Self { x, y, z }
+    }
+    fn to_local(&self, v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(self.x), v.dot(self.y), v.dot(self.z))
+    }
+    fn to_world(&self, v: Vec3) -> Vec3 {
+        v.x * self.x + v.y * self.y + v.z * self.z
+    }
+}
+
+/// The result of one path.
+pub(crate) struct PathResult {
+    /// The XYZ estimate (non-finite results are the caller's to reject).
+    pub xyz: [f64; 3],
+    /// Rays traced (camera, continuation and shadow rays).
+    pub rays: u64,
+}
+
+fn wavelengths<const N: usize>(package: &WavelengthPackage<N>) -> Option<SampledWavelengths<N>> {
+    SampledWavelengths::new(package.lambda, package.pdf).ok()
+}
+
+fn add_xyz<const N: usize>(
+    xyz: &mut [f64; 3],
+    radiance: &SampledSpectrum<N>,
+    wavelengths: &SampledWavelengths<N>,
+    observer: Observer,
+) {
+    let c = radiance.to_xyz(wavelengths, observer);
+    xyz[0] += c.x;
+    xyz[1] += c.y;
+    xyz[2] += c.z;
+}
+
+impl Tracer<'_> {
+    /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
+    /// image with aspect ratio `aspect`. The stream must be positioned after the film
+    /// dimensions; `u_lambda` chose the hero wavelength.
+    pub(crate) fn trace<const N: usize>(
+        &self,
+        stream: &mut SobolStream,
+        sample_base: u64,
+        u_lambda: f32,
+        film: Vec2,
+        aspect: f32,
+    ) -> PathResult {
+        let mut package =
+            WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
+        let mut xyz = [0.0f64; 3];
+        let Some(mut lambdas) = wavelengths(&package) else {
+            return PathResult {
+                xyz: [f64::NAN; 3],
+                rays: 0,
+            };
+        };
+        let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
+        let mut radiance = SampledSpectrum::<N>::splat(0.0);
+        let mut beta = SampledSpectrum::<N>::splat(1.0);
+        // The BSDF density and origin of the last bounce, for MIS on emitters it hits;
+        // None after the camera or a delta bounce (no light sampling competed).
+        let mut previous: Option<(f32, Vec3)> = None;
+        let mut rays = 0u64;
+        let mut depth = 0u32;
+        loop {
+            rays += 1;
+            let Some(hit) = self.scene.intersect(&ray) else {
+                if let Some((le, light_pdf)) = self.scene.escaped(&lambdas) {
+                    let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
+                        power_heuristic(1, bsdf_pdf, 1, light_pdf)
+                    });
+                    radiance += beta * le * w;
+                }
+                break;
+            };
+            let wo_world = -ray.direction.normalize();
+            let le = self.scene.emitted(&hit, wo_world, &lambdas);
+            if !le.is_black() {
+                let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
+                    power_heuristic(1, bsdf_pdf, 1, self.scene.light_pdf(from, &hit))
+                });
+                radiance += beta * le * w;
+            }
+            if depth >= self.max_depth {
+                break;
+            }
+            stream.set_dimension(sample_base + u64::from(depth) * DIMENSIONS_PER_BOUNCE);
+            let u_light = stream.next_1d();
+            let u_light_2d = stream.next_2d();
+            let u_lobe = stream.next_1d();
+            let u_bsdf = stream.next_2d();
+            let u_roulette = stream.next_1d();
+
+            let bsdf = self.scene.material(&hit).bsdf(&lambdas);
+            let frame = Frame::from_normal(hit.normal);
+            let wo = frame.to_local(wo_world);
+
+            // Next-event estimation.
+            if !bsdf.is_delta()
+                && let Some(light) = self.scene.sample_light(&hit, u_light, u_light_2d, &lambdas)
+            {
+                let wi = frame.to_local(light.wi);
+                let f = bsdf.f(wo, wi) * wi.z.abs();
+                if !f.is_black() {
+                    rays += 1;
+                    if !self.scene.occluded(&hit.spawn_to(light.wi, light.distance)) {
+                        let w = if light.delta {
+                            1.0
+                        } else {
+                            power_heuristic(1, light.pdf, 1, bsdf.pdf(wo, wi))
+                        };
+                        radiance += beta * f * light.radiance * (w / light.pdf);
+                    }
+                }
+            }
+
+            // BSDF sampling.
+            let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {
+                break;
+            };
+            let pdf = sample.pdf[0];
+            if !(pdf > 0.0 && pdf.is_finite()) {
+                break;
+            }
+            beta *= sample.f * (sample.wi.z.abs() / pdf);
+            if sample.wavelength_dependent && !package.secondary_terminated() {
+                // The secondaries' light so far was estimated with the whole package; it
+                // goes to the film with the package's densities before they change.
+                add_xyz(&mut xyz, &radiance, &lambdas, self.observer);
+                radiance = SampledSpectrum::splat(0.0);
+                package.terminate_secondary();
+                lambdas = match wavelengths(&package) {
+                    Some(l) => l,
+                    None => break,
+                };
+            }
+            previous = (!sample.delta).then_some((pdf, hit.p));
+            let wi_world = frame.to_world(sample.wi);
+            ray = hit.spawn(wi_world);
+            depth += 1;
+
+            // Russian roulette on the throughput: unbiased, since survivors are divided by
+            // their survival probability.
+            let q = beta.max_value();
+            if q.is_nan() || q <= 0.0 {
+                break;
+            }
+            if q < 1.0 {
+                if u_roulette >= q {
+                    break;
+                }
+                beta *= 1.0 / q;
+            }
+        }
+        add_xyz(&mut xyz, &radiance, &lambdas, self.observer);
+        PathResult { xyz, rays }
+    }
+}

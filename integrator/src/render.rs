@@ -1,0 +1,160 @@
+//! The render loop: rows in parallel, each pixel's samples in order, so that every pixel's
+//! sum is the same sequence of additions whatever the thread count.
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+use glam::Vec2;
+use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_scene::world::{Light, Scene};
+use prism_spectrum::Spectrum;
+use rayon::prelude::*;
+
+use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
+use crate::{Film, RenderError, RenderSettings};
+
+/// Counts gathered during a render.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RenderStats {
+    /// Camera paths traced.
+    pub paths: u64,
+    /// Rays traced (camera, continuation and shadow rays).
+    pub rays: u64,
+    /// Samples rejected as non-finite.
+    pub nonfinite: u64,
+}
+
+/// Renders `settings.samples` of every pixel into `film` (which must have the settings'
+/// size). `cancel` is polled between rows: when set, the render stops and returns
+/// `Ok(None)` leaving `film` as it was, so a caller stopping at a sample boundary never
+/// keeps a partial pass.
+pub fn render_into(
+    scene: &Scene,
+    settings: &RenderSettings,
+    film: &mut Film,
+    cancel: &AtomicBool,
+) -> Result<Option<RenderStats>, RenderError> {
+    settings.validate()?;
+    if (film.width(), film.height()) != (settings.width, settings.height) {
+        return Err(RenderError::Setting(format!(
+            "film is {}x{} but the settings ask for {}x{}",
+            film.width(),
+            film.height(),
+            settings.width,
+            settings.height
+        )));
+    }
+    let light_spectra: Vec<Box<dyn Fn(f64) -> f64 + '_>> = scene
+        .lights()
+        .all()
+        .iter()
+        .filter_map(|l| match l {
+            Light::Point { intensity: s, .. }
+            | Light::Spot { intensity: s, .. }
+            | Light::Directional { irradiance: s, .. }
+            | Light::Environment { radiance: s } => {
+                Some(Box::new(move |x| s.evaluate(x)) as Box<dyn Fn(f64) -> f64>)
+            }
+            Light::Triangle { .. } => None,
+        })
+        .collect();
+    let emitters = scene.emission_spectra();
+    let mut spectra: Vec<&dyn Fn(f64) -> f64> = light_spectra.iter().map(|b| &**b).collect();
+    let emitter_fns: Vec<Box<dyn Fn(f64) -> f64 + '_>> = emitters
+        .iter()
+        .map(|s| Box::new(move |x| s.evaluate(x)) as Box<dyn Fn(f64) -> f64>)
+        .collect();
+    spectra.extend(emitter_fns.iter().map(|b| &**b));
+    let distribution = settings.distribution(&spectra)?;
+    let tracer = Tracer {
+        scene,
+        distribution: &distribution,
+        scheme: settings.scheme,
+        observer: settings.observer,
+        max_depth: settings.max_depth.unwrap_or(u32::MAX),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .build()
+        .map_err(|e| RenderError::Setting(format!("thread pool: {e}")))?;
+    let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
+    let mut pass = Film::new(settings.width, settings.height);
+    let trace = match settings.wavelengths {
+        1 => trace_row::<1>,
+        2 => trace_row::<2>,
+        4 => trace_row::<4>,
+        8 => trace_row::<8>,
+        _ => trace_row::<16>,
+    };
+    pool.install(|| {
+        let width = settings.width as usize;
+        pass.sums_mut()
+            .par_chunks_mut(width)
+            .enumerate()
+            .for_each(|(y, row)| {
+                if cancel.load(Ordering::Relaxed) {
+                    return;
+                }
+                let (r, n) = trace(&tracer, settings, y as u32, row);
+                rays.fetch_add(r, Ordering::Relaxed);
+                nonfinite.fetch_add(n, Ordering::Relaxed);
+            });
+    });
+    if cancel.load(Ordering::Relaxed) {
+        return Ok(None);
+    }
+    let samples = settings.samples.end - settings.samples.start;
+    let nonfinite = nonfinite.into_inner();
+    pass.finish_pass(samples, nonfinite);
+    film.merge(&pass).map_err(RenderError::Setting)?;
+    Ok(Some(RenderStats {
+        paths: samples * u64::from(settings.width) * u64::from(settings.height),
+        rays: rays.into_inner(),
+        nonfinite,
+    }))
+}
+
+/// Renders a whole image: `render_into` a fresh film, never cancelled.
+pub fn render(
+    scene: &Scene,
+    settings: &RenderSettings,
+) -> Result<(Film, RenderStats), RenderError> {
+    let mut film = Film::new(settings.width, settings.height);
+    let stats =
+        render_into(scene, settings, &mut film, &AtomicBool::new(false))?.unwrap_or_default();
+    Ok((film, stats))
+}
+
+/// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
+fn trace_row<const N: usize>(
+    tracer: &Tracer,
+    settings: &RenderSettings,
+    y: u32,
+    row: &mut [[f64; 3]],
+) -> (u64, u64) {
+    let (w, h) = (settings.width, settings.height);
+    let aspect = w as f32 / h as f32;
+    let (mut rays, mut rejected) = (0u64, 0u64);
+    for (x, sum) in row.iter_mut().enumerate() {
+        let pixel = u64::from(y) * u64::from(w) + x as u64;
+        for s in settings.samples.clone() {
+            let mut stream = SobolStream::new(settings.seed, pixel, s);
+            let u_lambda = stream.next_1d();
+            let jitter = stream.next_2d();
+            let film = Vec2::new(
+                (x as f32 + jitter.x) / w as f32,
+                (y as f32 + jitter.y) / h as f32,
+            );
+            let result =
+                tracer.trace::<N>(&mut stream, FIRST_BOUNCE_DIMENSION, u_lambda, film, aspect);
+            rays += result.rays;
+            if result.xyz.iter().all(|v| v.is_finite()) {
+                for (acc, v) in sum.iter_mut().zip(result.xyz) {
+                    *acc += v;
+                }
+            } else {
+                rejected += 1;
+            }
+        }
+    }
+    (rays, rejected)
+}

@@ -1,0 +1,158 @@
+//! What a render is asked to do.
+
+use std::ops::Range;
+
+use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthRange};
+use prism_spectrum::colorimetry::Observer;
+
+use crate::RenderError;
+
+/// How the hero wavelength of each path is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LambdaSampler {
+    /// Uniform over the range.
+    Uniform,
+    /// pbrt-v4's visible-importance density (smooth, peaked where the eye is sensitive).
+    #[default]
+    Visible,
+    /// The sum of the observer's colour matching functions, each normalized (camera
+    /// response sampling).
+    Response,
+    /// The scene's light spectra weighted by the response, with a defensive mixture.
+    Spd,
+}
+
+impl LambdaSampler {
+    /// Names accepted by [`LambdaSampler::from_name`].
+    pub const NAMES: &'static str = "uniform, visible, response, spd";
+
+    /// Parses one of [`LambdaSampler::NAMES`].
+    pub fn from_name(name: &str) -> Result<Self, RenderError> {
+        Ok(match name {
+            "uniform" => LambdaSampler::Uniform,
+            "visible" => LambdaSampler::Visible,
+            "response" => LambdaSampler::Response,
+            "spd" => LambdaSampler::Spd,
+            other => {
+                return Err(RenderError::Setting(format!(
+                    "unknown wavelength sampler '{other}' (expected one of {})",
+                    Self::NAMES
+                )));
+            }
+        })
+    }
+}
+
+/// The settings of one render. The image depends only on the scene, these settings and
+/// `seed`: never on `threads`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// The sample indices rendered in every pixel (`0..spp` for a whole render; a farm
+    /// renders disjoint ranges and merges them).
+    pub samples: Range<u64>,
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// Longest path in bounces (None: unbounded, ended by Russian roulette).
+    pub max_depth: Option<u32>,
+    /// Wavelengths per path: 1, 2, 4, 8 or 16.
+    pub wavelengths: usize,
+    /// How the hero wavelength is chosen.
+    pub lambda_sampler: LambdaSampler,
+    /// How the other wavelengths of a package follow the hero.
+    pub scheme: PackageScheme,
+    /// The wavelength range transported, nm.
+    pub range: (f32, f32),
+    /// The observer turning spectra into XYZ.
+    pub observer: Observer,
+    /// Worker threads (0: one per core). Does not change the image.
+    pub threads: usize,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 512,
+            height: 512,
+            samples: 0..64,
+            seed: 0,
+            max_depth: None,
+            wavelengths: 4,
+            lambda_sampler: LambdaSampler::default(),
+            scheme: PackageScheme::HeroRotation,
+            range: (360.0, 830.0),
+            observer: Observer::Cie1931,
+            threads: 0,
+        }
+    }
+}
+
+impl RenderSettings {
+    /// Checks every setting, naming the first one out of range.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        let bad = |m: String| Err(RenderError::Setting(m));
+        if self.width == 0 || self.height == 0 {
+            return bad(format!(
+                "image size {}x{} is empty",
+                self.width, self.height
+            ));
+        }
+        // The film holds 32 bytes per pixel; refuse sizes whose film alone exceeds 64 GiB.
+        if u64::from(self.width) * u64::from(self.height) > (1 << 31) {
+            return bad(format!(
+                "image size {}x{} is too large (at most 2^31 pixels)",
+                self.width, self.height
+            ));
+        }
+        if self.samples.is_empty() {
+            return bad(format!(
+                "sample range {}..{} is empty",
+                self.samples.start, self.samples.end
+            ));
+        }
+        if ![1, 2, 4, 8, 16].contains(&self.wavelengths) {
+            return bad(format!(
+                "{} wavelengths per path: expected 1, 2, 4, 8 or 16",
+                self.wavelengths
+            ));
+        }
+        if self.max_depth == Some(0) {
+            // Depth 0 still shows emitters seen directly; allowed.
+        }
+        WavelengthRange::new(self.range.0, self.range.1)
+            .map_err(|e| RenderError::Setting(format!("wavelength range: {e}")))?;
+        Ok(())
+    }
+
+    /// The hero wavelength distribution. `light_spectra` are the scene's light spectra
+    /// (used by [`LambdaSampler::Spd`]).
+    pub fn distribution(
+        &self,
+        light_spectra: &[&dyn Fn(f64) -> f64],
+    ) -> Result<WavelengthDistribution, RenderError> {
+        let range = WavelengthRange::new(self.range.0, self.range.1)
+            .map_err(|e| RenderError::Setting(format!("wavelength range: {e}")))?;
+        let observer = self.observer;
+        let cmf = |k: usize| move |l: f64| observer.cmf(l)[k];
+        let (x, y, z) = (cmf(0), cmf(1), cmf(2));
+        let response_sum = |l: f64| x(l) + y(l) + z(l);
+        let bins = ((self.range.1 - self.range.0).ceil() as usize).max(1);
+        let setting = |e: prism_sampling::SamplingError| {
+            RenderError::Setting(format!("wavelength sampler: {e}"))
+        };
+        Ok(match self.lambda_sampler {
+            LambdaSampler::Uniform => WavelengthDistribution::uniform(range),
+            LambdaSampler::Visible => WavelengthDistribution::visible(range),
+            LambdaSampler::Response => {
+                WavelengthDistribution::response(range, bins, &[&x, &y, &z]).map_err(setting)?
+            }
+            LambdaSampler::Spd => {
+                WavelengthDistribution::light_spd(range, bins, light_spectra, &response_sum, 0.1)
+                    .map_err(setting)?
+            }
+        })
+    }
+}
