@@ -26,6 +26,9 @@ pub(crate) struct Tracer<'a> {
 pub(crate) const FIRST_BOUNCE_DIMENSION: u64 = 3;
 const DIMENSIONS_PER_BOUNCE: u64 = 8;
 
+/// The first bounce at which Russian roulette may end a path.
+const ROULETTE_DEPTH: u32 = 3;
+
 /// An orthonormal frame whose z is a given unit normal.
 struct Frame {
     x: Vec3,
@@ -176,14 +179,13 @@ impl Tracer<'_> {
             ray = hit.spawn(wi_world);
             depth += 1;
 
-            // Russian roulette on the throughput: unbiased, since survivors are divided by
-            // their survival probability.
-            let q = beta.max_value();
-            if q.is_nan() || q <= 0.0 {
-                break;
-            }
-            if q < 1.0 {
-                if u_roulette >= q {
+            // Russian roulette on the throughput, from the third bounce: survivors are
+            // divided by their survival probability, so it is unbiased. Survival is capped
+            // at 0.95 so that a path in a closed scene of albedo 1 (throughput never below
+            // 1) still ends.
+            if depth >= ROULETTE_DEPTH {
+                let q = beta.max_value().min(0.95);
+                if q.is_nan() || q <= 0.0 || u_roulette >= q {
                     break;
                 }
                 beta *= 1.0 / q;

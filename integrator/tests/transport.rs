@@ -1,0 +1,408 @@
+//! Evidence that the integrator converges to the right image: a white furnace, analytic
+//! direct lighting from a point and an area light, agreement between wavelength samplers
+//! and package sizes, and determinism across thread counts.
+
+use glam::{Mat4, Vec3};
+use prism_integrator::{ExrMetadata, Film, LambdaSampler, RenderSettings, encode_exr, render};
+use prism_sampling::wavelength::PackageScheme;
+use prism_scene::camera::{Camera, Projection};
+use prism_scene::geometry::BvhQuality;
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_spectrum::color::RgbSpaceId;
+use prism_spectrum::colorimetry::{Observer, emission_xyz};
+use prism_spectrum::spectra::Constant;
+
+/// An orthographic camera at `eye` looking down -z, seeing a square of half-size `half`.
+fn ortho_camera(eye: Vec3, half: f32) -> Camera {
+    Camera {
+        name: "test".into(),
+        to_world: Mat4::from_translation(eye),
+        projection: Projection::Orthographic {
+            xmag: half,
+            ymag: half,
+        },
+    }
+}
+
+/// A unit icosphere subdivided `levels` times, outward winding.
+fn icosphere(levels: u32) -> Vec<[Vec3; 3]> {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let v: Vec<Vec3> = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
+    .collect();
+    let faces = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    let mut tris: Vec<[Vec3; 3]> = faces.iter().map(|f| f.map(|i| v[i])).collect();
+    for _ in 0..levels {
+        tris = tris
+            .iter()
+            .flat_map(|&[a, b, c]| {
+                let (ab, bc, ca) = (
+                    (a + b).normalize(),
+                    (b + c).normalize(),
+                    (c + a).normalize(),
+                );
+                [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]
+            })
+            .collect();
+    }
+    tris
+}
+
+/// The mean over all pixels of a film, and its standard error from the pixel-to-pixel
+/// spread (valid where every pixel has the same expectation).
+fn mean_and_error(film: &Film, channel: usize) -> (f64, f64) {
+    let n = f64::from(film.width() * film.height());
+    let values: Vec<f64> = (0..film.height())
+        .flat_map(|y| (0..film.width()).map(move |x| (x, y)))
+        .map(|(x, y)| film.xyz(x, y).to_array()[channel])
+        .collect();
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+fn constant_xyz(value: f64) -> [f64; 3] {
+    emission_xyz(&Constant::new(value).unwrap(), Observer::Cie1931).to_array()
+}
+
+fn settings(size: u32, spp: u64, wavelengths: usize, sampler: LambdaSampler) -> RenderSettings {
+    RenderSettings {
+        width: size,
+        height: size,
+        samples: 0..spp,
+        wavelengths,
+        lambda_sampler: sampler,
+        ..RenderSettings::default()
+    }
+}
+
+const SAMPLERS: [LambdaSampler; 4] = [
+    LambdaSampler::Uniform,
+    LambdaSampler::Visible,
+    LambdaSampler::Response,
+    LambdaSampler::Spd,
+];
+
+fn furnace_scene() -> Scene {
+    let triangles = icosphere(2);
+    Scene::new(SceneParts {
+        triangle_material: vec![0; triangles.len()],
+        triangles,
+        materials: vec![Material::Diffuse {
+            reflectance: SceneSpectrum::Constant(1.0),
+        }],
+        emission: vec![],
+        lights: vec![Light::Environment {
+            radiance: SceneSpectrum::Constant(1.0),
+        }],
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 0.6),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap()
+}
+
+/// A white (albedo 1) sphere in a uniform environment of radiance 1 is invisible: every
+/// pixel sees radiance 1 at every wavelength, for every sampler and package size.
+#[test]
+fn white_furnace_returns_the_environment() {
+    let scene = furnace_scene();
+    let expected = constant_xyz(1.0);
+    for sampler in SAMPLERS {
+        for c in [1, 2, 4, 8, 16] {
+            let (film, stats) = render(&scene, &settings(12, 32, c, sampler)).unwrap();
+            assert_eq!(stats.nonfinite, 0);
+            for k in 0..3 {
+                let (mean, error) = mean_and_error(&film, k);
+                let tolerance = 5.0 * error + 1e-3 * expected[k];
+                assert!(
+                    (mean - expected[k]).abs() < tolerance,
+                    "{sampler:?} C={c} channel {k}: {mean} vs {} (+-{tolerance})",
+                    expected[k]
+                );
+            }
+        }
+    }
+}
+
+/// The irradiance at the origin (normal +z) from a Lambertian polygon of radiance `l`:
+/// Lambert's formula E = L/2 sum_i gamma_i (n . (r_i x r_{i+1}) / |r_i x r_{i+1}|), with
+/// gamma_i the angle between successive corner directions.
+fn polygon_irradiance(corners: &[Vec3], l: f64) -> f64 {
+    let n = corners.len();
+    let mut sum = 0.0f64;
+    for i in 0..n {
+        let (a, b) = (
+            corners[i].normalize().as_dvec3(),
+            corners[(i + 1) % n].normalize().as_dvec3(),
+        );
+        let gamma = a.dot(b).clamp(-1.0, 1.0).acos();
+        let c = a.cross(b).normalize();
+        sum += gamma * c.z;
+    }
+    0.5 * l * sum.abs()
+}
+
+/// A large grey floor (albedo 0.5) at z = 0 seen straight down through a tiny orthographic
+/// window at the origin, lit by `lights` and optionally by a black quad emitting radiance 3
+/// downwards.
+fn floor_render(lights: Vec<Light>, emitter: Option<[Vec3; 4]>, sampler: LambdaSampler) -> Film {
+    let s = 100.0;
+    let mut triangles = vec![
+        [
+            Vec3::new(-s, -s, 0.0),
+            Vec3::new(s, -s, 0.0),
+            Vec3::new(s, s, 0.0),
+        ],
+        [
+            Vec3::new(-s, -s, 0.0),
+            Vec3::new(s, s, 0.0),
+            Vec3::new(-s, s, 0.0),
+        ],
+    ];
+    let mut triangle_material = vec![0, 0];
+    let mut lights = lights;
+    if let Some(q) = emitter {
+        // Facing down (-z): wound clockwise seen from above.
+        triangles.push([q[0], q[2], q[1]]);
+        triangles.push([q[0], q[3], q[2]]);
+        // Black, so that it does not reflect the floor's light back down.
+        triangle_material.extend([1, 1]);
+        for t in [2, 3] {
+            lights.push(Light::Triangle {
+                triangle: t,
+                emission: 0,
+                two_sided: false,
+            });
+        }
+    }
+    let scene = Scene::new(SceneParts {
+        triangles,
+        triangle_material,
+        materials: vec![
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.5),
+            },
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.0),
+            },
+        ],
+        emission: vec![SceneSpectrum::Constant(3.0)],
+        lights,
+        // Looking down from between the floor and the emitter.
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 0.5), 1e-3),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap();
+    render(&scene, &settings(4, 256, 4, sampler)).unwrap().0
+}
+
+#[test]
+fn point_light_direct_lighting_is_analytic() {
+    // A point light of intensity 2 at height 2 over a floor of albedo 0.5: the floor's
+    // radiance is rho / pi * I / h^2.
+    let lights = vec![Light::Point {
+        position: Vec3::new(0.0, 0.0, 2.0),
+        intensity: SceneSpectrum::Constant(2.0),
+    }];
+    for sampler in [LambdaSampler::Uniform, LambdaSampler::Visible] {
+        let film = floor_render(lights.clone(), None, sampler);
+        let radiance = 0.5 / std::f64::consts::PI * 2.0 / 4.0;
+        let expected = constant_xyz(radiance);
+        for k in 0..3 {
+            let (mean, error) = mean_and_error(&film, k);
+            assert!(
+                (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
+                "{sampler:?} channel {k}: {mean} vs {}",
+                expected[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn area_light_direct_lighting_is_analytic() {
+    // A square emitter of radiance 3, side 1, centred 1 above the floor and offset in x so
+    // that the cosine varies over it: the floor's radiance at the origin is
+    // rho / pi * E with E from Lambert's polygon formula. MIS between light and BSDF
+    // sampling must reproduce it.
+    let q = [
+        Vec3::new(-0.2, -0.5, 1.0),
+        Vec3::new(0.8, -0.5, 1.0),
+        Vec3::new(0.8, 0.5, 1.0),
+        Vec3::new(-0.2, 0.5, 1.0),
+    ];
+    let e = polygon_irradiance(&q, 3.0);
+    let expected = constant_xyz(0.5 / std::f64::consts::PI * e);
+    let film = floor_render(vec![], Some(q), LambdaSampler::Visible);
+    // The emitter is black, so direct lighting is the whole answer.
+    for k in 0..3 {
+        let (mean, error) = mean_and_error(&film, k);
+        assert!(
+            (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
+            "channel {k}: {mean} vs {} (E = {e})",
+            expected[k]
+        );
+    }
+}
+
+fn cornell() -> Scene {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
+    let loaded = prism_scene::load::load_geometry(
+        &bytes,
+        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+        None,
+    )
+    .unwrap();
+    Scene::from_loaded(&loaded, &Default::default()).unwrap()
+}
+
+#[test]
+fn threads_do_not_change_the_image() {
+    let scene = cornell();
+    let mut one = settings(24, 4, 4, LambdaSampler::Visible);
+    one.threads = 1;
+    let two = RenderSettings {
+        threads: 2,
+        ..one.clone()
+    };
+    let (a, _) = render(&scene, &one).unwrap();
+    let (b, _) = render(&scene, &two).unwrap();
+    assert_eq!(a.sums(), b.sums());
+    let space = RgbSpaceId::Srgb.space();
+    let meta = ExrMetadata::default();
+    assert_eq!(
+        encode_exr(&a, space, &meta).unwrap(),
+        encode_exr(&b, space, &meta).unwrap(),
+        "byte-identical EXR"
+    );
+}
+
+#[test]
+fn sample_ranges_merge_into_the_whole_render() {
+    let scene = cornell();
+    let whole = settings(8, 6, 4, LambdaSampler::Visible);
+    let (full, _) = render(&scene, &whole).unwrap();
+    let (mut first, _) = render(
+        &scene,
+        &RenderSettings {
+            samples: 0..2,
+            ..whole.clone()
+        },
+    )
+    .unwrap();
+    let (second, _) = render(
+        &scene,
+        &RenderSettings {
+            samples: 2..6,
+            ..whole.clone()
+        },
+    )
+    .unwrap();
+    first.merge(&second).unwrap();
+    assert_eq!(first.samples(), 6);
+    for (a, b) in first.sums().iter().zip(full.sums()) {
+        for k in 0..3 {
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-12 * b[k].abs().max(1.0),
+                "{a:?} {b:?}"
+            );
+        }
+    }
+}
+
+/// The Cornell box's mean colour, estimated from `batches` independent seeds: the mean of
+/// the batch means and its standard error.
+fn cornell_mean(
+    scene: &Scene,
+    wavelengths: usize,
+    sampler: LambdaSampler,
+    scheme: PackageScheme,
+) -> ([f64; 3], [f64; 3]) {
+    let batches = 6;
+    let mut means = vec![];
+    for seed in 0..batches {
+        let s = RenderSettings {
+            seed: 1000 + seed,
+            scheme,
+            ..settings(12, 8, wavelengths, sampler)
+        };
+        let (film, _) = render(scene, &s).unwrap();
+        means.push([0, 1, 2].map(|k| mean_and_error(&film, k).0));
+    }
+    let n = batches as f64;
+    let mean = [0, 1, 2].map(|k| means.iter().map(|m| m[k]).sum::<f64>() / n);
+    let error = [0, 1, 2].map(|k| {
+        let var = means.iter().map(|m| (m[k] - mean[k]).powi(2)).sum::<f64>() / (n - 1.0);
+        (var / n).sqrt()
+    });
+    (mean, error)
+}
+
+/// Every wavelength sampler, every package size and both package schemes estimate the same
+/// image: their mean colours over the Cornell box agree within statistical error.
+#[test]
+fn samplers_and_package_sizes_agree() {
+    let scene = cornell();
+    let (reference, reference_error) = cornell_mean(
+        &scene,
+        4,
+        LambdaSampler::Visible,
+        PackageScheme::HeroRotation,
+    );
+    let mut configurations = vec![];
+    for sampler in SAMPLERS {
+        configurations.push((1, sampler, PackageScheme::HeroRotation));
+    }
+    for c in [2, 8, 16] {
+        configurations.push((c, LambdaSampler::Uniform, PackageScheme::HeroRotation));
+    }
+    configurations.push((4, LambdaSampler::Visible, PackageScheme::Stratified));
+    for (c, sampler, scheme) in configurations {
+        let (mean, error) = cornell_mean(&scene, c, sampler, scheme);
+        for k in 0..3 {
+            let sigma = (error[k].powi(2) + reference_error[k].powi(2)).sqrt();
+            assert!(
+                (mean[k] - reference[k]).abs() < 5.0 * sigma,
+                "C={c} {sampler:?} {scheme:?} channel {k}: {} vs {} (sigma {sigma})",
+                mean[k],
+                reference[k]
+            );
+        }
+    }
+}
