@@ -17,7 +17,8 @@ use crate::{Film, RenderError};
 pub struct ExrMetadata {
     /// Samples per pixel the image holds.
     pub spp: u64,
-    /// Free-form `key = value` string attributes.
+    /// Further `key=value` facts (no `;` or `=` in them), recorded after `spp=N` in one
+    /// text attribute `prism`.
     pub strings: Vec<(String, String)>,
 }
 
@@ -51,17 +52,16 @@ pub fn encode_exr(
         blue: xy(p[2]),
         white: xy(space.white().xy()),
     });
-    let other = &mut image.attributes.other;
-    other.insert(
-        Text::from("prismSpp"),
-        exr::meta::attribute::AttributeValue::Text(Text::from(metadata.spp.to_string().as_str())),
-    );
+    // One attribute for all of prism's facts: the exr crate keeps extra attributes in a
+    // HashMap, whose order (and so the file's bytes) would change from run to run.
+    let mut facts = format!("spp={}", metadata.spp);
     for (k, v) in &metadata.strings {
-        other.insert(
-            Text::from(k.as_str()),
-            exr::meta::attribute::AttributeValue::Text(Text::from(v.as_str())),
-        );
+        facts.push_str(&format!(";{k}={v}"));
     }
+    image.attributes.other.insert(
+        Text::from("prism"),
+        exr::meta::attribute::AttributeValue::Text(Text::from(facts.as_str())),
+    );
     let mut bytes = Cursor::new(Vec::new());
     image
         .write()

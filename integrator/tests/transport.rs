@@ -2,6 +2,9 @@
 //! direct lighting from a point and an area light, agreement between wavelength samplers
 //! and package sizes, and determinism across thread counts.
 
+// Channel loops index several parallel arrays by k; iterators would hide that.
+#![allow(clippy::needless_range_loop)]
+
 use glam::{Mat4, Vec3};
 use prism_integrator::{ExrMetadata, Film, LambdaSampler, RenderSettings, encode_exr, render};
 use prism_sampling::wavelength::PackageScheme;

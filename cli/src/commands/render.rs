@@ -58,7 +58,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub camera: Option<String>,
     /// A constant environment radiance (relative units, as emissive colours).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub environment: Option<f64>,
     /// PNG exposure in stops.
     #[arg(long, default_value_t = 0.0)]
@@ -135,8 +135,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             let metadata = ExrMetadata {
                 spp: film.samples(),
                 strings: vec![
-                    ("prismSeed".into(), args.seed.to_string()),
-                    ("prismWavelengths".into(), args.wavelengths.to_string()),
+                    ("seed".into(), args.seed.to_string()),
+                    ("wavelengths".into(), args.wavelengths.to_string()),
+                    ("lambda_sampler".into(), args.lambda_sampler.clone()),
                 ],
             };
             encode_exr(&film, space, &metadata).map_err(|e| e.to_string())?
