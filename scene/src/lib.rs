@@ -1,12 +1,13 @@
 //! # prism-scene
 //!
-//! The world prism renders. Built so far: the geometry (rays, the watertight ray-triangle
-//! test, robust spawn offsets, a compressed wide BVH built by obvhs), glTF geometry and
-//! camera loading (node hierarchies, transforms, indexed and non-indexed triangles, GLB,
-//! data URIs), cameras, and BSDFs (Lambertian, smooth and rough conductors with complex
-//! Fresnel, smooth and rough dielectrics with per-wavelength IOR). Lights, materials,
-//! textures, the glTF metallic-roughness mix, fluorescent BSDFs and the spectral
-//! descriptions are not built yet (see the issue tracker).
+//! The world prism renders: the geometry (rays, the watertight ray-triangle test, robust
+//! spawn offsets, a compressed wide BVH built by obvhs), glTF loading (`load`: node
+//! hierarchies, transforms, GLB, data URIs, cameras, metallic-roughness materials with RGB
+//! upsampled to spectra, emissive and `KHR_lights_punctual` lights), BSDFs (Lambertian,
+//! conductors, dielectrics with per-wavelength IOR, glTF metallic-roughness, fluorescent
+//! diffuse), and the render-ready scene (`world`) the integrator consumes. Textures, the
+//! remaining KHR material extensions and the spectral descriptions (`PRISM_spectral`, TOML
+//! overlay) are not built yet (see the issue tracker).
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit
@@ -14,6 +15,9 @@
 //!   start outside the floating-point error box of their origin (Pharr, Jakob and
 //!   Humphreys, *PBR* 4th ed. §6.8), so neither light leaks nor self-shadowing acne depend
 //!   on a tuned epsilon.
+//! - **RGB stops here.** `world::Scene` hands the integrator spectra (`SceneSpectrum`, a
+//!   closed enum sampled per package without dynamic dispatch) and per-hit BSDFs, so the
+//!   integrator does not depend on `prism-upsample`.
 //! - **One traversal, prism's own intersection.** obvhs builds and traverses the BVH; the
 //!   triangle test is ours, so its guarantees hold for every query.
 //!
