@@ -119,9 +119,20 @@ impl SobolStream {
         self.dimension = dimension;
     }
 
-    fn point(&self, dimension: u64) -> (u32, u32) {
+    /// The scrambled sample index and the pair's hash for `dimension`.
+    fn scrambled_index(&self, dimension: u64) -> (u32, u64) {
         let h = hash_words(&[self.key, dimension]);
-        let index = nested_uniform_scramble(self.sample_index, h as u32);
+        (nested_uniform_scramble(self.sample_index, h as u32), h)
+    }
+
+    /// The first coordinate of the pair at `dimension` (all that a 1D draw needs).
+    fn first(&self, dimension: u64) -> u32 {
+        let (index, h) = self.scrambled_index(dimension);
+        nested_uniform_scramble(sobol_sample(index, 0), (h >> 32) as u32)
+    }
+
+    fn point(&self, dimension: u64) -> (u32, u32) {
+        let (index, h) = self.scrambled_index(dimension);
         let x = nested_uniform_scramble(sobol_sample(index, 0), (h >> 32) as u32);
         let y = nested_uniform_scramble(sobol_sample(index, 1), hash_words(&[h]) as u32);
         (x, y)
@@ -130,7 +141,7 @@ impl SobolStream {
 
 impl SampleStream for SobolStream {
     fn next_1d(&mut self) -> f32 {
-        let (x, _) = self.point(self.dimension);
+        let x = self.first(self.dimension);
         self.dimension += 1;
         bits_to_unit_f32(x)
     }

@@ -7,7 +7,8 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::builder::build_cwbvh;
 use obvhs::ray::{Ray as ObvhsRay, RayHit};
 
-use super::{Ray, TriangleHit, intersect_triangle};
+use super::Ray;
+use super::triangle::{TriangleHit, WatertightRay};
 
 /// How much effort the BVH build spends for faster traversal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -108,24 +109,12 @@ impl Bvh {
     /// The closest hit along `ray` with 0 < t < `ray.t_max`.
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         let bvh = self.bvh.as_ref()?;
-        if !(ray.origin.is_finite() && ray.direction.is_finite() && ray.direction != Vec3::ZERO) {
-            return None;
-        }
-        let traversal = ObvhsRay::new(
-            Vec3A::from(ray.origin),
-            Vec3A::from(ray.direction),
-            0.0,
-            ray.t_max,
-        );
+        let watertight = WatertightRay::new(ray)?;
         let mut best: Option<SurfaceHit> = None;
         let mut hit = RayHit::none();
-        bvh.ray_traverse(traversal, &mut hit, |r, id| {
+        bvh.ray_traverse(Self::traversal_ray(ray), &mut hit, |r, id| {
             let index = bvh.primitive_indices[id] as usize;
-            let candidate = Ray {
-                t_max: r.tmax,
-                ..*ray
-            };
-            match intersect_triangle(&candidate, self.triangles[index]) {
+            match watertight.intersect(self.triangles[index], r.tmax) {
                 Some(h) => {
                     best = Some(SurfaceHit {
                         triangle: self.original[index],
@@ -139,8 +128,26 @@ impl Bvh {
         best
     }
 
-    /// Whether anything lies along `ray` with 0 < t < `ray.t_max` (shadow rays).
+    /// Whether anything lies along `ray` with 0 < t < `ray.t_max` (shadow rays): traversal
+    /// stops at the first hit found, whichever it is.
     pub fn occluded(&self, ray: &Ray) -> bool {
-        self.intersect(ray).is_some()
+        let (Some(bvh), Some(watertight)) = (self.bvh.as_ref(), WatertightRay::new(ray)) else {
+            return false;
+        };
+        !bvh.ray_traverse_miss(Self::traversal_ray(ray), |r, id| {
+            let index = bvh.primitive_indices[id] as usize;
+            watertight
+                .intersect(self.triangles[index], r.tmax)
+                .map_or(f32::INFINITY, |h| h.t)
+        })
+    }
+
+    fn traversal_ray(ray: &Ray) -> ObvhsRay {
+        ObvhsRay::new(
+            Vec3A::from(ray.origin),
+            Vec3A::from(ray.direction),
+            0.0,
+            ray.t_max,
+        )
     }
 }

@@ -19,55 +19,89 @@ pub struct TriangleHit {
 /// ray through a shared edge is never lost between the two triangles. Degenerate
 /// triangles are never hit. Hits with t <= 0 or t >= `ray.t_max` are ignored.
 pub fn intersect_triangle(ray: &Ray, p: [Vec3; 3]) -> Option<TriangleHit> {
-    let d = ray.direction;
-    if !(d.is_finite() && d != Vec3::ZERO && ray.origin.is_finite()) {
-        return None;
+    WatertightRay::new(ray)?.intersect(p, ray.t_max)
+}
+
+/// The per-ray part of the watertight test (the axis permutation and the shear), computed
+/// once per ray and reused for every triangle it is tested against: the same arithmetic as
+/// computing it per triangle, so the same results bit for bit.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct WatertightRay {
+    origin: Vec3,
+    /// The axis of the largest |direction| component, which becomes z.
+    kz: u8,
+    shear: Vec3,
+}
+
+/// The permutation (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3 as fixed swizzles: indexing a
+/// vector by a run-time axis forces it through memory, and this runs per triangle tested.
+fn permute(v: Vec3, kz: u8) -> Vec3 {
+    match kz {
+        0 => Vec3::new(v.y, v.z, v.x),
+        1 => Vec3::new(v.z, v.x, v.y),
+        _ => v,
     }
-    // Permute so that the largest |direction| component is z.
-    let kz = d.abs().max_position();
-    let kx = if kz == 2 { 0 } else { kz + 1 };
-    let ky = if kx == 2 { 0 } else { kx + 1 };
-    let permute = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
-    let d = permute(d);
-    let [mut p0, mut p1, mut p2] = p.map(|v| permute(v - ray.origin));
-    // Shear so the ray direction is +z.
-    let (sx, sy, sz) = (-d.x / d.z, -d.y / d.z, 1.0 / d.z);
-    for q in [&mut p0, &mut p1, &mut p2] {
-        q.x += sx * q.z;
-        q.y += sy * q.z;
+}
+
+impl WatertightRay {
+    /// None for a ray that can hit nothing (non-finite, or a zero direction).
+    pub(crate) fn new(ray: &Ray) -> Option<Self> {
+        let d = ray.direction;
+        if !(d.is_finite() && d != Vec3::ZERO && ray.origin.is_finite()) {
+            return None;
+        }
+        // Permute so that the largest |direction| component is z.
+        let kz = d.abs().max_position() as u8;
+        let d = permute(d, kz);
+        Some(Self {
+            origin: ray.origin,
+            kz,
+            shear: Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z),
+        })
     }
-    // Edge functions; fall back to f64 where one is exactly zero.
-    let mut e0 = p1.x * p2.y - p1.y * p2.x;
-    let mut e1 = p2.x * p0.y - p2.y * p0.x;
-    let mut e2 = p0.x * p1.y - p0.y * p1.x;
-    if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-        let (a, b, c) = (p0.as_dvec3(), p1.as_dvec3(), p2.as_dvec3());
-        let edge = |u: DVec3, v: DVec3| (u.x * v.y - u.y * v.x) as f32;
-        (e0, e1, e2) = (edge(b, c), edge(c, a), edge(a, b));
+
+    /// The hit with triangle `p` at 0 < t < `t_max`, if any.
+    pub(crate) fn intersect(&self, p: [Vec3; 3], t_max: f32) -> Option<TriangleHit> {
+        let [mut p0, mut p1, mut p2] = p.map(|v| permute(v - self.origin, self.kz));
+        // Shear so the ray direction is +z.
+        let (sx, sy, sz) = (self.shear.x, self.shear.y, self.shear.z);
+        for q in [&mut p0, &mut p1, &mut p2] {
+            q.x += sx * q.z;
+            q.y += sy * q.z;
+        }
+        // Edge functions; fall back to f64 where one is exactly zero.
+        let mut e0 = p1.x * p2.y - p1.y * p2.x;
+        let mut e1 = p2.x * p0.y - p2.y * p0.x;
+        let mut e2 = p0.x * p1.y - p0.y * p1.x;
+        if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
+            let (a, b, c) = (p0.as_dvec3(), p1.as_dvec3(), p2.as_dvec3());
+            let edge = |u: DVec3, v: DVec3| (u.x * v.y - u.y * v.x) as f32;
+            (e0, e1, e2) = (edge(b, c), edge(c, a), edge(a, b));
+        }
+        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+            return None;
+        }
+        let det = e0 + e1 + e2;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        // Scaled distance, compared against the range without dividing first.
+        let (z0, z1, z2) = (sz * p0.z, sz * p1.z, sz * p2.z);
+        let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
+        if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
+            return None;
+        }
+        if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
+            return None;
+        }
+        let inverse = 1.0 / det;
+        let t = t_scaled * inverse;
+        if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        Some(TriangleHit {
+            t,
+            barycentric: [e0 * inverse, e1 * inverse, e2 * inverse],
+        })
     }
-    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
-        return None;
-    }
-    let det = e0 + e1 + e2;
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    // Scaled distance, compared against the range without dividing first.
-    let (z0, z1, z2) = (sz * p0.z, sz * p1.z, sz * p2.z);
-    let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
-    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < ray.t_max * det) {
-        return None;
-    }
-    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > ray.t_max * det) {
-        return None;
-    }
-    let inverse = 1.0 / det;
-    let t = t_scaled * inverse;
-    if !(t > 0.0 && t < ray.t_max) {
-        return None;
-    }
-    Some(TriangleHit {
-        t,
-        barycentric: [e0 * inverse, e1 * inverse, e2 * inverse],
-    })
 }

@@ -1,0 +1,82 @@
+"""prism against Mitsuba 3 in one run: speed (paths per second, as a ratio) and agreement
+(region means of the two images, and of each against a converged reference).
+
+  pip install mitsuba numpy
+  cargo build --release -p prism-cli
+  python3 benches/peer/compare.py box --spp 64 --width 256
+  python3 benches/peer/compare.py box --reference ref.exr   # also compare against a reference
+
+The Mitsuba side is ../shared/scenes/peer/mitsuba_peer.py (the same Cornell box and bunny box
+as the glTF files). Prints one JSON object. Region agreement: the image is cut into a
+GRID x GRID grid; for each region and channel the relative difference of the means
+is reported (max and mean over regions with enough signal).
+"""
+import argparse, json, os, subprocess, sys, tempfile
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
+SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf"}
+
+
+def read_exr(path):
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    return np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
+
+
+def regions(img, grid):
+    h, w, _ = img.shape
+    return np.array([[img[i * h // grid:(i + 1) * h // grid, j * w // grid:(j + 1) * w // grid].mean(axis=(0, 1))
+                      for j in range(grid)] for i in range(grid)])
+
+
+def agreement(a, b, grid):
+    ra, rb = regions(a, grid), regions(b, grid)
+    signal = rb > 0.02 * rb.max()
+    rel = np.abs(ra - rb)[signal] / rb[signal]
+    return {"max_rel": float(rel.max()), "mean_rel": float(rel.mean()), "regions": int(signal.sum()),
+            "mean_ratio": [float(x) for x in ra.mean(axis=(0, 1)) / rb.mean(axis=(0, 1))]}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("scene", choices=SCENES)
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--width", type=int, default=256)
+    ap.add_argument("--depth", type=int, default=-1)
+    ap.add_argument("--variants", default="scalar_spectral")
+    ap.add_argument("--reference", help="a converged EXR of the same scene and size")
+    ap.add_argument("--grid", type=int, default=8)
+    ap.add_argument("--prism-args", default="", help="extra arguments for prism render")
+    a = ap.parse_args()
+    out = tempfile.mkdtemp(prefix="prism-peer-")
+    prism = os.path.join(ROOT, "target", "release", "prism")
+    prism_exr = os.path.join(out, "prism.exr")
+    cmd = [prism, "render", os.path.join(ROOT, "scenes", SCENES[a.scene]), "--spp", str(a.spp),
+           "--width", str(a.width), "--height", str(a.width), "-o", prism_exr, "--stats"] + a.prism_args.split()
+    if a.depth >= 0:
+        cmd += ["--max-depth", str(a.depth)]
+    prism_stats = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+    result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth,
+              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes")}}
+    images = {"prism": read_exr(prism_exr)}
+    for variant in a.variants.split(","):
+        exr = os.path.join(out, f"{variant}.exr")
+        peer = subprocess.run([sys.executable, os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"), variant,
+                               a.scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
+                              check=True, capture_output=True, text=True)
+        stats = json.loads(peer.stdout.strip().splitlines()[-1])
+        result[variant] = {"seconds": stats["seconds"], "paths_per_second": stats["paths_per_second"],
+                           "prism_speed_ratio": prism_stats["paths_per_second"] / stats["paths_per_second"]}
+        images[variant] = read_exr(exr)
+        result[variant]["prism_vs_peer"] = agreement(images["prism"], images[variant], a.grid)
+    if a.reference:
+        ref = read_exr(a.reference)
+        result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
+    print(json.dumps(result))
+
+
+if __name__ == "__main__":
+    main()
