@@ -110,6 +110,7 @@ fn bad_input_is_one_clear_line() {
         (&["render", "-o", "image.jpg"], ".exr or .png"),
         (&["render", "--lambda-sampler", "magic", "-o", out], "magic"),
         (&["render", "--space", "nope", "-o", out], "nope"),
+        (&["render", "--filter", "lanczos", "-o", out], "lanczos"),
         (&["render", "--environment", "-1", "-o", out], "environment"),
         (&["render", "missing.gltf", "-o", out], "missing.gltf"),
         (&["render", broken, "-o", out], "broken.gltf"),

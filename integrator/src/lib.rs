@@ -32,6 +32,7 @@
 
 mod error;
 mod film;
+mod filter;
 mod image;
 mod path;
 mod png;
@@ -40,6 +41,7 @@ mod settings;
 
 pub use error::RenderError;
 pub use film::Film;
+pub use filter::Filter;
 pub use image::{DisplaySettings, ExrMetadata, encode_exr, encode_png};
 pub use render::{RenderStats, render, render_into};
 pub use settings::{LambdaSampler, RenderSettings};

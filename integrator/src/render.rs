@@ -9,6 +9,7 @@ use prism_scene::world::{Light, Scene};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
+use crate::filter::FilterSampler;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
 use crate::{Film, RenderError, RenderSettings};
 
@@ -72,6 +73,7 @@ pub fn render_into(
         observer: settings.observer,
         max_depth: settings.max_depth.unwrap_or(u32::MAX),
     };
+    let filter = FilterSampler::new(settings.filter)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .build()
@@ -94,7 +96,7 @@ pub fn render_into(
                 if cancel.load(Ordering::Relaxed) {
                     return;
                 }
-                let (r, n) = trace(&tracer, settings, y as u32, row);
+                let (r, n) = trace(&tracer, &filter, settings, y as u32, row);
                 rays.fetch_add(r, Ordering::Relaxed);
                 nonfinite.fetch_add(n, Ordering::Relaxed);
             });
@@ -127,6 +129,7 @@ pub fn render(
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
 fn trace_row<const N: usize>(
     tracer: &Tracer,
+    filter: &FilterSampler,
     settings: &RenderSettings,
     y: u32,
     row: &mut [[f64; 3]],
@@ -139,10 +142,10 @@ fn trace_row<const N: usize>(
         for s in settings.samples.clone() {
             let mut stream = SobolStream::new(settings.seed, pixel, s);
             let u_lambda = stream.next_1d();
-            let jitter = stream.next_2d();
+            let offset = filter.offset(stream.next_2d());
             let film = Vec2::new(
-                (x as f32 + jitter.x) / w as f32,
-                (y as f32 + jitter.y) / h as f32,
+                (x as f32 + 0.5 + offset.x) / w as f32,
+                (y as f32 + 0.5 + offset.y) / h as f32,
             );
             let result =
                 tracer.trace::<N>(&mut stream, FIRST_BOUNCE_DIMENSION, u_lambda, film, aspect);

@@ -5,7 +5,7 @@ use std::ops::Range;
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthRange};
 use prism_spectrum::colorimetry::Observer;
 
-use crate::RenderError;
+use crate::{Filter, RenderError};
 
 /// How the hero wavelength of each path is chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -70,6 +70,8 @@ pub struct RenderSettings {
     pub observer: Observer,
     /// Worker threads (0: one per core). Does not change the image.
     pub threads: usize,
+    /// The pixel reconstruction filter.
+    pub filter: Filter,
 }
 
 impl Default for RenderSettings {
@@ -86,6 +88,7 @@ impl Default for RenderSettings {
             range: (360.0, 830.0),
             observer: Observer::Cie1931,
             threads: 0,
+            filter: Filter::Box,
         }
     }
 }
@@ -119,11 +122,9 @@ impl RenderSettings {
                 self.wavelengths
             ));
         }
-        if self.max_depth == Some(0) {
-            // Depth 0 still shows emitters seen directly; allowed.
-        }
         WavelengthRange::new(self.range.0, self.range.1)
             .map_err(|e| RenderError::Setting(format!("wavelength range: {e}")))?;
+        crate::filter::FilterSampler::new(self.filter)?;
         Ok(())
     }
 

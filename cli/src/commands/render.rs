@@ -5,7 +5,8 @@ use std::time::Instant;
 
 use clap::Args;
 use prism_integrator::{
-    DisplaySettings, ExrMetadata, LambdaSampler, RenderSettings, encode_exr, encode_png, render,
+    DisplaySettings, ExrMetadata, Filter, LambdaSampler, RenderSettings, encode_exr, encode_png,
+    render,
 };
 use prism_scene::load::{LoadedGeometry, load_geometry};
 use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
@@ -51,6 +52,9 @@ pub struct RenderArgs {
     /// Hero wavelength sampler: uniform, visible, response or spd.
     #[arg(long, default_value = "visible")]
     pub lambda_sampler: String,
+    /// Pixel filter: box, gaussian or blackman-harris.
+    #[arg(long, default_value = "box")]
+    pub filter: String,
     /// Output colour space of EXR and PNG files.
     #[arg(long, default_value = "srgb")]
     pub space: String,
@@ -123,6 +127,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         wavelengths: args.wavelengths,
         lambda_sampler,
         threads: args.threads,
+        filter,
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
