@@ -92,6 +92,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let space_id = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
     let lambda_sampler =
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
+    let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
     for out in &args.outputs {
         match out.extension().and_then(|e| e.to_str()) {
             Some("exr" | "png") => check_writable(out)?,
