@@ -111,6 +111,7 @@ fn bad_input_is_one_clear_line() {
         (&["render", "--lambda-sampler", "magic", "-o", out], "magic"),
         (&["render", "--space", "nope", "-o", out], "nope"),
         (&["render", "--filter", "lanczos", "-o", out], "lanczos"),
+        (&["render", "--clamp", "0", "-o", out], "clamp"),
         (&["render", "--environment", "-1", "-o", out], "environment"),
         (&["render", "missing.gltf", "-o", out], "missing.gltf"),
         (&["render", broken, "-o", out], "broken.gltf"),

@@ -151,8 +151,12 @@ fn trace_row<const N: usize>(
                 tracer.trace::<N>(&mut stream, FIRST_BOUNCE_DIMENSION, u_lambda, film, aspect);
             rays += result.rays;
             if result.xyz.iter().all(|v| v.is_finite()) {
+                let scale = match settings.clamp {
+                    Some(c) if result.xyz[1] > c => c / result.xyz[1],
+                    _ => 1.0,
+                };
                 for (acc, v) in sum.iter_mut().zip(result.xyz) {
-                    *acc += v;
+                    *acc += v * scale;
                 }
             } else {
                 rejected += 1;

@@ -72,6 +72,9 @@ pub struct RenderSettings {
     pub threads: usize,
     /// The pixel reconstruction filter.
     pub filter: Filter,
+    /// Firefly clamp: a sample whose luminance Y exceeds this is scaled down to it
+    /// (keeping its chromaticity). Biased (it removes energy), so None by default.
+    pub clamp: Option<f64>,
 }
 
 impl Default for RenderSettings {
@@ -89,6 +92,7 @@ impl Default for RenderSettings {
             observer: Observer::Cie1931,
             threads: 0,
             filter: Filter::Box,
+            clamp: None,
         }
     }
 }
@@ -125,6 +129,11 @@ impl RenderSettings {
         WavelengthRange::new(self.range.0, self.range.1)
             .map_err(|e| RenderError::Setting(format!("wavelength range: {e}")))?;
         crate::filter::FilterSampler::new(self.filter)?;
+        if let Some(c) = self.clamp
+            && !(c.is_finite() && c > 0.0)
+        {
+            return bad(format!("clamp {c} must be finite and > 0"));
+        }
         Ok(())
     }
 

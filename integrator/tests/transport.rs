@@ -409,3 +409,36 @@ fn samplers_and_package_sizes_agree() {
         }
     }
 }
+
+/// The firefly clamp caps every sample's luminance, so no pixel exceeds it; without it the
+/// emitter seen directly is far brighter.
+#[test]
+fn clamp_bounds_every_sample() {
+    let scene = cornell();
+    let base = settings(16, 4, 4, LambdaSampler::Visible);
+    let (free, _) = render(&scene, &base).unwrap();
+    let (clamped, _) = render(
+        &scene,
+        &RenderSettings {
+            clamp: Some(1.0),
+            ..base.clone()
+        },
+    )
+    .unwrap();
+    let max_y = |film: &Film| {
+        (0..16)
+            .flat_map(|y| (0..16).map(move |x| (x, y)))
+            .map(|(x, y)| film.xyz(x, y).y)
+            .fold(0.0f64, f64::max)
+    };
+    assert!(max_y(&free) > 2.0, "the light is bright: {}", max_y(&free));
+    assert!(max_y(&clamped) <= 1.0 + 1e-9, "{}", max_y(&clamped));
+    assert!(
+        RenderSettings {
+            clamp: Some(f64::NAN),
+            ..base
+        }
+        .validate()
+        .is_err()
+    );
+}

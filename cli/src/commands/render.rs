@@ -64,6 +64,10 @@ pub struct RenderArgs {
     /// A constant environment radiance (relative units, as emissive colours).
     #[arg(long, allow_negative_numbers = true)]
     pub environment: Option<f64>,
+    /// Firefly clamp: scale samples whose luminance Y exceeds this down to it. Biased (it
+    /// removes energy); off by default.
+    #[arg(long)]
+    pub clamp: Option<f64>,
     /// PNG exposure in stops.
     #[arg(long, default_value_t = 0.0)]
     pub exposure: f64,
@@ -129,6 +133,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         lambda_sampler,
         threads: args.threads,
         filter,
+        clamp: args.clamp,
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
