@@ -1,0 +1,45 @@
+"""Region means of a converged Mitsuba 3 render, stored as a fixture for prism's
+reference test (integrator/tests/reference.rs).
+
+  pip install mitsuba numpy
+  python3 ../shared/scenes/peer/mitsuba_peer.py scalar_spectral box 2048 --width 256 --out /tmp/box.exr
+  python3 benches/peer/reference_regions.py /tmp/box.exr --spp 2048 \
+      --out integrator/tests/data/cornell-box-mitsuba-regions.json
+
+With a box pixel filter the mean of a region of the film is the integral of radiance over
+that part of the film, whatever the resolution, so prism can be compared at a lower one.
+"""
+import argparse, json, sys
+
+import numpy as np
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("exr")
+    ap.add_argument("--grid", type=int, default=8)
+    ap.add_argument("--spp", type=int, required=True)
+    ap.add_argument("--scene", default="box")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    img = np.array(mi.Bitmap(a.exr), dtype=np.float64)[..., :3]
+    h, w, _ = img.shape
+    g = a.grid
+    means = [[img[i * h // g:(i + 1) * h // g, j * w // g:(j + 1) * w // g].mean(axis=(0, 1)).tolist()
+              for j in range(g)] for i in range(g)]
+    doc = {
+        "provenance": f"Mitsuba {mi.__version__} scalar_spectral, mitsuba.cornell_box() ({a.scene}), "
+                      f"{w}x{h}, {a.spp} spp, unbounded depth, box filter; linear sRGB region means "
+                      f"(rows top to bottom), made by benches/peer/reference_regions.py",
+        "grid": g, "width": w, "height": h, "spp": a.spp,
+        "regions": means,
+    }
+    with open(a.out, "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
