@@ -442,3 +442,65 @@ fn clamp_bounds_every_sample() {
         .is_err()
     );
 }
+
+/// A dispersive glass sphere (SF11, strongly dispersive) in a uniform environment is
+/// invisible: a lossless interface only redirects light, so every pixel sees the
+/// environment at every wavelength. Refraction through it sends each wavelength its own
+/// way, so every path that refracts splits its package: this checks that the secondaries'
+/// light before the split is counted once, with the package's densities, and the hero's
+/// after it with its own.
+#[test]
+fn dispersive_glass_furnace_returns_the_environment() {
+    let glass = prism_spectrum::optics::named_glass("sf11").unwrap();
+    let ior = prism_spectrum::spectra::DenselySampled::from_spectrum(&glass.ior, 300, 900).unwrap();
+    // The glass at the left, a white diffuse sphere at the right: paths gather light at
+    // the diffuse sphere (next-event estimation) before refracting into the glass.
+    let shift = |dx: f32| move |t: [Vec3; 3]| t.map(|v| v * 0.5 + Vec3::new(dx, 0.0, 0.0));
+    let glass_sphere: Vec<[Vec3; 3]> = icosphere(2).into_iter().map(shift(-0.55)).collect();
+    let white_sphere: Vec<[Vec3; 3]> = icosphere(2).into_iter().map(shift(0.55)).collect();
+    let mut triangle_material = vec![0; glass_sphere.len()];
+    triangle_material.extend(vec![1; white_sphere.len()]);
+    let triangles = [glass_sphere, white_sphere].concat();
+    let scene = Scene::new(SceneParts {
+        triangle_material,
+        triangles,
+        materials: vec![
+            Material::Dielectric {
+                ior: SceneSpectrum::Dense(std::sync::Arc::new(ior)),
+                roughness: 0.0,
+            },
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(1.0),
+            },
+        ],
+        emission: vec![],
+        lights: vec![Light::Environment {
+            radiance: SceneSpectrum::Constant(1.0),
+        }],
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 1.1),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap();
+    assert!(scene.features().dispersion);
+    let expected = constant_xyz(1.0);
+    for (c, scheme) in [
+        (4, PackageScheme::HeroRotation),
+        (8, PackageScheme::HeroRotation),
+        (4, PackageScheme::Stratified),
+    ] {
+        let s = RenderSettings {
+            scheme,
+            ..settings(24, 256, c, LambdaSampler::Visible)
+        };
+        let (film, _) = render(&scene, &s).unwrap();
+        for k in 0..3 {
+            let (mean, error) = mean_and_error(&film, k);
+            let tolerance = 5.0 * error + 1e-3 * expected[k];
+            assert!(
+                (mean - expected[k]).abs() < tolerance,
+                "C={c} {scheme:?} channel {k}: {mean} vs {} (+-{tolerance})",
+                expected[k]
+            );
+        }
+    }
+}
