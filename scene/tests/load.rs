@@ -349,3 +349,37 @@ fn lights_are_emissive_instances_then_punctual_lights() {
     let e = load_json(&doc, &[]).unwrap_err().to_string();
     assert!(e.contains("light") && e.contains("intensity"), "{e}");
 }
+
+#[test]
+fn dispersion_extension_is_read_from_raw_json_even_when_required() {
+    use prism_scene::world::{Scene, SceneOptions};
+    let dir = scenes_dir();
+    let mut doc: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("cornell-box.gltf")).unwrap()).unwrap();
+    // The small box becomes dispersive glass: V_d = 20 / 0.5 = 40, n_d = 1.5.
+    doc["materials"][1]["extensions"] = json!({
+        "KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_dispersion": {"dispersion": 0.5}
+    });
+    doc["extensionsUsed"] = json!(["KHR_materials_transmission", "KHR_materials_dispersion"]);
+    doc["extensionsRequired"] = json!(["KHR_materials_dispersion"]);
+    let bin = std::fs::read(dir.join("cornell-box.bin")).unwrap();
+    let loaded = load_json(&doc, &bin).unwrap();
+    assert_eq!(loaded.materials[1].dispersion, 0.5);
+    assert!(loaded.summary().uses_dispersion);
+    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    assert!(scene.features().dispersion && scene.features().transmission);
+    // Without the extension the same glass does not disperse.
+    doc["materials"][1]["extensions"]
+        .as_object_mut()
+        .unwrap()
+        .remove("KHR_materials_dispersion");
+    doc["extensionsRequired"] = json!([]);
+    let plain =
+        Scene::from_loaded(&load_json(&doc, &bin).unwrap(), &SceneOptions::default()).unwrap();
+    assert!(!plain.features().dispersion && plain.features().transmission);
+    // A negative dispersion is an error naming the material.
+    doc["materials"][1]["extensions"]["KHR_materials_dispersion"] = json!({"dispersion": -1.0});
+    let e = load_json(&doc, &bin).unwrap_err().to_string();
+    assert!(e.contains("white") && e.contains("dispersion"), "{e}");
+}

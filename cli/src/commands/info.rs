@@ -43,8 +43,9 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
     );
     println!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
     println!(
-        "features       transmission: {}, textures: {} (not evaluated yet)",
+        "features       transmission: {}, dispersion: {}, textures: {} (not evaluated yet)",
         yes(s.uses_transmission),
+        yes(s.uses_dispersion),
         yes(s.uses_textures)
     );
     println!(

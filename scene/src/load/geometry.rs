@@ -84,7 +84,7 @@ pub fn load_geometry(
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     scene: Option<usize>,
 ) -> Result<LoadedGeometry, LoadError> {
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| LoadError::Invalid(e.to_string()))?;
+    let gltf = parse(bytes)?;
     let buffers = gltf
         .buffers()
         .map(|buffer| {
@@ -207,6 +207,23 @@ pub fn load_geometry(
         .collect();
     out.lights.extend(punctual_lights);
     Ok(out)
+}
+
+/// Extensions prism reads itself (from the raw JSON) that the gltf crate does not know.
+const EXTENSIONS_READ_RAW: &[&str] = &["KHR_materials_dispersion"];
+
+/// Parses and validates a glTF or GLB. The gltf crate rejects files that require an
+/// extension it does not know, so those prism reads itself are taken out of
+/// `extensionsRequired` between parsing and the (otherwise unchanged) validation.
+fn parse(bytes: &[u8]) -> Result<gltf::Gltf, LoadError> {
+    let invalid = |e: gltf::Error| LoadError::Invalid(e.to_string());
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+    let mut root = document.into_json();
+    root.extensions_required
+        .retain(|e| !EXTENSIONS_READ_RAW.contains(&e.as_str()));
+    let document = gltf::Document::from_json(root).map_err(invalid)?;
+    Ok(gltf::Gltf { document, blob })
 }
 
 fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<Camera, LoadError> {

@@ -32,6 +32,29 @@ pub struct MaterialDesc {
     pub double_sided: bool,
     /// Whether a base colour texture is referenced (textures are not evaluated yet).
     pub has_base_color_texture: bool,
+    /// `KHR_materials_dispersion`'s dispersion, 20 / V_d (0: none), for transmissive
+    /// materials.
+    pub dispersion: f32,
+}
+
+/// `KHR_materials_dispersion`'s `dispersion` (the gltf crate does not know the extension, so
+/// it is read from the raw JSON): 0 when absent; an error when not a finite number >= 0.
+fn dispersion(material: &gltf::Material, name: &str) -> Result<f32, LoadError> {
+    let Some(ext) = material
+        .extensions()
+        .and_then(|e| e.get("KHR_materials_dispersion"))
+    else {
+        return Ok(0.0);
+    };
+    match ext.get("dispersion") {
+        None => Ok(0.0),
+        Some(v) => match v.as_f64() {
+            Some(d) if d.is_finite() && d >= 0.0 && d <= f64::from(f32::MAX) => Ok(d as f32),
+            _ => Err(LoadError::Geometry(format!(
+                "material {name}: KHR_materials_dispersion dispersion {v} must be a finite number >= 0"
+            ))),
+        },
+    }
 }
 
 /// Everything upsampling needs, built once per load: glTF colours are linear sRGB.
@@ -121,6 +144,7 @@ pub(crate) fn material(
         )?)
     };
     let unit = |v: f32| v.clamp(0.0, 1.0);
+    let dispersion = dispersion(material, &name)?;
     Ok(MaterialDesc {
         name,
         base_color,
@@ -131,5 +155,6 @@ pub(crate) fn material(
         emission,
         double_sided: material.double_sided(),
         has_base_color_texture: pbr.base_color_texture().is_some(),
+        dispersion,
     })
 }

@@ -24,6 +24,8 @@ pub struct SceneSummary {
     pub uses_transmission: bool,
     /// Whether any material references a base colour texture (not evaluated yet).
     pub uses_textures: bool,
+    /// Whether a transmissive material disperses (`KHR_materials_dispersion`).
+    pub uses_dispersion: bool,
 }
 
 impl LoadedGeometry {
@@ -50,6 +52,10 @@ impl LoadedGeometry {
             bounds: (lo.to_array(), hi.to_array()),
             uses_transmission: self.materials.iter().any(|m| m.transmission > 0.0),
             uses_textures: self.materials.iter().any(|m| m.has_base_color_texture),
+            uses_dispersion: self
+                .materials
+                .iter()
+                .any(|m| m.transmission > 0.0 && m.dispersion > 0.0),
         }
     }
 }

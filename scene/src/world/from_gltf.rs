@@ -2,6 +2,8 @@
 
 use std::sync::Arc;
 
+use prism_spectrum::optics::Cauchy;
+
 use super::{Light, Material, Scene, SceneParts, SceneSpectrum};
 use crate::bsdf::CoatingAlbedo;
 use crate::geometry::BvhQuality;
@@ -30,8 +32,14 @@ pub struct SceneOptions {
 fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) -> Material {
     let base = SceneSpectrum::Rgb(Arc::new(desc.base_color.clone()));
     if desc.transmission > 0.0 {
+        // KHR_materials_dispersion: V_d = 20 / dispersion, Cauchy's law through n_d.
+        let abbe = 20.0 / f64::from(desc.dispersion);
+        let ior = match Cauchy::from_abbe(f64::from(desc.ior), abbe) {
+            Ok(cauchy) if desc.dispersion > 0.0 => SceneSpectrum::Cauchy(cauchy),
+            _ => SceneSpectrum::Constant(f64::from(desc.ior)),
+        };
         return Material::Dielectric {
-            ior: SceneSpectrum::Constant(f64::from(desc.ior)),
+            ior,
             roughness: desc.roughness,
         };
     }

@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use prism_spectrum::Spectrum;
+use prism_spectrum::optics::Cauchy;
 use prism_spectrum::spectra::{Blackbody, DenselySampled};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 use prism_upsample::RgbSpectrum;
@@ -20,6 +21,8 @@ pub enum SceneSpectrum {
     Dense(Arc<DenselySampled>),
     /// Planck's law, normalized to a peak of 1.
     Blackbody(Blackbody),
+    /// A Cauchy index of refraction (glTF's Abbe-number dispersion).
+    Cauchy(Cauchy),
     /// A spectrum times a factor (light intensities).
     Scaled(Arc<SceneSpectrum>, f64),
 }
@@ -50,6 +53,7 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Rgb(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Dense(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Blackbody(s) => s.evaluate(lambda_nm),
+            SceneSpectrum::Cauchy(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Scaled(s, k) => s.evaluate(lambda_nm) * k,
         }
     }
@@ -60,6 +64,7 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Rgb(s) => s.max_value(),
             SceneSpectrum::Dense(s) => s.max_value(),
             SceneSpectrum::Blackbody(s) => s.max_value(),
+            SceneSpectrum::Cauchy(s) => s.max_value(),
             SceneSpectrum::Scaled(s, k) => s.max_value() * k,
         }
     }
