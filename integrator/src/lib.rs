@@ -30,6 +30,7 @@
 //! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §13.4 (path tracing with NEE),
 //!   §5.4 (film), §4.5.4 (sampled spectra to XYZ).
 
+mod accumulation;
 mod error;
 mod film;
 mod filter;
@@ -39,6 +40,9 @@ mod png;
 mod render;
 mod settings;
 
+pub use accumulation::{
+    Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
+};
 pub use error::RenderError;
 pub use film::Film;
 pub use filter::Filter;

@@ -8,21 +8,12 @@
 // Channel loops index several parallel arrays by k.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
+use common::cornell;
 use prism_integrator::{RenderSettings, render};
 use prism_scene::world::Scene;
 use prism_spectrum::color::RgbSpaceId;
-
-fn cornell() -> Scene {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
-    let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
-    let loaded = prism_scene::load::load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
-    .unwrap();
-    Scene::from_loaded(&loaded, &Default::default()).unwrap()
-}
 
 /// Region means (grid x grid, row-major, linear sRGB) of a render at `size` x `size`.
 fn region_means(scene: &Scene, size: u32, spp: u64, seed: u64, grid: usize) -> Vec<[f64; 3]> {

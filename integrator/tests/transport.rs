@@ -5,6 +5,9 @@
 // Channel loops index several parallel arrays by k; iterators would hide that.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
+use common::cornell;
 use glam::{Mat4, Vec3};
 use prism_integrator::{ExrMetadata, Film, LambdaSampler, RenderSettings, encode_exr, render};
 use prism_sampling::wavelength::PackageScheme;
@@ -281,18 +284,6 @@ fn area_light_direct_lighting_is_analytic() {
             expected[k]
         );
     }
-}
-
-fn cornell() -> Scene {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
-    let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
-    let loaded = prism_scene::load::load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
-    .unwrap();
-    Scene::from_loaded(&loaded, &Default::default()).unwrap()
 }
 
 #[test]
