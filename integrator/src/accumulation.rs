@@ -112,7 +112,7 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             .channel_data
             .list
             .iter()
-            .find(|c| c.name == Text::from(name))
+            .find(|c| c.name == *name)
             .map(|c| &c.sample_data)
         {
             Some(FlatSamples::U32(v)) if v.len() == size.area() => Ok(v),
