@@ -30,6 +30,8 @@ enum Command {
     Upsample(commands::upsample::UpsampleArgs),
     /// Render a glTF scene (or the embedded Cornell box) to EXR and PNG images.
     Render(commands::render::RenderArgs),
+    /// Merge accumulation files of sample ranges (prism render --sample-range) into an image.
+    Merge(commands::merge::MergeArgs),
     /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
     Info(commands::info::InfoArgs),
     /// Fit and inspect RGB-to-spectrum coefficient tables.
@@ -47,6 +49,7 @@ fn main() -> ExitCode {
         Command::Upsample(args) => commands::upsample::run(&args),
         Command::Info(args) => commands::info::run(&args),
         Command::Render(args) => commands::render::run(&args),
+        Command::Merge(args) => commands::merge::run(&args),
         Command::Table(command) => commands::table::run(&command),
     };
     match result {

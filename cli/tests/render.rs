@@ -120,3 +120,86 @@ fn bad_input_is_one_clear_line() {
     ]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn sample_ranges_merge_into_the_single_render() {
+    let dir = temp_dir("merge");
+    let path = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let common = ["--width", "12", "--height", "8", "--seed", "3"];
+    let run = |extra: &[&str]| {
+        let mut args = vec!["render"];
+        args.extend(common);
+        args.extend(extra);
+        let out = prism(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&["--sample-range", "0..5", "-o", &path("whole.exr")]);
+    run(&["--sample-range", "2..5", "-o", &path("b.exr")]);
+    run(&["--sample-range", "0..2", "-o", &path("a.exr")]);
+    let (a, b) = (path("a.exr"), path("b.exr"));
+    let merge = |extra: &[&str]| {
+        let mut args = vec!["merge", b.as_str(), a.as_str()];
+        args.extend(extra);
+        let out = prism(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    merge(&["--accumulation", "-o", &path("merged.exr")]);
+    merge(&["-o", &path("image.exr"), "-o", &path("image.png")]);
+    let decode = |name: &str| {
+        prism_integrator::decode_accumulation(&std::fs::read(dir.join(name)).unwrap()).unwrap()
+    };
+    let (whole, merged) = (decode("whole.exr"), decode("merged.exr"));
+    assert_eq!(merged.samples, 0..5);
+    assert_eq!(merged.film.samples(), whole.film.samples());
+    for (a, b) in merged.film.sums().iter().zip(whole.film.sums()) {
+        for k in 0..3 {
+            // The same samples summed in another grouping: equal to f64 rounding.
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-12 * b[k].abs().max(1e-30),
+                "{a:?} {b:?}"
+            );
+        }
+    }
+    assert!(
+        std::fs::read(dir.join("image.png"))
+            .unwrap()
+            .starts_with(b"\x89PNG")
+    );
+    assert_one_line_errors(&[
+        (
+            &[
+                "merge",
+                &path("a.exr"),
+                &path("a.exr"),
+                "-o",
+                &path("x.exr"),
+            ],
+            "overlap",
+        ),
+        (
+            &["merge", &path("image.exr"), "-o", &path("x.exr")],
+            "accumulation",
+        ),
+        (
+            &["merge", &path("missing.exr"), "-o", &path("x.exr")],
+            "missing.exr",
+        ),
+        (
+            &["render", "--sample-range", "5..2", "-o", &path("x.exr")],
+            "sample-range",
+        ),
+        (
+            &["render", "--sample-range", "0..2", "-o", &path("x.png")],
+            "accumulation",
+        ),
+    ]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

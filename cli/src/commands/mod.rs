@@ -2,6 +2,7 @@
 
 pub mod color;
 pub mod info;
+pub mod merge;
 pub mod render;
 pub mod table;
 pub mod upsample;

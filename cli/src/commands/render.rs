@@ -1,12 +1,13 @@
 //! `prism render`: a scene (or the embedded default) to EXR and PNG images.
 
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
 use prism_integrator::{
-    DisplaySettings, ExrMetadata, Filter, LambdaSampler, RenderSettings, encode_exr, encode_png,
-    render,
+    DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings, encode_accumulation,
+    encode_exr, encode_png, render,
 };
 use prism_scene::load::{LoadedGeometry, load_geometry};
 use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
@@ -29,8 +30,12 @@ pub struct RenderArgs {
     #[arg(short = 'o', long = "output", default_value = "prism.png")]
     pub outputs: Vec<PathBuf>,
     /// Samples per pixel.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, conflicts_with = "sample_range")]
     pub spp: u64,
+    /// Render only sample indices A to B-1 of every pixel and write accumulation files
+    /// (.exr only) for `prism merge` (farms: one range per machine).
+    #[arg(long, value_name = "A..B")]
+    pub sample_range: Option<String>,
     /// Image width (default: 512, or the height times the camera's aspect).
     #[arg(long)]
     pub width: Option<u32>,
@@ -97,21 +102,20 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let lambda_sampler =
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
     let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
-    for out in &args.outputs {
-        match out.extension().and_then(|e| e.to_str()) {
-            Some("exr" | "png") => check_writable(out)?,
-            _ => {
-                return Err(format!(
-                    "output '{}': the extension must be .exr or .png",
-                    out.display()
-                ));
-            }
-        }
-    }
+    check_outputs(&args.outputs)?;
     if let Some(e) = args.environment
         && !(e.is_finite() && e >= 0.0)
     {
         return Err(format!("--environment {e} must be finite and >= 0"));
+    }
+    let samples_only = args.sample_range.as_deref().map(parse_range).transpose()?;
+    if samples_only.is_some()
+        && let Some(out) = args.outputs.iter().find(|o| !has_extension(o, "exr"))
+    {
+        return Err(format!(
+            "output '{}': --sample-range writes accumulation files, which must be .exr",
+            out.display()
+        ));
     }
     let started = Instant::now();
     let loaded = load(args.scene.as_deref())?;
@@ -126,7 +130,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let settings = RenderSettings {
         width,
         height,
-        samples: 0..args.spp,
+        samples: samples_only.clone().unwrap_or(0..args.spp),
         seed: args.seed,
         max_depth: args.max_depth,
         wavelengths: args.wavelengths,
@@ -140,26 +144,18 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let render_started = Instant::now();
     let (film, stats) = render(&scene, &settings).map_err(|e| e.to_string())?;
     let seconds = render_started.elapsed().as_secs_f64();
-    let space = space_id.space();
-    for out in &args.outputs {
-        let bytes = if out.extension().and_then(|e| e.to_str()) == Some("exr") {
-            let metadata = ExrMetadata {
-                spp: film.samples(),
-                strings: vec![
-                    ("seed".into(), args.seed.to_string()),
-                    ("wavelengths".into(), args.wavelengths.to_string()),
-                    ("lambda_sampler".into(), args.lambda_sampler.clone()),
-                ],
-            };
-            encode_exr(&film, space, &metadata).map_err(|e| e.to_string())?
-        } else {
-            let display = DisplaySettings {
-                exposure: args.exposure,
-                ..DisplaySettings::default()
-            };
-            encode_png(&film, space, display)
-        };
-        write_atomically(out, &bytes)?;
+    if let Some(range) = &samples_only {
+        let bytes = encode_accumulation(&film, range.clone()).map_err(|e| e.to_string())?;
+        for out in &args.outputs {
+            write_atomically(out, &bytes)?;
+        }
+    } else {
+        let facts = vec![
+            ("seed".into(), args.seed.to_string()),
+            ("wavelengths".into(), args.wavelengths.to_string()),
+            ("lambda_sampler".into(), args.lambda_sampler.clone()),
+        ];
+        write_images(&film, &args.outputs, space_id, args.exposure, facts)?;
     }
     if stats.nonfinite > 0 {
         eprintln!(
@@ -184,6 +180,66 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "lambda_sampler": args.lambda_sampler,
         });
         println!("{json}");
+    }
+    Ok(())
+}
+
+/// `A..B` with A < B.
+fn parse_range(text: &str) -> Result<Range<u64>, String> {
+    let parsed = text
+        .split_once("..")
+        .and_then(|(a, b)| Some(a.trim().parse::<u64>().ok()?..b.trim().parse::<u64>().ok()?));
+    match parsed {
+        Some(r) if r.start < r.end => Ok(r),
+        _ => Err(format!(
+            "--sample-range '{text}': expected A..B with whole numbers A < B"
+        )),
+    }
+}
+
+fn has_extension(path: &Path, extension: &str) -> bool {
+    path.extension().and_then(|e| e.to_str()) == Some(extension)
+}
+
+/// Every output is a .exr or .png file that can be written.
+pub fn check_outputs(outputs: &[PathBuf]) -> Result<(), String> {
+    for out in outputs {
+        if !(has_extension(out, "exr") || has_extension(out, "png")) {
+            return Err(format!(
+                "output '{}': the extension must be .exr or .png",
+                out.display()
+            ));
+        }
+        check_writable(out)?;
+    }
+    Ok(())
+}
+
+/// Writes `film` to every output: .exr as linear RGB in `space` with prism's facts, .png
+/// tone mapped with `exposure`.
+pub fn write_images(
+    film: &Film,
+    outputs: &[PathBuf],
+    space: RgbSpaceId,
+    exposure: f64,
+    facts: Vec<(String, String)>,
+) -> Result<(), String> {
+    let space = space.space();
+    for out in outputs {
+        let bytes = if has_extension(out, "exr") {
+            let metadata = ExrMetadata {
+                spp: film.samples(),
+                strings: facts.clone(),
+            };
+            encode_exr(film, space, &metadata).map_err(|e| e.to_string())?
+        } else {
+            let display = DisplaySettings {
+                exposure,
+                ..DisplaySettings::default()
+            };
+            encode_png(film, space, display)
+        };
+        write_atomically(out, &bytes)?;
     }
     Ok(())
 }
