@@ -32,6 +32,8 @@ enum Command {
     Render(commands::render::RenderArgs),
     /// Merge accumulation files of sample ranges (prism render --sample-range) into an image.
     Merge(commands::merge::MergeArgs),
+    /// Compare an image with a reference: RMSE, relative MSE, PSNR, mean ratios.
+    Compare(commands::compare::CompareArgs),
     /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
     Info(commands::info::InfoArgs),
     /// Fit and inspect RGB-to-spectrum coefficient tables.
@@ -50,6 +52,7 @@ fn main() -> ExitCode {
         Command::Info(args) => commands::info::run(&args),
         Command::Render(args) => commands::render::run(&args),
         Command::Merge(args) => commands::merge::run(&args),
+        Command::Compare(args) => commands::compare::run(&args),
         Command::Table(command) => commands::table::run(&command),
     };
     match result {

@@ -203,3 +203,119 @@ fn sample_ranges_merge_into_the_single_render() {
     ]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn compare_measures_and_thresholds() {
+    let dir = temp_dir("compare");
+    let path = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    for (name, spp, seed) in [
+        ("a.exr", "4", "1"),
+        ("b.exr", "4", "2"),
+        ("c.exr", "64", "3"),
+    ] {
+        let out = prism(&[
+            "render",
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "--spp",
+            spp,
+            "--seed",
+            seed,
+            "-o",
+            &path(name),
+        ]);
+        assert!(out.status.success());
+    }
+    let json = |a: &str, b: &str| -> serde_json::Value {
+        let out = prism(&["compare", &path(a), &path(b), "--json"]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let same = json("a.exr", "a.exr");
+    assert_eq!(same["rmse"], 0.0);
+    assert!(same["psnr"].is_null(), "infinite PSNR is null");
+    // Two 4-spp renders differ more from each other than a 4-spp render from a 64-spp one.
+    let noisy = json("a.exr", "b.exr")["relmse"].as_f64().unwrap();
+    let better = json("a.exr", "c.exr")["relmse"].as_f64().unwrap();
+    assert!(
+        noisy > 0.0 && better > 0.0 && better < noisy,
+        "{better} vs {noisy}"
+    );
+    let ratio = json("a.exr", "c.exr")["mean_ratio"][1].as_f64().unwrap();
+    assert!((ratio - 1.0).abs() < 0.2, "{ratio}");
+    // The threshold decides the exit code.
+    let passing = format!("{}", noisy * 2.0);
+    assert!(
+        prism(&[
+            "compare",
+            &path("a.exr"),
+            &path("b.exr"),
+            "--max-relmse",
+            &passing
+        ])
+        .status
+        .success()
+    );
+    let failing = format!("{}", noisy / 2.0);
+    let out = prism(&[
+        "compare",
+        &path("a.exr"),
+        &path("b.exr"),
+        "--max-relmse",
+        &failing,
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("exceeds"));
+    let out = prism(&[
+        "render",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--spp",
+        "1",
+        "-o",
+        &path("small.exr"),
+    ]);
+    assert!(out.status.success());
+    let out = prism(&[
+        "render",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--sample-range",
+        "0..1",
+        "-o",
+        &path("acc.exr"),
+    ]);
+    assert!(out.status.success());
+    assert_one_line_errors(&[
+        (
+            &["compare", &path("a.exr"), &path("small.exr")],
+            "sizes differ",
+        ),
+        (
+            &["compare", &path("acc.exr"), &path("small.exr")],
+            "prism merge",
+        ),
+        (&["compare", &path("a.exr"), &path("none.exr")], "none.exr"),
+        (
+            &[
+                "compare",
+                &path("a.exr"),
+                &path("a.exr"),
+                "--max-relmse",
+                "nan",
+            ],
+            "max-relmse",
+        ),
+    ]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod color;
+pub mod compare;
 pub mod info;
 pub mod merge;
 pub mod render;

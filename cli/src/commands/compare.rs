@@ -1,0 +1,78 @@
+//! `prism compare`: error measures of an image against a reference, for scripts and CI.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use prism_integrator::{ChannelImage, compare_images, decode_exr};
+
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  prism compare render.exr reference.exr\n  prism compare render.exr reference.exr --json --max-relmse 1e-3   # exits 1 above the threshold\n\nrelmse is the mean of (a - b)^2 / (b^2 + 0.01) over pixels and channels; psnr uses the\nreference's largest value as the peak."
+)]
+pub struct CompareArgs {
+    /// The image to judge (.exr).
+    pub image: PathBuf,
+    /// The reference (.exr) with the same size and channels.
+    pub reference: PathBuf,
+    /// Print one JSON object instead of lines.
+    #[arg(long)]
+    pub json: bool,
+    /// Exit non-zero when the relative MSE exceeds this.
+    #[arg(long)]
+    pub max_relmse: Option<f64>,
+}
+
+fn load(path: &Path) -> Result<ChannelImage, String> {
+    let bytes =
+        std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    let image = decode_exr(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
+    if image.channels.iter().any(|(name, _)| name.ends_with(".hi")) {
+        return Err(format!(
+            "'{}' is an accumulation file: turn it into an image with prism merge first",
+            path.display()
+        ));
+    }
+    Ok(image)
+}
+
+pub fn run(args: &CompareArgs) -> Result<(), String> {
+    if let Some(t) = args.max_relmse
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return Err(format!("--max-relmse {t} must be finite and >= 0"));
+    }
+    let (image, reference) = (load(&args.image)?, load(&args.reference)?);
+    let c = compare_images(&image, &reference).map_err(|e| e.to_string())?;
+    // JSON has no infinity: an exact match's PSNR is null.
+    let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
+    if args.json {
+        let json = serde_json::json!({
+            "channels": c.channels,
+            "rmse": finite(c.rmse),
+            "relmse": finite(c.relmse),
+            "mae": finite(c.mae),
+            "psnr": finite(c.psnr),
+            "max_difference": finite(c.max_difference),
+            "mean_ratio": c.mean_ratio.iter().map(|&v| finite(v)).collect::<Vec<_>>(),
+            "channel_relmse": c.channel_relmse.iter().map(|&v| finite(v)).collect::<Vec<_>>(),
+        });
+        println!("{json}");
+    } else {
+        println!("channels        {}", c.channels.join(", "));
+        println!("rmse            {:.6e}", c.rmse);
+        println!("relmse          {:.6e}", c.relmse);
+        println!("mae             {:.6e}", c.mae);
+        println!("psnr            {:.3} dB", c.psnr);
+        println!("max difference  {:.6e}", c.max_difference);
+        for ((name, ratio), rel) in c.channels.iter().zip(&c.mean_ratio).zip(&c.channel_relmse) {
+            println!("{name:<15} mean ratio {ratio:.6}, relmse {rel:.6e}");
+        }
+    }
+    match args.max_relmse {
+        Some(t) if !(c.relmse <= t) => Err(format!(
+            "relative MSE {:.6e} exceeds --max-relmse {t:e}",
+            c.relmse
+        )),
+        _ => Ok(()),
+    }
+}

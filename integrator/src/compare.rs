@@ -1,0 +1,170 @@
+//! Comparing two images: the error measures renderers are judged by.
+
+use std::io::Cursor;
+
+use exr::prelude::{FlatSamples, ReadChannels, ReadLayers, read};
+
+use crate::RenderError;
+
+/// An image's named channels of f32 samples, row-major.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChannelImage {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Channel names and samples, in the file's (alphabetical) order.
+    pub channels: Vec<(String, Vec<f32>)>,
+}
+
+/// Reads every channel of an EXR's first layer as f32 (f16 and u32 samples converted).
+pub fn decode_exr(bytes: &[u8]) -> Result<ChannelImage, RenderError> {
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(Cursor::new(bytes))
+        .map_err(|e| RenderError::Encode(format!("EXR: {e}")))?;
+    let layer = image.layer_data;
+    let channels = layer
+        .channel_data
+        .list
+        .into_iter()
+        .map(|c| {
+            let samples = match c.sample_data {
+                FlatSamples::F32(v) => v,
+                FlatSamples::F16(v) => v.into_iter().map(f32::from).collect(),
+                FlatSamples::U32(v) => v.into_iter().map(|x| x as f32).collect(),
+            };
+            (c.name.to_string(), samples)
+        })
+        .collect();
+    Ok(ChannelImage {
+        width: layer.size.width(),
+        height: layer.size.height(),
+        channels,
+    })
+}
+
+/// Error measures of an image against a reference, per channel and overall.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// Channel names compared.
+    pub channels: Vec<String>,
+    /// Root mean squared error.
+    pub rmse: f64,
+    /// Relative MSE: mean of (a - b)^2 / (b^2 + 1e-2), the measure of Rousselle et al.
+    /// (2011) used by renderer comparisons; insensitive to absolute scale.
+    pub relmse: f64,
+    /// Mean absolute error.
+    pub mae: f64,
+    /// Peak signal-to-noise ratio in dB, with the reference's maximum as the peak.
+    pub psnr: f64,
+    /// Largest absolute difference.
+    pub max_difference: f64,
+    /// Per channel: mean of the image over mean of the reference.
+    pub mean_ratio: Vec<f64>,
+    /// Per channel: relative MSE.
+    pub channel_relmse: Vec<f64>,
+}
+
+/// Compares `image` against `reference`: both must have the same size and channel names.
+/// Non-finite samples count as the largest error (they make every measure infinite).
+pub fn compare_images(
+    image: &ChannelImage,
+    reference: &ChannelImage,
+) -> Result<Comparison, RenderError> {
+    let bad = |m: String| RenderError::Setting(m);
+    if (image.width, image.height) != (reference.width, reference.height) {
+        return Err(bad(format!(
+            "sizes differ: {}x{} and {}x{}",
+            image.width, image.height, reference.width, reference.height
+        )));
+    }
+    let names = |i: &ChannelImage| i.channels.iter().map(|c| c.0.clone()).collect::<Vec<_>>();
+    if names(image) != names(reference) {
+        return Err(bad(format!(
+            "channels differ: {:?} and {:?}",
+            names(image),
+            names(reference)
+        )));
+    }
+    let n = (image.width * image.height) as f64;
+    let (mut squared, mut relative, mut absolute, mut max_difference) = (0.0, 0.0, 0.0, 0.0f64);
+    let mut peak = 0.0f64;
+    let (mut mean_ratio, mut channel_relmse) = (vec![], vec![]);
+    for ((_, a), (_, b)) in image.channels.iter().zip(&reference.channels) {
+        let (mut sum_a, mut sum_b, mut rel) = (0.0, 0.0, 0.0);
+        for (&x, &y) in a.iter().zip(b) {
+            let (x, y) = (f64::from(x), f64::from(y));
+            let d = x - y;
+            squared += d * d;
+            rel += d * d / (y * y + 1e-2);
+            absolute += d.abs();
+            max_difference = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                max_difference.max(d.abs())
+            };
+            peak = peak.max(y.abs());
+            sum_a += x;
+            sum_b += y;
+        }
+        relative += rel;
+        channel_relmse.push(rel / n);
+        mean_ratio.push(if sum_b == 0.0 {
+            f64::NAN
+        } else {
+            sum_a / sum_b
+        });
+    }
+    let count = n * image.channels.len().max(1) as f64;
+    let mse = squared / count;
+    Ok(Comparison {
+        channels: names(image),
+        rmse: mse.sqrt(),
+        relmse: relative / count,
+        mae: absolute / count,
+        psnr: if mse == 0.0 {
+            f64::INFINITY
+        } else {
+            10.0 * (peak * peak / mse).log10()
+        },
+        max_difference,
+        mean_ratio,
+        channel_relmse,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(values: &[f32]) -> ChannelImage {
+        ChannelImage {
+            width: values.len(),
+            height: 1,
+            channels: vec![("Y".into(), values.to_vec())],
+        }
+    }
+
+    #[test]
+    fn measures_match_their_definitions() {
+        let c =
+            compare_images(&image(&[1.0, 2.0, 3.0, 4.0]), &image(&[1.0, 2.0, 3.0, 2.0])).unwrap();
+        assert_eq!(c.rmse, 1.0); // one difference of 2 among four samples
+        assert_eq!(c.mae, 0.5);
+        assert_eq!(c.max_difference, 2.0);
+        assert!((c.relmse - 4.0 / 4.01 / 4.0).abs() < 1e-12);
+        assert!((c.psnr - 10.0 * (9.0f64).log10()).abs() < 1e-12);
+        assert!((c.mean_ratio[0] - 10.0 / 8.0).abs() < 1e-12);
+        let same = compare_images(&image(&[1.0, 2.0]), &image(&[1.0, 2.0])).unwrap();
+        assert_eq!(
+            (same.rmse, same.relmse, same.psnr),
+            (0.0, 0.0, f64::INFINITY)
+        );
+        assert!(compare_images(&image(&[1.0]), &image(&[1.0, 2.0])).is_err());
+    }
+}
