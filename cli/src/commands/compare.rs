@@ -69,7 +69,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         }
     }
     match args.max_relmse {
-        Some(t) if !(c.relmse <= t) => Err(format!(
+        Some(t) if c.relmse.is_nan() || c.relmse > t => Err(format!(
             "relative MSE {:.6e} exceeds --max-relmse {t:e}",
             c.relmse
         )),
