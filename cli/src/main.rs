@@ -7,6 +7,7 @@
 mod commands;
 mod output;
 mod scene_file;
+mod session;
 mod spectrum_spec;
 mod table_cache;
 
@@ -29,7 +30,7 @@ enum Command {
     /// Turn RGB colours into sigmoid-polynomial spectra (Jakob and Hanika 2019).
     Upsample(commands::upsample::UpsampleArgs),
     /// Render a glTF scene (or the embedded Cornell box) to EXR and PNG images.
-    Render(commands::render::RenderArgs),
+    Render(Box<commands::render::RenderArgs>),
     /// Merge accumulation files of sample ranges (prism render --sample-range) into an image.
     Merge(commands::merge::MergeArgs),
     /// Compare an image with a reference: RMSE, relative MSE, PSNR, mean ratios.

@@ -26,10 +26,17 @@ pub struct Accumulation {
     pub film: Film,
     /// Sample indices rendered in every pixel (merged files: the hull of their ranges).
     pub samples: Range<u64>,
+    /// What the caller recorded about the render's settings (checked on resume and merge).
+    pub settings: String,
 }
 
-/// The film of sample range `samples` as accumulation-file bytes.
-pub fn encode_accumulation(film: &Film, samples: Range<u64>) -> Result<Vec<u8>, RenderError> {
+/// The film of sample range `samples` as accumulation-file bytes, with `settings` (any
+/// text) recorded for [`decode_accumulation`] to return.
+pub fn encode_accumulation(
+    film: &Film,
+    samples: Range<u64>,
+    settings: &str,
+) -> Result<Vec<u8>, RenderError> {
     let (w, h) = (film.width() as usize, film.height() as usize);
     let channel = |name: &str, k: usize, high: bool| {
         let bits = film.sums().iter().map(|s| {
@@ -50,8 +57,10 @@ pub fn encode_accumulation(film: &Film, samples: Range<u64>) -> Result<Vec<u8>, 
         AnyChannels::sort(SmallVec::from_vec(list)),
     );
     let mut image = Image::from_layer(layer);
+    // One attribute (the exr crate orders extra attributes by a HashMap); the settings come
+    // last and run to its end, so they may contain any character.
     let facts = format!(
-        "samples={};nonfinite={};range={}..{}",
+        "samples={};nonfinite={};range={}..{};settings={settings}",
         film.samples(),
         film.nonfinite(),
         samples.start,
@@ -101,6 +110,9 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             .ok_or_else(|| bad(format!("attribute {FACTS} lacks {key}")))
     };
     let (samples, nonfinite) = (number("samples")?, number("nonfinite")?);
+    let settings = facts
+        .split_once(";settings=")
+        .map_or_else(String::new, |(_, s)| s.to_string());
     let range = fact(&facts, "range")
         .and_then(|r| r.split_once(".."))
         .and_then(|(a, b)| Some(a.parse::<u64>().ok()?..b.parse::<u64>().ok()?))
@@ -141,15 +153,23 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
     Ok(Accumulation {
         film,
         samples: range,
+        settings,
     })
 }
 
 /// Merges accumulation files of disjoint sample ranges of one image: their sums add up to
-/// the film of the union of the ranges. Sizes must match and ranges must not overlap.
+/// the film of the union of the ranges. Sizes and settings must match and ranges must not
+/// overlap.
 pub fn merge_accumulations(parts: &[Accumulation]) -> Result<Accumulation, RenderError> {
     let first = parts
         .first()
         .ok_or_else(|| RenderError::Setting("nothing to merge".into()))?;
+    if let Some(other) = parts.iter().find(|p| p.settings != first.settings) {
+        return Err(RenderError::Setting(format!(
+            "parts were rendered with different settings: '{}' and '{}'",
+            first.settings, other.settings
+        )));
+    }
     let mut ranges: Vec<&Range<u64>> = parts.iter().map(|p| &p.samples).collect();
     ranges.sort_by_key(|r| r.start);
     for pair in ranges.windows(2) {
@@ -170,5 +190,6 @@ pub fn merge_accumulations(parts: &[Accumulation]) -> Result<Accumulation, Rende
     Ok(Accumulation {
         film,
         samples: ranges[0].start..ranges[ranges.len() - 1].end,
+        settings: first.settings.clone(),
     })
 }

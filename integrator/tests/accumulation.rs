@@ -16,7 +16,7 @@ fn part(range: std::ops::Range<u64>) -> prism_integrator::Accumulation {
         ..RenderSettings::default()
     };
     let (film, _) = render(&cornell(), &settings).unwrap();
-    decode_accumulation(&encode_accumulation(&film, range).unwrap()).unwrap()
+    decode_accumulation(&encode_accumulation(&film, range, "box; seed=0").unwrap()).unwrap()
 }
 
 #[test]
@@ -28,9 +28,13 @@ fn round_trip_is_lossless() {
         ..RenderSettings::default()
     };
     let (film, _) = render(&cornell(), &settings).unwrap();
-    let back = decode_accumulation(&encode_accumulation(&film, 3..5).unwrap()).unwrap();
+    let back = decode_accumulation(&encode_accumulation(&film, 3..5, "a;b=c").unwrap()).unwrap();
     assert_eq!(back.film, film, "every f64 bit survives");
     assert_eq!(back.samples, 3..5);
+    assert_eq!(
+        back.settings, "a;b=c",
+        "settings survive, separators and all"
+    );
 }
 
 #[test]
@@ -52,6 +56,10 @@ fn merged_ranges_equal_the_whole_render() {
     let e = merge_accumulations(&[part(0..3), part(2..4)]).unwrap_err();
     assert!(e.to_string().contains("overlap"), "{e}");
     assert!(merge_accumulations(&[]).is_err());
+    let mut other = part(5..6);
+    other.settings = "bunny".into();
+    let e = merge_accumulations(&[part(0..1), other]).unwrap_err();
+    assert!(e.to_string().contains("different settings"), "{e}");
 }
 
 #[test]
@@ -63,7 +71,7 @@ fn anything_else_is_an_error_not_a_panic() {
         ..RenderSettings::default()
     };
     let (film, _) = render(&cornell(), &settings).unwrap();
-    let good = encode_accumulation(&film, 0..1).unwrap();
+    let good = encode_accumulation(&film, 0..1, "").unwrap();
     // An ordinary RGB EXR is not an accumulation file.
     let rgb = prism_integrator::encode_exr(
         &film,

@@ -45,8 +45,8 @@ pub fn run(args: &MergeArgs) -> Result<(), String> {
         .collect::<Result<Vec<_>, String>>()?;
     let merged = merge_accumulations(&parts).map_err(|e| e.to_string())?;
     if args.accumulation {
-        let bytes =
-            encode_accumulation(&merged.film, merged.samples.clone()).map_err(|e| e.to_string())?;
+        let bytes = encode_accumulation(&merged.film, merged.samples.clone(), &merged.settings)
+            .map_err(|e| e.to_string())?;
         for out in &args.outputs {
             if out.extension().and_then(|e| e.to_str()) != Some("exr") {
                 return Err(format!(

@@ -2,18 +2,21 @@
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant};
 
 use clap::Args;
 use prism_integrator::{
-    DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings, encode_accumulation,
-    encode_exr, encode_png, render,
+    DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings, decode_accumulation,
+    encode_accumulation, encode_exr, encode_png,
 };
 use prism_scene::load::{LoadedGeometry, load_geometry};
 use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
 use prism_spectrum::color::RgbSpaceId;
 
 use crate::output::{check_writable, write_atomically};
+use crate::session::{self, Ending, Outcome, SessionOptions};
 
 /// The scene `prism render` renders without a SCENE argument: the repository's Cornell box.
 const DEFAULT_GLTF: &[u8] = include_bytes!("../../../scenes/cornell-box.gltf");
@@ -76,6 +79,20 @@ pub struct RenderArgs {
     /// PNG exposure in stops.
     #[arg(long, default_value_t = 0.0)]
     pub exposure: f64,
+    /// Stop at the first whole sample per pixel after this many seconds.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub time: Option<f64>,
+    /// Write a checkpoint (an accumulation file OUTPUT.checkpoint.exr next to the first
+    /// output) this often, and when the render stops early.
+    #[arg(long, value_name = "SECONDS")]
+    pub checkpoint: Option<f64>,
+    /// Continue the render a checkpoint holds (same scene and settings); the result equals
+    /// the uninterrupted render.
+    #[arg(long, value_name = "CHECKPOINT")]
+    pub resume: Option<PathBuf>,
+    /// No progress output.
+    #[arg(long, short)]
+    pub quiet: bool,
     /// Print one JSON object of statistics on stdout after the render.
     #[arg(long)]
     pub stats: bool,
@@ -141,11 +158,43 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
-    let render_started = Instant::now();
-    let (film, stats) = render(&scene, &settings).map_err(|e| e.to_string())?;
-    let seconds = render_started.elapsed().as_secs_f64();
-    if let Some(range) = &samples_only {
-        let bytes = encode_accumulation(&film, range.clone()).map_err(|e| e.to_string())?;
+    let seconds_arg = |name: &str, v: Option<f64>| match v {
+        Some(s) if !(s.is_finite() && s >= 0.0) => {
+            Err(format!("--{name} {s} must be finite and >= 0 seconds"))
+        }
+        _ => Ok(v.map(Duration::from_secs_f64)),
+    };
+    let time_budget = seconds_arg("time", args.time)?;
+    let checkpoint_every = seconds_arg("checkpoint", args.checkpoint)?;
+    let range = settings.samples.clone();
+    let fingerprint = fingerprint(args, width, height);
+    let film = match &args.resume {
+        None => Film::new(width, height),
+        Some(path) => resume(path, &fingerprint, &range)?,
+    };
+    let checkpoint = checkpoint_every.map(|every| {
+        let first = &args.outputs[0];
+        let mut name = first.file_name().unwrap_or_default().to_os_string();
+        name.push(".checkpoint.exr");
+        (every, first.with_file_name(name))
+    });
+    let options = SessionOptions {
+        time_budget,
+        checkpoint,
+        quiet: args.quiet,
+        fingerprint: fingerprint.clone(),
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    session::stop_on_signals(&cancel)?;
+    let Outcome {
+        film,
+        stats,
+        ending,
+        seconds,
+    } = session::run(&scene, &settings, range.clone(), film, &options, &cancel)?;
+    if samples_only.is_some() {
+        let done = range.start..range.start + film.samples();
+        let bytes = encode_accumulation(&film, done, &fingerprint).map_err(|e| e.to_string())?;
         for out in &args.outputs {
             write_atomically(out, &bytes)?;
         }
@@ -175,13 +224,77 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "rays": stats.rays,
             "rays_per_second": stats.rays as f64 / seconds.max(1e-9),
             "nonfinite_samples": stats.nonfinite,
+            "ending": format!("{ending:?}"),
             "peak_memory_bytes": peak_memory_bytes(),
             "wavelengths": args.wavelengths,
             "lambda_sampler": args.lambda_sampler,
         });
         println!("{json}");
     }
-    Ok(())
+    match ending {
+        Ending::Complete => Ok(()),
+        Ending::TimeBudget => {
+            if !args.quiet {
+                eprintln!(
+                    "prism: time budget reached at {} spp of {}",
+                    film.samples(),
+                    range.end - range.start
+                );
+            }
+            Ok(())
+        }
+        Ending::Interrupted => {
+            eprintln!(
+                "prism: interrupted at {} spp of {}; the image so far was written",
+                film.samples(),
+                range.end - range.start
+            );
+            std::process::exit(130);
+        }
+    }
+}
+
+/// What must match for a checkpoint to be resumed or parts merged.
+fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
+    format!(
+        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?}",
+        args.scene
+            .as_ref()
+            .map_or("(default)".into(), |p| p.display().to_string()),
+        args.camera,
+        args.seed,
+        args.max_depth,
+        args.wavelengths,
+        args.lambda_sampler,
+        args.filter,
+        args.clamp,
+        args.environment
+    )
+}
+
+/// The film of a checkpoint, checked against this render's settings and range.
+fn resume(path: &Path, fingerprint: &str, range: &Range<u64>) -> Result<Film, String> {
+    let bytes =
+        std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    let saved = decode_accumulation(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
+    if saved.settings != fingerprint {
+        return Err(format!(
+            "'{}' was rendered with other settings ({}) than this render ({fingerprint})",
+            path.display(),
+            saved.settings
+        ));
+    }
+    if saved.samples.start != range.start || saved.samples.end > range.end {
+        return Err(format!(
+            "'{}' holds samples {}..{}, not a start of {}..{}",
+            path.display(),
+            saved.samples.start,
+            saved.samples.end,
+            range.start,
+            range.end
+        ));
+    }
+    Ok(saved.film)
 }
 
 /// `A..B` with A < B.

@@ -1,0 +1,160 @@
+//! A render as a session a person runs for minutes or days: passes of one sample per
+//! pixel, so it can stop at any sample boundary (time budget, SIGINT or SIGTERM), report
+//! progress, write checkpoints, and resume, while the image stays exactly the one an
+//! uninterrupted render makes: the film adds each pass's sums in sample order, which is
+//! the order a single render adds them in.
+
+use std::io::IsTerminal;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use prism_integrator::{Film, RenderSettings, RenderStats, encode_accumulation, render_into};
+use prism_scene::world::Scene;
+
+use crate::output::write_atomically;
+
+/// How a session runs besides the render settings.
+pub struct SessionOptions {
+    /// Stop at the first sample boundary after this long.
+    pub time_budget: Option<Duration>,
+    /// Write an accumulation file here every so often, and when the session ends.
+    pub checkpoint: Option<(Duration, PathBuf)>,
+    /// No progress output.
+    pub quiet: bool,
+    /// The settings fingerprint recorded in checkpoints.
+    pub fingerprint: String,
+}
+
+/// Why a session ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ending {
+    /// Every sample was rendered.
+    Complete,
+    /// The time budget ran out.
+    TimeBudget,
+    /// SIGINT or SIGTERM.
+    Interrupted,
+}
+
+/// The outcome: the film (holding `samples.start..film.samples() + start`), counters, why.
+pub struct Outcome {
+    pub film: Film,
+    pub stats: RenderStats,
+    pub ending: Ending,
+    pub seconds: f64,
+}
+
+/// Renders `range` (continuing `film`, which already holds `range.start..done`) one sample
+/// per pixel at a time until done, out of time, or `cancel` is set.
+pub fn run(
+    scene: &Scene,
+    settings: &RenderSettings,
+    range: Range<u64>,
+    mut film: Film,
+    options: &SessionOptions,
+    cancel: &AtomicBool,
+) -> Result<Outcome, String> {
+    let started = Instant::now();
+    let mut stats = RenderStats::default();
+    let mut last_checkpoint = Instant::now();
+    let mut last_log = Instant::now();
+    let terminal = std::io::stderr().is_terminal();
+    let first = range.start + film.samples();
+    let mut ending = Ending::Complete;
+    for s in first..range.end {
+        if cancel.load(Ordering::Relaxed) {
+            ending = Ending::Interrupted;
+            break;
+        }
+        if options
+            .time_budget
+            .is_some_and(|budget| started.elapsed() >= budget)
+        {
+            ending = Ending::TimeBudget;
+            break;
+        }
+        let pass = RenderSettings {
+            samples: s..s + 1,
+            ..settings.clone()
+        };
+        match render_into(scene, &pass, &mut film, cancel).map_err(|e| e.to_string())? {
+            Some(p) => {
+                stats.paths += p.paths;
+                stats.rays += p.rays;
+                stats.nonfinite += p.nonfinite;
+            }
+            None => {
+                ending = Ending::Interrupted;
+                break;
+            }
+        }
+        let done = s + 1 - range.start;
+        let total = range.end - range.start;
+        if let Some((every, path)) = &options.checkpoint
+            && last_checkpoint.elapsed() >= *every
+            && s + 1 < range.end
+        {
+            write_checkpoint(&film, range.start, path, &options.fingerprint)?;
+            last_checkpoint = Instant::now();
+        }
+        if !options.quiet {
+            let elapsed = started.elapsed().as_secs_f64();
+            let rendered = (s + 1 - first) as f64;
+            let eta = elapsed / rendered * (range.end - s - 1) as f64;
+            let rate = stats.paths as f64 / elapsed.max(1e-9) / 1e6;
+            if terminal {
+                let width = 30;
+                let filled = (done * width / total) as usize;
+                eprint!(
+                    "\r[{}{}] {done}/{total} spp  {rate:.2} M paths/s  ETA {eta:.0} s   ",
+                    "#".repeat(filled),
+                    " ".repeat(width as usize - filled)
+                );
+            } else if last_log.elapsed() >= Duration::from_secs(10) || s + 1 == range.end {
+                eprintln!(
+                    "prism: {done}/{total} spp, {elapsed:.1} s, {rate:.2} M paths/s, ETA {eta:.0} s"
+                );
+                last_log = Instant::now();
+            }
+        }
+    }
+    if terminal && !options.quiet {
+        eprintln!();
+    }
+    // Also when complete: a checkpoint can be resumed with a larger --spp.
+    if let Some((_, path)) = &options.checkpoint {
+        write_checkpoint(&film, range.start, path, &options.fingerprint)?;
+    }
+    Ok(Outcome {
+        film,
+        stats,
+        ending,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+fn write_checkpoint(film: &Film, start: u64, path: &Path, fingerprint: &str) -> Result<(), String> {
+    let bytes = encode_accumulation(film, start..start + film.samples(), fingerprint)
+        .map_err(|e| e.to_string())?;
+    write_atomically(path, &bytes)
+}
+
+/// Sets `cancel` on SIGINT and SIGTERM; a second one while it is set exits at once with
+/// status 130.
+pub fn stop_on_signals(cancel: &std::sync::Arc<AtomicBool>) -> Result<(), String> {
+    #[cfg(unix)]
+    {
+        use signal_hook::consts::{SIGINT, SIGTERM};
+        for signal in [SIGINT, SIGTERM] {
+            // Registered first, so it sees the flag before this signal sets it.
+            signal_hook::flag::register_conditional_shutdown(signal, 130, cancel.clone())
+                .and_then(|_| signal_hook::flag::register(signal, cancel.clone()))
+                .map_err(|e| format!("cannot handle signals: {e}"))?;
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = cancel;
+    Ok(())
+}

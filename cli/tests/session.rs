@@ -1,0 +1,186 @@
+//! End-to-end tests of render sessions: time budget, interruption, checkpoints and resume.
+
+mod common;
+
+use std::process::{Command, Stdio};
+
+use common::{assert_one_line_errors, prism};
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("prism-session-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+const SIZE: [&str; 4] = ["--width", "24", "--height", "16"];
+
+fn render(extra: &[&str]) -> std::process::Output {
+    let mut args = vec!["render", "-q"];
+    args.extend(SIZE);
+    args.extend(extra);
+    prism(&args)
+}
+
+/// The `prism` attribute of an EXR: `spp=N;...` (headers are uncompressed text).
+fn spp_in_header(path: &std::path::Path) -> u64 {
+    let bytes = std::fs::read(path).unwrap();
+    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]).to_string();
+    let at = text.find("spp=").expect("spp in the header") + 4;
+    text[at..]
+        .chars()
+        .take_while(char::is_ascii_digit)
+        .collect::<String>()
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn checkpoint_and_resume_equal_the_uninterrupted_render() {
+    let dir = temp_dir("resume");
+    let p = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    assert!(
+        render(&["--spp", "7", "-o", &p("full.exr")])
+            .status
+            .success()
+    );
+    // A render stopped after 3 spp leaves a checkpoint; resuming to 7 gives the same file.
+    assert!(
+        render(&["--spp", "3", "--checkpoint", "0", "-o", &p("part.exr")])
+            .status
+            .success()
+    );
+    let checkpoint = p("part.exr.checkpoint.exr");
+    let out = render(&[
+        "--spp",
+        "7",
+        "--resume",
+        &checkpoint,
+        "-o",
+        &p("resumed.exr"),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        std::fs::read(dir.join("full.exr")).unwrap(),
+        std::fs::read(dir.join("resumed.exr")).unwrap(),
+        "byte-identical"
+    );
+    assert_eq!(spp_in_header(&dir.join("resumed.exr")), 7);
+    // Other settings, or a checkpoint past the requested range, are refused.
+    assert_one_line_errors(&[
+        (
+            &[
+                "render",
+                "--spp",
+                "7",
+                "--seed",
+                "9",
+                "--resume",
+                &checkpoint,
+                "-o",
+                &p("x.exr"),
+            ],
+            "other settings",
+        ),
+        (
+            &[
+                "render",
+                "--width",
+                "24",
+                "--height",
+                "16",
+                "--spp",
+                "2",
+                "--resume",
+                &checkpoint,
+                "-o",
+                &p("x.exr"),
+            ],
+            "not a start",
+        ),
+        (
+            &["render", "--resume", &p("missing.exr"), "-o", &p("x.exr")],
+            "missing.exr",
+        ),
+        (&["render", "--time", "-1", "-o", &p("x.exr")], "--time"),
+        (
+            &["render", "--checkpoint", "nan", "-o", &p("x.exr")],
+            "--checkpoint",
+        ),
+    ]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn time_budget_stops_at_a_sample_boundary() {
+    let dir = temp_dir("time");
+    let out_path = dir.join("t.exr");
+    let out = render(&[
+        "--spp",
+        "1000000",
+        "--time",
+        "0.5",
+        "--stats",
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stats: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(stats["ending"], "TimeBudget");
+    let spp = stats["spp"].as_u64().unwrap();
+    assert!(spp < 1_000_000);
+    assert_eq!(
+        spp_in_header(&out_path),
+        spp,
+        "the header says how far it got"
+    );
+    assert_eq!(
+        stats["paths"].as_u64().unwrap(),
+        spp * 24 * 16,
+        "whole samples only"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[cfg(unix)]
+#[test]
+fn sigint_writes_the_image_so_far_and_says_so() {
+    let dir = temp_dir("sigint");
+    let out_path = dir.join("i.exr");
+    let child = Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args([
+            "render",
+            "-q",
+            "--width",
+            "24",
+            "--height",
+            "16",
+            "--spp",
+            "100000000",
+            "-o",
+        ])
+        .arg(&out_path)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "exit code says interrupted");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    let spp = spp_in_header(&out_path);
+    assert!(spp < 100_000_000, "{spp}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
