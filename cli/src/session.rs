@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use prism_integrator::{Film, RenderSettings, RenderStats, encode_accumulation, render_into};
+use prism_integrator::{Film, RenderSettings, RenderStats, Renderer, encode_accumulation};
 use prism_scene::world::Scene;
 
 use crate::output::write_atomically;
@@ -62,6 +62,7 @@ pub fn run(
     let mut last_log = Instant::now();
     let terminal = std::io::stderr().is_terminal();
     let first = range.start + film.samples();
+    let renderer = Renderer::new(scene, settings).map_err(|e| e.to_string())?;
     let mut ending = Ending::Complete;
     for s in first..range.end {
         if cancel.load(Ordering::Relaxed) {
@@ -75,11 +76,10 @@ pub fn run(
             ending = Ending::TimeBudget;
             break;
         }
-        let pass = RenderSettings {
-            samples: s..s + 1,
-            ..settings.clone()
-        };
-        match render_into(scene, &pass, &mut film, cancel).map_err(|e| e.to_string())? {
+        match renderer
+            .render_into(s..s + 1, &mut film, cancel)
+            .map_err(|e| e.to_string())?
+        {
             Some(p) => {
                 stats.paths += p.paths;
                 stats.rays += p.rays;

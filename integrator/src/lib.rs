@@ -49,5 +49,5 @@ pub use error::RenderError;
 pub use film::Film;
 pub use filter::Filter;
 pub use image::{DisplaySettings, ExrMetadata, encode_exr, encode_png};
-pub use render::{RenderStats, render, render_into};
+pub use render::{RenderStats, Renderer, render, render_into};
 pub use settings::{LambdaSampler, RenderSettings};

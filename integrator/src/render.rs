@@ -5,7 +5,10 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use glam::Vec2;
 use prism_sampling::stream::{SampleStream, SobolStream};
-use prism_scene::world::{Light, Scene};
+use std::ops::Range;
+
+use prism_sampling::wavelength::WavelengthDistribution;
+use prism_scene::world::{Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
@@ -24,95 +27,143 @@ pub struct RenderStats {
     pub nonfinite: u64,
 }
 
-/// Renders `settings.samples` of every pixel into `film` (which must have the settings'
-/// size). `cancel` is polled between rows: when set, the render stops and returns
-/// `Ok(None)` leaving `film` as it was, so a caller stopping at a sample boundary never
-/// keeps a partial pass.
+/// Everything a render sets up once (the wavelength distribution, the filter table, the
+/// thread pool), so that rendering in many passes costs no more than rendering in one.
+pub struct Renderer<'a> {
+    scene: &'a Scene,
+    settings: RenderSettings,
+    distribution: WavelengthDistribution,
+    filter: FilterSampler,
+    pool: rayon::ThreadPool,
+}
+
+impl<'a> Renderer<'a> {
+    /// Checks `settings` and prepares to render `scene` with them (`settings.samples` is
+    /// ignored: each call to [`Renderer::render_into`] names its samples).
+    pub fn new(scene: &'a Scene, settings: &RenderSettings) -> Result<Self, RenderError> {
+        settings.validate()?;
+        let light_spectra: Vec<&SceneSpectrum> = scene
+            .lights()
+            .all()
+            .iter()
+            .filter_map(|l| match l {
+                Light::Point { intensity: s, .. }
+                | Light::Spot { intensity: s, .. }
+                | Light::Directional { irradiance: s, .. }
+                | Light::Environment { radiance: s } => Some(s),
+                Light::Triangle { .. } => None,
+            })
+            .chain(scene.emission_spectra())
+            .collect();
+        let closures: Vec<Box<dyn Fn(f64) -> f64 + '_>> = light_spectra
+            .iter()
+            .map(|s| Box::new(move |x| s.evaluate(x)) as Box<dyn Fn(f64) -> f64>)
+            .collect();
+        let spectra: Vec<&dyn Fn(f64) -> f64> = closures.iter().map(|b| &**b).collect();
+        let distribution = settings.distribution(&spectra)?;
+        let filter = FilterSampler::new(settings.filter)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(settings.threads)
+            .build()
+            .map_err(|e| RenderError::Setting(format!("thread pool: {e}")))?;
+        Ok(Self {
+            scene,
+            settings: settings.clone(),
+            distribution,
+            filter,
+            pool,
+        })
+    }
+
+    /// Renders sample indices `samples` of every pixel into `film` (which must have the
+    /// settings' size). `cancel` is polled between rows: when set, the render stops and
+    /// returns `Ok(None)` leaving `film` as it was, so a caller stopping at a sample
+    /// boundary never keeps a partial pass.
+    pub fn render_into(
+        &self,
+        samples: Range<u64>,
+        film: &mut Film,
+        cancel: &AtomicBool,
+    ) -> Result<Option<RenderStats>, RenderError> {
+        let settings = &self.settings;
+        if (film.width(), film.height()) != (settings.width, settings.height) {
+            return Err(RenderError::Setting(format!(
+                "film is {}x{} but the settings ask for {}x{}",
+                film.width(),
+                film.height(),
+                settings.width,
+                settings.height
+            )));
+        }
+        let tracer = Tracer {
+            scene: self.scene,
+            distribution: &self.distribution,
+            scheme: settings.scheme,
+            observer: settings.observer,
+            max_depth: settings.max_depth.unwrap_or(u32::MAX),
+        };
+        let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
+        let mut pass = Film::new(settings.width, settings.height);
+        let trace = match settings.wavelengths {
+            1 => trace_row::<1>,
+            2 => trace_row::<2>,
+            4 => trace_row::<4>,
+            8 => trace_row::<8>,
+            _ => trace_row::<16>,
+        };
+        let rows = Rows {
+            width: settings.width,
+            height: settings.height,
+            seed: settings.seed,
+            clamp: settings.clamp,
+            samples: samples.clone(),
+        };
+        self.pool.install(|| {
+            let width = settings.width as usize;
+            pass.sums_mut()
+                .par_chunks_mut(width)
+                .enumerate()
+                .for_each(|(y, row)| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, row);
+                    rays.fetch_add(r, Ordering::Relaxed);
+                    nonfinite.fetch_add(n, Ordering::Relaxed);
+                });
+        });
+        if cancel.load(Ordering::Relaxed) {
+            return Ok(None);
+        }
+        let count = samples.end.saturating_sub(samples.start);
+        let nonfinite = nonfinite.into_inner();
+        pass.finish_pass(count, nonfinite);
+        film.merge(&pass).map_err(RenderError::Setting)?;
+        Ok(Some(RenderStats {
+            paths: count * u64::from(settings.width) * u64::from(settings.height),
+            rays: rays.into_inner(),
+            nonfinite,
+        }))
+    }
+}
+
+/// What a row's samples depend on besides the tracer.
+struct Rows {
+    width: u32,
+    height: u32,
+    seed: u64,
+    clamp: Option<f64>,
+    samples: Range<u64>,
+}
+
+/// Renders `settings.samples` of every pixel into `film`: a [`Renderer`] for one pass.
 pub fn render_into(
     scene: &Scene,
     settings: &RenderSettings,
     film: &mut Film,
     cancel: &AtomicBool,
 ) -> Result<Option<RenderStats>, RenderError> {
-    settings.validate()?;
-    if (film.width(), film.height()) != (settings.width, settings.height) {
-        return Err(RenderError::Setting(format!(
-            "film is {}x{} but the settings ask for {}x{}",
-            film.width(),
-            film.height(),
-            settings.width,
-            settings.height
-        )));
-    }
-    let light_spectra: Vec<Box<dyn Fn(f64) -> f64 + '_>> = scene
-        .lights()
-        .all()
-        .iter()
-        .filter_map(|l| match l {
-            Light::Point { intensity: s, .. }
-            | Light::Spot { intensity: s, .. }
-            | Light::Directional { irradiance: s, .. }
-            | Light::Environment { radiance: s } => {
-                Some(Box::new(move |x| s.evaluate(x)) as Box<dyn Fn(f64) -> f64>)
-            }
-            Light::Triangle { .. } => None,
-        })
-        .collect();
-    let emitters = scene.emission_spectra();
-    let mut spectra: Vec<&dyn Fn(f64) -> f64> = light_spectra.iter().map(|b| &**b).collect();
-    let emitter_fns: Vec<Box<dyn Fn(f64) -> f64 + '_>> = emitters
-        .iter()
-        .map(|s| Box::new(move |x| s.evaluate(x)) as Box<dyn Fn(f64) -> f64>)
-        .collect();
-    spectra.extend(emitter_fns.iter().map(|b| &**b));
-    let distribution = settings.distribution(&spectra)?;
-    let tracer = Tracer {
-        scene,
-        distribution: &distribution,
-        scheme: settings.scheme,
-        observer: settings.observer,
-        max_depth: settings.max_depth.unwrap_or(u32::MAX),
-    };
-    let filter = FilterSampler::new(settings.filter)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(settings.threads)
-        .build()
-        .map_err(|e| RenderError::Setting(format!("thread pool: {e}")))?;
-    let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
-    let mut pass = Film::new(settings.width, settings.height);
-    let trace = match settings.wavelengths {
-        1 => trace_row::<1>,
-        2 => trace_row::<2>,
-        4 => trace_row::<4>,
-        8 => trace_row::<8>,
-        _ => trace_row::<16>,
-    };
-    pool.install(|| {
-        let width = settings.width as usize;
-        pass.sums_mut()
-            .par_chunks_mut(width)
-            .enumerate()
-            .for_each(|(y, row)| {
-                if cancel.load(Ordering::Relaxed) {
-                    return;
-                }
-                let (r, n) = trace(&tracer, &filter, settings, y as u32, row);
-                rays.fetch_add(r, Ordering::Relaxed);
-                nonfinite.fetch_add(n, Ordering::Relaxed);
-            });
-    });
-    if cancel.load(Ordering::Relaxed) {
-        return Ok(None);
-    }
-    let samples = settings.samples.end - settings.samples.start;
-    let nonfinite = nonfinite.into_inner();
-    pass.finish_pass(samples, nonfinite);
-    film.merge(&pass).map_err(RenderError::Setting)?;
-    Ok(Some(RenderStats {
-        paths: samples * u64::from(settings.width) * u64::from(settings.height),
-        rays: rays.into_inner(),
-        nonfinite,
-    }))
+    Renderer::new(scene, settings)?.render_into(settings.samples.clone(), film, cancel)
 }
 
 /// Renders a whole image: `render_into` a fresh film, never cancelled.
@@ -130,7 +181,7 @@ pub fn render(
 fn trace_row<const N: usize>(
     tracer: &Tracer,
     filter: &FilterSampler,
-    settings: &RenderSettings,
+    settings: &Rows,
     y: u32,
     row: &mut [[f64; 3]],
 ) -> (u64, u64) {
