@@ -5,6 +5,7 @@
 //! code: 2 for a malformed command line, 1 for anything else.
 
 mod commands;
+mod memory;
 mod output;
 mod scene_file;
 mod session;

@@ -102,6 +102,10 @@ fn bad_input_is_one_clear_line() {
         (&["render", "--wavelengths", "3", "-o", out], "wavelengths"),
         (&["render", "--width", "0", "-o", out], "empty"),
         (
+            &["render", "--width", "40000", "--height", "40000", "-o", out],
+            "GiB available",
+        ),
+        (
             &[
                 "render", "--width", "100000", "--height", "100000", "-o", out,
             ],

@@ -151,8 +151,15 @@ fn time_budget_stops_at_a_sample_boundary() {
 
 #[cfg(unix)]
 #[test]
-fn sigint_writes_the_image_so_far_and_says_so() {
-    let dir = temp_dir("sigint");
+fn sigint_and_sigterm_write_the_image_so_far_and_say_so() {
+    for signal in ["-INT", "-TERM"] {
+        stop_with(signal);
+    }
+}
+
+#[cfg(unix)]
+fn stop_with(signal: &str) {
+    let dir = temp_dir(&format!("signal{signal}"));
     let out_path = dir.join("i.exr");
     let child = Command::new(env!("CARGO_BIN_EXE_prism"))
         .args([
@@ -172,7 +179,7 @@ fn sigint_writes_the_image_so_far_and_says_so() {
         .unwrap();
     std::thread::sleep(std::time::Duration::from_millis(1500));
     let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([signal, &child.id().to_string()])
         .status()
         .unwrap();
     assert!(status.success());

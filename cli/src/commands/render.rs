@@ -106,14 +106,6 @@ fn load(path: Option<&Path>) -> Result<LoadedGeometry, String> {
     }
 }
 
-/// The peak resident memory of this process, from /proc (Linux); None elsewhere.
-fn peak_memory_bytes() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
-}
-
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let space_id = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
     let lambda_sampler =
@@ -158,6 +150,17 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
+    // The film, one pass's film and the output's RGB: 24 + 24 + 12 bytes per pixel.
+    let film_bytes = u64::from(width) * u64::from(height) * 60;
+    if let Some(available) = crate::memory::available_bytes()
+        && film_bytes > available
+    {
+        return Err(format!(
+            "a {width}x{height} image needs {:.1} GiB for its film, more than the {:.1} GiB available",
+            film_bytes as f64 / f64::from(1u32 << 30),
+            available as f64 / f64::from(1u32 << 30)
+        ));
+    }
     let seconds_arg = |name: &str, v: Option<f64>| match v {
         Some(s) if !(s.is_finite() && s >= 0.0) => {
             Err(format!("--{name} {s} must be finite and >= 0 seconds"))
@@ -225,7 +228,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "rays_per_second": stats.rays as f64 / seconds.max(1e-9),
             "nonfinite_samples": stats.nonfinite,
             "ending": format!("{ending:?}"),
-            "peak_memory_bytes": peak_memory_bytes(),
+            "peak_memory_bytes": crate::memory::peak_bytes(),
             "wavelengths": args.wavelengths,
             "lambda_sampler": args.lambda_sampler,
         });

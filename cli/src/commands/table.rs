@@ -25,6 +25,9 @@ pub enum TableCommand {
         output: PathBuf,
     },
     /// Describe a table file.
+    #[command(
+        after_help = "Example:\n  prism table fit --space srgb --res 64 -o srgb.table\n  prism table info srgb.table"
+    )]
     Info {
         /// The table file.
         file: PathBuf,
