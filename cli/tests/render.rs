@@ -323,3 +323,84 @@ fn compare_measures_and_thresholds() {
     ]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn spectral_output_has_the_layout_channels() {
+    let dir = temp_dir("spectral");
+    let exr = dir.join("s.exr");
+    let out = prism(&[
+        "render",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--spp",
+        "2",
+        "--spectral-bands",
+        "4",
+        "--spectral-range",
+        "400:800",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(&exr).unwrap();
+    let image = prism_integrator::decode_exr(&bytes).unwrap();
+    let names: Vec<&str> = image.channels.iter().map(|c| c.0.as_str()).collect();
+    for band in [
+        "S0.450,000000nm",
+        "S0.550,000000nm",
+        "S0.650,000000nm",
+        "S0.750,000000nm",
+    ] {
+        assert!(names.contains(&band), "{names:?}");
+    }
+    let o = exr.to_str().unwrap();
+    assert_one_line_errors(&[
+        (
+            &["render", "--spectral-bands", "0", "-o", o],
+            "spectral bands",
+        ),
+        (
+            &[
+                "render",
+                "--spectral-bands",
+                "4",
+                "--spectral-range",
+                "800:400",
+                "-o",
+                o,
+            ],
+            "spectral range",
+        ),
+        (
+            &[
+                "render",
+                "--spectral-bands",
+                "4",
+                "--spectral-range",
+                "x",
+                "-o",
+                o,
+            ],
+            "A:B",
+        ),
+        (
+            &[
+                "render",
+                "--spectral-bands",
+                "4",
+                "--checkpoint",
+                "1",
+                "-o",
+                o,
+            ],
+            "accumulation",
+        ),
+    ]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

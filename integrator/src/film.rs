@@ -3,6 +3,8 @@
 //! count of the samples rejected as non-finite.
 
 use prism_spectrum::color::RgbColorSpace;
+
+use crate::SpectralBands;
 use prism_spectrum::colorimetry::Xyz;
 
 /// Accumulated XYZ per pixel, row-major from the top-left.
@@ -16,6 +18,9 @@ pub struct Film {
     /// which keeps the estimator's normalization and so its expectation honest).
     samples: u64,
     nonfinite: u64,
+    /// Per-band sums of spectral radiance estimates (W m^-2 sr^-1 nm^-1 per sample),
+    /// `bands.count()` values per pixel, when the film is spectral.
+    spectral: Option<(SpectralBands, Vec<f64>)>,
 }
 
 impl Film {
@@ -27,7 +32,43 @@ impl Film {
             sums: vec![[0.0; 3]; width as usize * height as usize],
             samples: 0,
             nonfinite: 0,
+            spectral: None,
         }
+    }
+
+    /// A black film that also accumulates spectral radiance in `bands`.
+    pub fn with_bands(width: u32, height: u32, bands: SpectralBands) -> Self {
+        let pixels = width as usize * height as usize;
+        Self {
+            spectral: Some((bands, vec![0.0; pixels * bands.count()])),
+            ..Self::new(width, height)
+        }
+    }
+
+    /// A black film of the settings' size, spectral when they ask for bands.
+    pub fn for_settings(settings: &crate::RenderSettings) -> Self {
+        match settings.bands {
+            Some(bands) => Self::with_bands(settings.width, settings.height, bands),
+            None => Self::new(settings.width, settings.height),
+        }
+    }
+
+    /// The spectral bands, when the film is spectral.
+    pub fn bands(&self) -> Option<SpectralBands> {
+        self.spectral.as_ref().map(|(b, _)| *b)
+    }
+
+    /// The per-band sums, `bands().count()` per pixel (empty when not spectral).
+    pub fn spectral_sums(&self) -> &[f64] {
+        self.spectral.as_ref().map_or(&[], |(_, s)| s)
+    }
+
+    /// The estimated spectral radiance of pixel (x, y) per band, when the film is spectral.
+    pub fn spectrum(&self, x: u32, y: u32) -> Option<Vec<f64>> {
+        let (bands, sums) = self.spectral.as_ref()?;
+        let n = self.samples.max(1) as f64;
+        let at = (y * self.width + x) as usize * bands.count();
+        Some(sums[at..at + bands.count()].iter().map(|v| v / n).collect())
     }
 
     /// A film from its parts (merging and resuming): sums per pixel, samples per pixel,
@@ -47,6 +88,7 @@ impl Film {
             sums,
             samples,
             nonfinite,
+            spectral: None,
         })
     }
 
@@ -75,8 +117,12 @@ impl Film {
         &self.sums
     }
 
-    pub(crate) fn sums_mut(&mut self) -> &mut [[f64; 3]] {
-        &mut self.sums
+    /// The XYZ sums and the spectral sums (empty when not spectral), for filling by rows.
+    pub(crate) fn sums_mut(&mut self) -> (&mut [[f64; 3]], &mut [f64]) {
+        match &mut self.spectral {
+            Some((_, s)) => (&mut self.sums, s),
+            None => (&mut self.sums, &mut []),
+        }
     }
 
     pub(crate) fn finish_pass(&mut self, samples: u64, nonfinite: u64) {
@@ -111,6 +157,15 @@ impl Film {
                 "film sizes differ: {}x{} and {}x{}",
                 self.width, self.height, other.width, other.height
             ));
+        }
+        match (&mut self.spectral, &other.spectral) {
+            (Some((mine, a)), Some((theirs, b))) if mine == theirs => {
+                for (x, y) in a.iter_mut().zip(b) {
+                    *x += y;
+                }
+            }
+            (None, None) => {}
+            _ => return Err("films differ in their spectral bands".into()),
         }
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
             for (acc, v) in a.iter_mut().zip(b) {

@@ -4,6 +4,7 @@
 
 use std::io::Cursor;
 
+use exr::meta::attribute::AttributeValue;
 use exr::prelude::{
     AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec, Text,
     Vec2, WritableImage,
@@ -17,12 +18,21 @@ use crate::{Film, RenderError};
 pub struct ExrMetadata {
     /// Samples per pixel the image holds.
     pub spp: u64,
-    /// Further `key=value` facts (no `;` or `=` in them), recorded after `spp=N` in one
-    /// text attribute `prism`.
+    /// Further `key=value` facts (no `;` or `=` in them), recorded after `spp=N` in the
+    /// `comments` attribute as `prism: spp=N;key=value;...`.
     pub strings: Vec<(String, String)>,
 }
 
-/// The film as a linear RGB EXR in `space`, f32 channels R, G, B.
+/// The film as a linear RGB EXR in `space`, f32 channels R, G, B; for a spectral film
+/// also one channel per band in the spectral OpenEXR layout of Fichet, Pacanowski and
+/// Wilkie ("An OpenEXR layout for spectral images", JCGT 10(3), 2021): `S0.<nm>nm` with
+/// the wavelength written with a decimal comma (`S0.560,000000nm`), spectral radiance in
+/// W m^-2 sr^-1 nm^-1, the attributes `spectralLayoutVersion` = "1.0" and `emissiveUnits`
+/// = "W.m^-2.sr^-1", and R, G, B as the preview.
+///
+/// prism's facts (`spp=N;...`) go in the typed `comments` attribute: the exr crate keeps
+/// other attributes in a HashMap whose order changes per process, so each of its maps holds
+/// at most one entry and the file's bytes stay a function of the image.
 pub fn encode_exr(
     film: &Film,
     space: &RgbColorSpace,
@@ -33,16 +43,43 @@ pub fn encode_exr(
     let channel = |name: &str, k: usize| {
         AnyChannel::new(name, FlatSamples::F32(rgb.iter().map(|p| p[k]).collect()))
     };
-    let channels = AnyChannels::sort(SmallVec::from_vec(vec![
-        channel("R", 0),
-        channel("G", 1),
-        channel("B", 2),
-    ]));
-    let layer_attributes = LayerAttributes {
+    let mut list = vec![channel("R", 0), channel("G", 1), channel("B", 2)];
+    if let Some(bands) = film.bands() {
+        let n = film.samples().max(1) as f64;
+        let count = bands.count();
+        let sums = film.spectral_sums();
+        for b in 0..count {
+            let name = format!(
+                "S0.{}nm",
+                format!("{:.6}", bands.center(b)).replace('.', ",")
+            );
+            let values = (0..w * h)
+                .map(|p| (sums[p * count + b] / n) as f32)
+                .collect();
+            list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
+        }
+    }
+    let mut facts = format!("spp={}", metadata.spp);
+    for (k, v) in &metadata.strings {
+        facts.push_str(&format!(";{k}={v}"));
+    }
+    let mut layer_attributes = LayerAttributes {
         software_name: Some(Text::from("prism")),
+        comments: Some(Text::from(format!("prism: {facts}").as_str())),
         ..LayerAttributes::default()
     };
-    let layer = Layer::new((w, h), layer_attributes, Encoding::SMALL_LOSSLESS, channels);
+    if film.bands().is_some() {
+        layer_attributes.other.insert(
+            Text::from("emissiveUnits"),
+            AttributeValue::Text(Text::from("W.m^-2.sr^-1")),
+        );
+    }
+    let layer = Layer::new(
+        (w, h),
+        layer_attributes,
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(list)),
+    );
     let mut image = Image::from_layer(layer);
     let xy = |c: prism_spectrum::colorimetry::Chromaticity| Vec2(c.x as f32, c.y as f32);
     let p = space.primaries();
@@ -52,16 +89,12 @@ pub fn encode_exr(
         blue: xy(p[2]),
         white: xy(space.white().xy()),
     });
-    // One attribute for all of prism's facts: the exr crate keeps extra attributes in a
-    // HashMap, whose order (and so the file's bytes) would change from run to run.
-    let mut facts = format!("spp={}", metadata.spp);
-    for (k, v) in &metadata.strings {
-        facts.push_str(&format!(";{k}={v}"));
+    if film.bands().is_some() {
+        image.attributes.other.insert(
+            Text::from("spectralLayoutVersion"),
+            AttributeValue::Text(Text::from("1.0")),
+        );
     }
-    image.attributes.other.insert(
-        Text::from("prism"),
-        exr::meta::attribute::AttributeValue::Text(Text::from(facts.as_str())),
-    );
     let mut bytes = Cursor::new(Vec::new());
     image
         .write()

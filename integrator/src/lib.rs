@@ -31,6 +31,7 @@
 //!   §5.4 (film), §4.5.4 (sampled spectra to XYZ).
 
 mod accumulation;
+mod bands;
 mod compare;
 mod error;
 mod film;
@@ -44,6 +45,7 @@ mod settings;
 pub use accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
 };
+pub use bands::SpectralBands;
 pub use compare::{ChannelImage, Comparison, compare_images, decode_exr};
 pub use error::RenderError;
 pub use film::Film;

@@ -49,10 +49,10 @@ impl Frame {
     }
 }
 
-/// The result of one path.
+/// The result of one path; its light went to the caller's sink.
 pub(crate) struct PathResult {
-    /// The XYZ estimate (non-finite results are the caller's to reject).
-    pub xyz: [f64; 3],
+    /// Whether the path could be traced (its wavelengths were valid).
+    pub valid: bool,
     /// Rays traced (camera, continuation and shadow rays).
     pub rays: u64,
 }
@@ -61,22 +61,13 @@ fn wavelengths<const N: usize>(package: &WavelengthPackage<N>) -> Option<Sampled
     SampledWavelengths::new(package.lambda, package.pdf).ok()
 }
 
-fn add_xyz<const N: usize>(
-    xyz: &mut [f64; 3],
-    radiance: &SampledSpectrum<N>,
-    wavelengths: &SampledWavelengths<N>,
-    observer: Observer,
-) {
-    let c = radiance.to_xyz(wavelengths, observer);
-    xyz[0] += c.x;
-    xyz[1] += c.y;
-    xyz[2] += c.z;
-}
-
 impl Tracer<'_> {
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
-    /// dimensions; `u_lambda` chose the hero wavelength.
+    /// dimensions; `u_lambda` chose the hero wavelength. The path's radiance goes to
+    /// `sink` with the wavelengths and densities it was estimated with: once at the end,
+    /// and once more before a package split (the estimate so far, with the whole
+    /// package's densities).
     pub(crate) fn trace<const N: usize>(
         &self,
         stream: &mut SobolStream,
@@ -84,13 +75,13 @@ impl Tracer<'_> {
         u_lambda: f32,
         film: Vec2,
         aspect: f32,
+        sink: &mut impl FnMut(&SampledSpectrum<N>, &SampledWavelengths<N>),
     ) -> PathResult {
         let mut package =
             WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
-        let mut xyz = [0.0f64; 3];
         let Some(mut lambdas) = wavelengths(&package) else {
             return PathResult {
-                xyz: [f64::NAN; 3],
+                valid: false,
                 rays: 0,
             };
         };
@@ -166,7 +157,7 @@ impl Tracer<'_> {
             if sample.wavelength_dependent && !package.secondary_terminated() {
                 // The secondaries' light so far was estimated with the whole package; it
                 // goes to the film with the package's densities before they change.
-                add_xyz(&mut xyz, &radiance, &lambdas, self.observer);
+                sink(&radiance, &lambdas);
                 radiance = SampledSpectrum::splat(0.0);
                 package.terminate_secondary();
                 lambdas = match wavelengths(&package) {
@@ -191,7 +182,7 @@ impl Tracer<'_> {
                 beta *= 1.0 / q;
             }
         }
-        add_xyz(&mut xyz, &radiance, &lambdas, self.observer);
-        PathResult { xyz, rays }
+        sink(&radiance, &lambdas);
+        PathResult { valid: true, rays }
     }
 }

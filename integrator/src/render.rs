@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 use crate::filter::FilterSampler;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
-use crate::{Film, RenderError, RenderSettings};
+use crate::{Film, RenderError, RenderSettings, SpectralBands};
 
 /// Counts gathered during a render.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -103,7 +103,7 @@ impl<'a> Renderer<'a> {
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
-        let mut pass = Film::new(settings.width, settings.height);
+        let mut pass = Film::for_settings(settings);
         let trace = match settings.wavelengths {
             1 => trace_row::<1>,
             2 => trace_row::<2>,
@@ -117,17 +117,27 @@ impl<'a> Renderer<'a> {
             seed: settings.seed,
             clamp: settings.clamp,
             samples: samples.clone(),
+            bands: settings.bands,
         };
         self.pool.install(|| {
             let width = settings.width as usize;
-            pass.sums_mut()
-                .par_chunks_mut(width)
+            let spectral_width = width * settings.bands.map_or(0, |b| b.count());
+            let (sums, spectral) = pass.sums_mut();
+            // A non-spectral film has no spectral sums: give each row an empty slice.
+            let mut empty = vec![[0.0f64; 0]; settings.height as usize];
+            let spectral_rows: Vec<&mut [f64]> = if spectral_width == 0 {
+                empty.iter_mut().map(|e| &mut e[..]).collect()
+            } else {
+                spectral.chunks_mut(spectral_width).collect()
+            };
+            sums.par_chunks_mut(width)
+                .zip(spectral_rows)
                 .enumerate()
-                .for_each(|(y, row)| {
+                .for_each(|(y, (row, spectral_row))| {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, row);
+                    let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, row, spectral_row);
                     rays.fetch_add(r, Ordering::Relaxed);
                     nonfinite.fetch_add(n, Ordering::Relaxed);
                 });
@@ -154,6 +164,7 @@ struct Rows {
     seed: u64,
     clamp: Option<f64>,
     samples: Range<u64>,
+    bands: Option<SpectralBands>,
 }
 
 /// Renders `settings.samples` of every pixel into `film`: a [`Renderer`] for one pass.
@@ -171,7 +182,7 @@ pub fn render(
     scene: &Scene,
     settings: &RenderSettings,
 ) -> Result<(Film, RenderStats), RenderError> {
-    let mut film = Film::new(settings.width, settings.height);
+    let mut film = Film::for_settings(settings);
     let stats =
         render_into(scene, settings, &mut film, &AtomicBool::new(false))?.unwrap_or_default();
     Ok((film, stats))
@@ -184,10 +195,15 @@ fn trace_row<const N: usize>(
     settings: &Rows,
     y: u32,
     row: &mut [[f64; 3]],
+    spectral_row: &mut [f64],
 ) -> (u64, u64) {
     let (w, h) = (settings.width, settings.height);
     let aspect = w as f32 / h as f32;
     let (mut rays, mut rejected) = (0u64, 0u64);
+    let band_count = settings.bands.map_or(0, |b| b.count());
+    // (band, spectral radiance estimate) pairs of the current sample, kept until the
+    // sample is known to be finite.
+    let mut binned: Vec<(usize, f64)> = Vec::new();
     for (x, sum) in row.iter_mut().enumerate() {
         let pixel = u64::from(y) * u64::from(w) + x as u64;
         for s in settings.samples.clone() {
@@ -198,16 +214,47 @@ fn trace_row<const N: usize>(
                 (x as f32 + 0.5 + offset.x) / w as f32,
                 (y as f32 + 0.5 + offset.y) / h as f32,
             );
-            let result =
-                tracer.trace::<N>(&mut stream, FIRST_BOUNCE_DIMENSION, u_lambda, film, aspect);
+            let mut xyz = [0.0f64; 3];
+            binned.clear();
+            let result = tracer.trace::<N>(
+                &mut stream,
+                FIRST_BOUNCE_DIMENSION,
+                u_lambda,
+                film,
+                aspect,
+                &mut |radiance, lambdas| {
+                    let c = radiance.to_xyz(lambdas, tracer.observer);
+                    xyz[0] += c.x;
+                    xyz[1] += c.y;
+                    xyz[2] += c.z;
+                    if let Some(bands) = settings.bands {
+                        // Each lane estimates (1/C) L / pdf of its band's integral; per nm,
+                        // divided by the band's width.
+                        let scale = 1.0 / (N as f64 * bands.width());
+                        for j in 0..N {
+                            let pdf = f64::from(lambdas.pdf(j));
+                            if let (true, Some(band)) =
+                                (pdf > 0.0, bands.band_of(lambdas.lambda(j)))
+                            {
+                                binned.push((band, f64::from(radiance[j]) / pdf * scale));
+                            }
+                        }
+                    }
+                },
+            );
             rays += result.rays;
-            if result.xyz.iter().all(|v| v.is_finite()) {
+            let finite =
+                xyz.iter().all(|v| v.is_finite()) && binned.iter().all(|b| b.1.is_finite());
+            if result.valid && finite {
                 let scale = match settings.clamp {
-                    Some(c) if result.xyz[1] > c => c / result.xyz[1],
+                    Some(c) if xyz[1] > c => c / xyz[1],
                     _ => 1.0,
                 };
-                for (acc, v) in sum.iter_mut().zip(result.xyz) {
+                for (acc, v) in sum.iter_mut().zip(xyz) {
                     *acc += v * scale;
+                }
+                for &(band, v) in &binned {
+                    spectral_row[x * band_count + band] += v * scale;
                 }
             } else {
                 rejected += 1;

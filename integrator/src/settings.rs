@@ -5,7 +5,7 @@ use std::ops::Range;
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthRange};
 use prism_spectrum::colorimetry::Observer;
 
-use crate::{Filter, RenderError};
+use crate::{Filter, RenderError, SpectralBands};
 
 /// How the hero wavelength of each path is chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -75,6 +75,8 @@ pub struct RenderSettings {
     /// Firefly clamp: a sample whose luminance Y exceeds this is scaled down to it
     /// (keeping its chromaticity). Biased (it removes energy), so None by default.
     pub clamp: Option<f64>,
+    /// Spectral output: the film also accumulates spectral radiance in these bands.
+    pub bands: Option<SpectralBands>,
 }
 
 impl Default for RenderSettings {
@@ -93,6 +95,7 @@ impl Default for RenderSettings {
             threads: 0,
             filter: Filter::Box,
             clamp: None,
+            bands: None,
         }
     }
 }

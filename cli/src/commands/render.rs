@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use prism_integrator::{
-    DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings, decode_accumulation,
-    encode_accumulation, encode_exr, encode_png,
+    DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings, SpectralBands,
+    decode_accumulation, encode_accumulation, encode_exr, encode_png,
 };
 use prism_scene::load::{LoadedGeometry, load_geometry};
 use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
@@ -63,6 +63,13 @@ pub struct RenderArgs {
     /// Pixel filter: box, gaussian or blackman-harris.
     #[arg(long, default_value = "box")]
     pub filter: String,
+    /// Spectral output: EXR outputs also get this many bands of spectral radiance (the
+    /// spectral OpenEXR layout), over --spectral-range.
+    #[arg(long, value_name = "N")]
+    pub spectral_bands: Option<usize>,
+    /// The range of the spectral bands, nm.
+    #[arg(long, value_name = "A:B", default_value = "380:780")]
+    pub spectral_range: String,
     /// Output colour space of EXR and PNG files.
     #[arg(long, default_value = "srgb")]
     pub space: String,
@@ -147,6 +154,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         threads: args.threads,
         filter,
         clamp: args.clamp,
+        bands: spectral_bands(args)?,
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
@@ -171,8 +179,16 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let checkpoint_every = seconds_arg("checkpoint", args.checkpoint)?;
     let range = settings.samples.clone();
     let fingerprint = fingerprint(args, width, height);
+    if settings.bands.is_some()
+        && (args.resume.is_some() || args.checkpoint.is_some() || samples_only.is_some())
+    {
+        return Err(
+            "--spectral-bands cannot be combined with --checkpoint, --resume or --sample-range yet (accumulation files hold XYZ only)"
+                .into(),
+        );
+    }
     let film = match &args.resume {
-        None => Film::new(width, height),
+        None => Film::for_settings(&settings),
         Some(path) => resume(path, &fingerprint, &range)?,
     };
     let checkpoint = checkpoint_every.map(|every| {
@@ -255,6 +271,26 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             std::process::exit(130);
         }
     }
+}
+
+/// The bands of `--spectral-bands N --spectral-range A:B`.
+fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
+    let Some(count) = args.spectral_bands else {
+        return Ok(None);
+    };
+    let range = args
+        .spectral_range
+        .split_once(':')
+        .and_then(|(a, b)| Some((a.trim().parse::<f32>().ok()?, b.trim().parse::<f32>().ok()?)))
+        .ok_or_else(|| {
+            format!(
+                "--spectral-range '{}': expected A:B in nm",
+                args.spectral_range
+            )
+        })?;
+    SpectralBands::new(range.0, range.1, count)
+        .map(Some)
+        .map_err(|e| e.to_string())
 }
 
 /// What must match for a checkpoint to be resumed or parts merged.
