@@ -10,10 +10,11 @@ use std::ops::Range;
 
 use exr::meta::attribute::AttributeValue;
 use exr::prelude::{
-    AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, ReadChannels,
-    ReadLayers, SmallVec, Text, WritableImage, read,
+    AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec, Text,
+    WritableImage,
 };
 
+use crate::compare::read_flat;
 use crate::{Film, RenderError};
 
 const CHANNELS: [&str; 6] = ["X.hi", "X.lo", "Y.hi", "Y.lo", "Z.hi", "Z.lo"];
@@ -88,14 +89,7 @@ fn fact<'a>(facts: &'a str, key: &str) -> Option<&'a str> {
 /// EXR, a truncated or corrupted file, missing channels or facts, non-finite sums.
 pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
     let bad = |m: String| RenderError::Encode(format!("not a prism accumulation file: {m}"));
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(Cursor::new(bytes))
-        .map_err(|e| bad(e.to_string()))?;
+    let image = read_flat(bytes).map_err(|e| bad(e.to_string()))?;
     // Written as an image attribute; a reader may file it under the (only) layer.
     let key = Text::from(FACTS);
     let stored =

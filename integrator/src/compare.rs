@@ -2,7 +2,7 @@
 
 use std::io::Cursor;
 
-use exr::prelude::{FlatSamples, ReadChannels, ReadLayers, read};
+use exr::prelude::{AnyChannels, FlatSamples, Image, Layer, ReadChannels, ReadLayers, read};
 
 use crate::RenderError;
 
@@ -17,16 +17,23 @@ pub struct ChannelImage {
     pub channels: Vec<(String, Vec<f32>)>,
 }
 
-/// Reads every channel of an EXR's first layer as f32 (f16 and u32 samples converted).
-pub fn decode_exr(bytes: &[u8]) -> Result<ChannelImage, RenderError> {
-    let image = read()
+/// An EXR's first layer with every channel as stored, and every attribute.
+pub(crate) type FlatImage = Image<Layer<AnyChannels<FlatSamples>>>;
+
+/// Reads an EXR's first valid layer from bytes: every channel as stored, all attributes.
+pub(crate) fn read_flat(bytes: &[u8]) -> exr::error::Result<FlatImage> {
+    read()
         .no_deep_data()
         .largest_resolution_level()
         .all_channels()
         .first_valid_layer()
         .all_attributes()
         .from_buffered(Cursor::new(bytes))
-        .map_err(|e| RenderError::Encode(format!("EXR: {e}")))?;
+}
+
+/// Reads every channel of an EXR's first layer as f32 (f16 and u32 samples converted).
+pub fn decode_exr(bytes: &[u8]) -> Result<ChannelImage, RenderError> {
+    let image = read_flat(bytes).map_err(|e| RenderError::Encode(format!("EXR: {e}")))?;
     let layer = image.layer_data;
     let channels = layer
         .channel_data

@@ -2,6 +2,11 @@ use glam::{DVec3, Vec3};
 
 use super::Ray;
 
+/// The area of a triangle.
+pub fn triangle_area(p: [Vec3; 3]) -> f32 {
+    0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
+}
+
 /// Where a ray meets a triangle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TriangleHit {

@@ -9,6 +9,7 @@ use prism_sampling::warp::{uniform_sphere, uniform_triangle};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::SceneSpectrum;
+use crate::geometry::triangle_area;
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -178,9 +179,8 @@ impl Lights {
                 let d2 = to.length_squared();
                 let distance = d2.sqrt();
                 let wi = to / distance;
-                let cross = (v[1] - v[0]).cross(v[2] - v[0]);
-                let area = 0.5 * cross.length();
-                let n = cross / (2.0 * area);
+                let area = triangle_area(v);
+                let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
                 let cos = -n.dot(wi);
                 let facing = cos > 0.0 || (*two_sided && cos < 0.0);
                 if !facing || distance.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
@@ -267,7 +267,7 @@ pub(crate) fn light_power(
             two_sided,
         } => {
             let v = triangles[*triangle as usize];
-            let area = 0.5 * f64::from((v[1] - v[0]).cross(v[2] - v[0]).length());
+            let area = f64::from(triangle_area(v));
             let sides = if *two_sided { 2.0 } else { 1.0 };
             std::f64::consts::PI * area * sides * emission[*e as usize].mean_visible()
         }

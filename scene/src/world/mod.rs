@@ -17,7 +17,9 @@ use glam::{Vec2, Vec3};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::camera::Camera;
-use crate::geometry::{Bvh, BvhQuality, Ray, offset_ray_origin, triangle_point_error};
+use crate::geometry::{
+    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_area, triangle_point_error,
+};
 
 /// What a scene uses, so that the integrator pays only for what is there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -266,7 +268,7 @@ impl Scene {
             return 0.0;
         };
         let v = self.triangles[hit.triangle as usize];
-        let area = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length();
+        let area = triangle_area(v);
         let to = hit.p - from;
         let d2 = to.length_squared();
         let cos = hit.normal.dot(to).abs() / d2.sqrt();
