@@ -67,18 +67,20 @@ pub struct Comparison {
     pub relmse: f64,
     /// Mean absolute error.
     pub mae: f64,
-    /// Peak signal-to-noise ratio in dB, with the reference's maximum as the peak.
-    pub psnr: f64,
+    /// Peak signal-to-noise ratio in dB, with the reference's maximum as the peak; None
+    /// when the images are equal (or the reference is black).
+    pub psnr: Option<f64>,
     /// Largest absolute difference.
     pub max_difference: f64,
-    /// Per channel: mean of the image over mean of the reference.
-    pub mean_ratio: Vec<f64>,
+    /// Per channel: mean of the image over mean of the reference; None where the
+    /// reference's mean is 0.
+    pub mean_ratio: Vec<Option<f64>>,
     /// Per channel: relative MSE.
     pub channel_relmse: Vec<f64>,
 }
 
-/// Compares `image` against `reference`: both must have the same size and channel names.
-/// Non-finite samples count as the largest error (they make every measure infinite).
+/// Compares `image` against `reference`: both must have the same size and channel names,
+/// and only finite samples (a NaN or infinity is an error naming its channel and pixel).
 pub fn compare_images(
     image: &ChannelImage,
     reference: &ChannelImage,
@@ -98,6 +100,17 @@ pub fn compare_images(
             names(reference)
         )));
     }
+    for (which, img) in [("image", image), ("reference", reference)] {
+        for (name, values) in &img.channels {
+            if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+                return Err(bad(format!(
+                    "{which} channel {name} has a non-finite sample at pixel ({}, {})",
+                    i % img.width.max(1),
+                    i / img.width.max(1)
+                )));
+            }
+        }
+    }
     let n = (image.width * image.height) as f64;
     let (mut squared, mut relative, mut absolute, mut max_difference) = (0.0, 0.0, 0.0, 0.0f64);
     let mut peak = 0.0f64;
@@ -110,22 +123,14 @@ pub fn compare_images(
             squared += d * d;
             rel += d * d / (y * y + 1e-2);
             absolute += d.abs();
-            max_difference = if d.is_nan() {
-                f64::INFINITY
-            } else {
-                max_difference.max(d.abs())
-            };
+            max_difference = max_difference.max(d.abs());
             peak = peak.max(y.abs());
             sum_a += x;
             sum_b += y;
         }
         relative += rel;
         channel_relmse.push(rel / n);
-        mean_ratio.push(if sum_b == 0.0 {
-            f64::NAN
-        } else {
-            sum_a / sum_b
-        });
+        mean_ratio.push((sum_b != 0.0).then(|| sum_a / sum_b));
     }
     let count = n * image.channels.len().max(1) as f64;
     let mse = squared / count;
@@ -134,11 +139,7 @@ pub fn compare_images(
         rmse: mse.sqrt(),
         relmse: relative / count,
         mae: absolute / count,
-        psnr: if mse == 0.0 {
-            f64::INFINITY
-        } else {
-            10.0 * (peak * peak / mse).log10()
-        },
+        psnr: (mse > 0.0 && peak > 0.0).then(|| 10.0 * (peak * peak / mse).log10()),
         max_difference,
         mean_ratio,
         channel_relmse,
@@ -165,13 +166,15 @@ mod tests {
         assert_eq!(c.mae, 0.5);
         assert_eq!(c.max_difference, 2.0);
         assert!((c.relmse - 4.0 / 4.01 / 4.0).abs() < 1e-12);
-        assert!((c.psnr - 10.0 * (9.0f64).log10()).abs() < 1e-12);
-        assert!((c.mean_ratio[0] - 10.0 / 8.0).abs() < 1e-12);
+        assert!((c.psnr.unwrap() - 10.0 * (9.0f64).log10()).abs() < 1e-12);
+        assert!((c.mean_ratio[0].unwrap() - 10.0 / 8.0).abs() < 1e-12);
         let same = compare_images(&image(&[1.0, 2.0]), &image(&[1.0, 2.0])).unwrap();
-        assert_eq!(
-            (same.rmse, same.relmse, same.psnr),
-            (0.0, 0.0, f64::INFINITY)
-        );
+        assert_eq!((same.rmse, same.relmse, same.psnr), (0.0, 0.0, None));
+        let black = compare_images(&image(&[1.0, 2.0]), &image(&[0.0, 0.0])).unwrap();
+        assert_eq!((black.psnr, black.mean_ratio[0]), (None, None));
         assert!(compare_images(&image(&[1.0]), &image(&[1.0, 2.0])).is_err());
+        let e = compare_images(&image(&[1.0, f32::NAN]), &image(&[1.0, 2.0])).unwrap_err();
+        assert!(e.to_string().contains("(1, 0)"), "{e}");
+        assert!(compare_images(&image(&[1.0]), &image(&[f32::INFINITY])).is_err());
     }
 }

@@ -43,18 +43,17 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     }
     let (image, reference) = (load(&args.image)?, load(&args.reference)?);
     let c = compare_images(&image, &reference).map_err(|e| e.to_string())?;
-    // JSON has no infinity: an exact match's PSNR is null.
-    let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
     if args.json {
+        // Undefined measures (the PSNR of equal images, the ratio to a black channel) are null.
         let json = serde_json::json!({
             "channels": c.channels,
-            "rmse": finite(c.rmse),
-            "relmse": finite(c.relmse),
-            "mae": finite(c.mae),
-            "psnr": finite(c.psnr),
-            "max_difference": finite(c.max_difference),
-            "mean_ratio": c.mean_ratio.iter().map(|&v| finite(v)).collect::<Vec<_>>(),
-            "channel_relmse": c.channel_relmse.iter().map(|&v| finite(v)).collect::<Vec<_>>(),
+            "rmse": c.rmse,
+            "relmse": c.relmse,
+            "mae": c.mae,
+            "psnr": c.psnr,
+            "max_difference": c.max_difference,
+            "mean_ratio": c.mean_ratio,
+            "channel_relmse": c.channel_relmse,
         });
         println!("{json}");
     } else {
@@ -62,14 +61,18 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         println!("rmse            {:.6e}", c.rmse);
         println!("relmse          {:.6e}", c.relmse);
         println!("mae             {:.6e}", c.mae);
-        println!("psnr            {:.3} dB", c.psnr);
+        match c.psnr {
+            Some(p) => println!("psnr            {p:.3} dB"),
+            None => println!("psnr            - (equal images or black reference)"),
+        }
         println!("max difference  {:.6e}", c.max_difference);
         for ((name, ratio), rel) in c.channels.iter().zip(&c.mean_ratio).zip(&c.channel_relmse) {
-            println!("{name:<15} mean ratio {ratio:.6}, relmse {rel:.6e}");
+            let ratio = ratio.map_or("-".to_string(), |r| format!("{r:.6}"));
+            println!("{name:<15} mean ratio {ratio}, relmse {rel:.6e}");
         }
     }
     match args.max_relmse {
-        Some(t) if c.relmse.is_nan() || c.relmse > t => Err(format!(
+        Some(t) if c.relmse > t => Err(format!(
             "relative MSE {:.6e} exceeds --max-relmse {t:e}",
             c.relmse
         )),
