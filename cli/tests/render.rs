@@ -2,13 +2,7 @@
 
 mod common;
 
-use common::{assert_one_line_errors, prism};
-
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("prism-render-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use common::{assert_one_line_errors, prism, temp_dir};
 
 #[test]
 fn renders_the_default_scene_to_exr_and_png_with_stats() {

@@ -4,13 +4,7 @@ mod common;
 
 use std::process::{Command, Stdio};
 
-use common::{assert_one_line_errors, prism};
-
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("prism-session-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use common::{assert_one_line_errors, prism, temp_dir};
 
 const SIZE: [&str; 4] = ["--width", "24", "--height", "16"];
 

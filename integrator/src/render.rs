@@ -123,10 +123,11 @@ impl<'a> Renderer<'a> {
             let width = settings.width as usize;
             let spectral_width = width * settings.bands.map_or(0, |b| b.count());
             let (sums, spectral) = pass.sums_mut();
-            // A non-spectral film has no spectral sums: give each row an empty slice.
-            let mut empty = vec![[0.0f64; 0]; settings.height as usize];
+            // A non-spectral film has no spectral sums: each row gets an empty slice.
             let spectral_rows: Vec<&mut [f64]> = if spectral_width == 0 {
-                empty.iter_mut().map(|e| &mut e[..]).collect()
+                (0..settings.height)
+                    .map(|_| -> &mut [f64] { &mut [] })
+                    .collect()
             } else {
                 spectral.chunks_mut(spectral_width).collect()
             };

@@ -27,3 +27,10 @@ pub fn assert_one_line_errors(cases: &[(&[&str], &str)]) {
         assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
     }
 }
+
+/// A fresh directory for one test's files, named by `name` and this process.
+pub fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("prism-test-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
