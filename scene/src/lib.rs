@@ -34,4 +34,5 @@ pub mod bsdf;
 pub mod camera;
 pub mod geometry;
 pub mod load;
+pub mod spectral;
 pub mod world;

@@ -37,6 +37,33 @@ pub fn reradiation_matrix(
     emission: &dyn Spectrum,
     quantum_yield: f64,
 ) -> Result<Vec<f64>, FluorescenceError> {
+    let mut m = fluorescence_matrix(
+        range,
+        bins,
+        reflectance,
+        absorption,
+        emission,
+        quantum_yield,
+    )?;
+    let (lo, hi) = (f64::from(range.min()), f64::from(range.max()));
+    let width = (hi - lo) / bins as f64;
+    for i in 0..bins {
+        m[i * bins + i] += reflectance.evaluate(lo + (i as f64 + 0.5) * width) / width;
+    }
+    Ok(m)
+}
+
+/// The inelastic part of [`reradiation_matrix`] alone, a(l_i) Q e(l_o) l_i / l_o, with the
+/// same checks (including R + a <= 1). Renderers that keep the elastic diagonal exact (a
+/// delta in wavelength rather than a bin's width of blur) use this with R kept apart.
+pub fn fluorescence_matrix(
+    range: WavelengthRange,
+    bins: usize,
+    reflectance: &dyn Spectrum,
+    absorption: &dyn Spectrum,
+    emission: &dyn Spectrum,
+    quantum_yield: f64,
+) -> Result<Vec<f64>, FluorescenceError> {
     if bins == 0 {
         return Err(FluorescenceError(
             "the matrix needs at least one bin".into(),
@@ -78,7 +105,6 @@ pub fn reradiation_matrix(
                 centre(i)
             )));
         }
-        m[i * bins + i] += r / width;
         if quantum_yield > 0.0 {
             for o in 0..bins {
                 m[i * bins + o] += a * quantum_yield * (e[o] / e_area) * centre(i) / centre(o);

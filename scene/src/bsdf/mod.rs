@@ -20,7 +20,8 @@ pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
 pub use fluorescent::{
-    FluorescenceError, FluorescentDiffuse, FluorescentSample, reradiation_matrix,
+    FluorescenceError, FluorescentDiffuse, FluorescentSample, fluorescence_matrix,
+    reradiation_matrix,
 };
 pub use metallic_roughness::MetallicRoughness;
 pub use microfacet::{Ggx, SMOOTH_ALPHA};

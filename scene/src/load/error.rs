@@ -12,6 +12,8 @@ pub enum LoadError {
     Geometry(String),
     /// A scene index that does not exist, or a scene with nothing to render.
     Scene(String),
+    /// A spectral description (`PRISM_spectral` or an overlay) that cannot be used.
+    Spectral(String),
 }
 
 impl fmt::Display for LoadError {
@@ -21,6 +23,7 @@ impl fmt::Display for LoadError {
             LoadError::Buffer(m) => write!(f, "buffer: {m}"),
             LoadError::Geometry(m) => write!(f, "geometry: {m}"),
             LoadError::Scene(m) => write!(f, "scene: {m}"),
+            LoadError::Spectral(m) => write!(f, "spectral description: {m}"),
         }
     }
 }

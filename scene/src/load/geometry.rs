@@ -5,6 +5,7 @@ use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
 
 use super::{LoadError, base64};
+use crate::spectral::{self, Overlay, SpectralScene};
 
 /// The triangles of one mesh primitive placed by one node.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,6 +33,8 @@ pub struct LoadedGeometry {
     pub materials: Vec<MaterialDesc>,
     /// The lights: emissive instances, then punctual lights in traversal order.
     pub lights: Vec<LightDesc>,
+    /// The scene-wide spectral description (the root's `PRISM_spectral`).
+    pub spectral: SpectralScene,
 }
 
 impl LoadedGeometry {
@@ -84,7 +87,19 @@ pub fn load_geometry(
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     scene: Option<usize>,
 ) -> Result<LoadedGeometry, LoadError> {
-    let gltf = parse(bytes)?;
+    load_scene(bytes, resolve, scene, None)
+}
+
+/// [`load_geometry`] with an optional TOML overlay applied to the document first (its
+/// descriptions replace the file's own `PRISM_spectral` for the materials and lights it
+/// names). Files named in descriptions (`csv:PATH`) are read through `resolve` too.
+pub fn load_scene(
+    bytes: &[u8],
+    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    scene: Option<usize>,
+    overlay: Option<&Overlay>,
+) -> Result<LoadedGeometry, LoadError> {
+    let gltf = parse(bytes, overlay)?;
     let buffers = gltf
         .buffers()
         .map(|buffer| {
@@ -142,14 +157,37 @@ pub fn load_geometry(
     let mut out = LoadedGeometry::default();
     // Fitting needs a context; scenes without colours never build one.
     let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
-    let upsampler = (gltf.materials().len() > 0 || has_lights)
+    let root_spectral = gltf.extension_value(spectral::EXTENSION);
+    let upsampler = (gltf.materials().len() > 0 || has_lights || root_spectral.is_some())
         .then(Upsampler::new)
         .transpose()?;
+    // The raw `PRISM_spectral` of each punctual light (the gltf crate keeps light
+    // extensions as raw JSON).
+    let light_spectral: Vec<Option<serde_json::Value>> = gltf
+        .as_json()
+        .extensions
+        .as_ref()
+        .and_then(|e| e.khr_lights_punctual.as_ref())
+        .map_or_else(Vec::new, |l| {
+            l.lights
+                .iter()
+                .map(|light| {
+                    let raw = light.extensions.as_ref()?;
+                    let mut map: serde_json::Map<String, serde_json::Value> =
+                        serde_json::from_str(raw.get()).ok()?;
+                    map.remove(spectral::EXTENSION)
+                })
+                .collect()
+        });
     if let Some(upsampler) = &upsampler {
+        let cx = spectral::Context { resolve, upsampler };
         out.materials = gltf
             .materials()
-            .map(|m| material(&m, upsampler))
+            .map(|m| material(&m, &cx))
             .collect::<Result<_, _>>()?;
+        if let Some(v) = root_spectral {
+            out.spectral = spectral::scene(v, &cx).map_err(LoadError::Spectral)?;
+        }
     }
     let mut punctual_lights = Vec::new();
     let mut stack: Vec<(gltf::Node, Mat4, usize)> =
@@ -169,9 +207,26 @@ pub fn load_geometry(
             )));
         }
         if let (Some(light), Some(upsampler)) = (node.light(), &upsampler) {
-            punctual_lights.push(punctual(&node, &light, world, &|rgb| {
-                upsampler.emission(rgb)
-            })?);
+            let description = light_spectral
+                .get(light.index())
+                .and_then(Option::as_ref)
+                .map(|v| {
+                    let cx = spectral::Context { resolve, upsampler };
+                    spectral::light(v, &cx).map_err(|e| {
+                        LoadError::Spectral(format!(
+                            "light {}: {e}",
+                            light.name().unwrap_or("(unnamed)")
+                        ))
+                    })
+                })
+                .transpose()?;
+            punctual_lights.push(punctual(
+                &node,
+                &light,
+                world,
+                &|rgb| upsampler.emission(rgb),
+                description,
+            )?);
         }
         if let Some(camera) = node.camera() {
             out.cameras.push(make_camera(&node, &camera, world)?);
@@ -192,7 +247,7 @@ pub fn load_geometry(
     let emissive = |i: &MeshInstance| {
         i.material
             .and_then(|m| out.materials.get(m))
-            .and_then(|m| m.emission.is_some().then_some(m.double_sided))
+            .and_then(|m| m.emits().then_some(m.double_sided))
     };
     out.lights = out
         .instances
@@ -210,16 +265,19 @@ pub fn load_geometry(
 }
 
 /// Extensions prism reads itself (from the raw JSON) that the gltf crate does not know.
-const EXTENSIONS_READ_RAW: &[&str] = &["KHR_materials_dispersion"];
+const EXTENSIONS_READ_RAW: &[&str] = &["KHR_materials_dispersion", spectral::EXTENSION];
 
 /// Parses and validates a glTF or GLB. The gltf crate rejects files that require an
 /// extension it does not know, so those prism reads itself are taken out of
 /// `extensionsRequired` between parsing and the (otherwise unchanged) validation.
-fn parse(bytes: &[u8]) -> Result<gltf::Gltf, LoadError> {
+fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<gltf::Gltf, LoadError> {
     let invalid = |e: gltf::Error| LoadError::Invalid(e.to_string());
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
     let mut root = document.into_json();
+    if let Some(overlay) = overlay {
+        overlay.apply(&mut root)?;
+    }
     root.extensions_required
         .retain(|e| !EXTENSIONS_READ_RAW.contains(&e.as_str()));
     let document = gltf::Document::from_json(root).map_err(invalid)?;

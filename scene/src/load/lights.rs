@@ -5,7 +5,10 @@
 
 use glam::{Mat4, Vec3};
 use prism_spectrum::optics::radiant_scale_for_luminance;
-use prism_upsample::RgbSpectrum;
+use std::sync::Arc;
+
+use crate::spectral::SpectralLight;
+use crate::world::SceneSpectrum;
 
 use super::LoadError;
 
@@ -27,7 +30,7 @@ pub enum LightDesc {
         /// Position.
         position: Vec3,
         /// Spectral shape (illuminant kind).
-        spectrum: RgbSpectrum,
+        spectrum: SceneSpectrum,
         /// Factor making the spectrum radiant intensity.
         scale: f64,
     },
@@ -43,7 +46,7 @@ pub enum LightDesc {
         /// Outer cone angle, radians.
         outer: f32,
         /// Spectral shape.
-        spectrum: RgbSpectrum,
+        spectrum: SceneSpectrum,
         /// Factor making the spectrum radiant intensity on the axis.
         scale: f64,
     },
@@ -53,10 +56,28 @@ pub enum LightDesc {
         /// Unit direction the light travels in.
         direction: Vec3,
         /// Spectral shape.
-        spectrum: RgbSpectrum,
+        spectrum: SceneSpectrum,
         /// Factor making the spectrum irradiance.
         scale: f64,
     },
+}
+
+/// Below this luminous efficacy (lm/W; a 750 nm LED has about 0.1, the eye's peak 683) a
+/// photometric intensity would scale the spectrum by an absurd factor.
+const MIN_PHOTOMETRIC_EFFICACY: f64 = 0.01;
+
+/// Luminous flux per watt of `spectrum`, its radiant power integrated at 1 nm over
+/// 200-2500 nm.
+fn luminous_efficacy(spectrum: &SceneSpectrum) -> f64 {
+    use prism_spectrum::Spectrum;
+    let radiant: f64 = (200..=2500)
+        .map(|nm| spectrum.evaluate(f64::from(nm)))
+        .sum();
+    if radiant > 0.0 {
+        prism_spectrum::optics::luminous_flux(spectrum) / radiant
+    } else {
+        0.0
+    }
 }
 
 /// The punctual light of `node` placed by `world`.
@@ -64,7 +85,8 @@ pub(crate) fn punctual(
     node: &gltf::Node,
     light: &gltf::khr_lights_punctual::Light,
     world: Mat4,
-    fit: &dyn Fn([f64; 3]) -> Result<RgbSpectrum, LoadError>,
+    fit: &dyn Fn([f64; 3]) -> Result<prism_upsample::RgbSpectrum, LoadError>,
+    spectral: Option<SpectralLight>,
 ) -> Result<LightDesc, LoadError> {
     let name = node
         .name()
@@ -79,11 +101,24 @@ pub(crate) fn punctual(
             "light {name}: colour {color:?} and intensity {intensity} must be finite and >= 0"
         )));
     }
-    let spectrum = fit(color.map(f64::from))?;
+    let (spectrum, radiometric) = match spectral {
+        Some(s) => (s.spectrum, s.radiometric),
+        None if color.iter().all(|&c| c == 0.0) => (SceneSpectrum::Constant(0.0), true),
+        None => (
+            SceneSpectrum::Rgb(Arc::new(fit(color.map(f64::from))?)),
+            false,
+        ),
+    };
     // Photometric -> radiometric: the intensity is the photometric value of the spectrum.
-    let scale = if intensity == 0.0 || color.iter().all(|&c| c == 0.0) {
-        0.0
+    let scale = if radiometric || intensity == 0.0 {
+        f64::from(intensity)
     } else {
+        let efficacy = luminous_efficacy(&spectrum);
+        if efficacy.is_nan() || efficacy < MIN_PHOTOMETRIC_EFFICACY {
+            return Err(LoadError::Geometry(format!(
+                "light {name}: its spectrum's luminous efficacy is {efficacy:.3e} lm/W, too little light for a photometric intensity to mean anything (a UV or infrared source needs \"units\": \"radiometric\")"
+            )));
+        }
         radiant_scale_for_luminance(&spectrum, f64::from(intensity))
             .map_err(|e| LoadError::Geometry(format!("light {name}: {e}")))?
     };

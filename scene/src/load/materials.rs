@@ -8,6 +8,7 @@ use prism_spectrum::spectra::DenselySampled;
 use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
+use crate::spectral::{self, SpectralMaterial};
 
 /// A glTF metallic-roughness material, spectral.
 #[derive(Debug, Clone)]
@@ -35,6 +36,15 @@ pub struct MaterialDesc {
     /// `KHR_materials_dispersion`'s dispersion, 20 / V_d (0: none), for transmissive
     /// materials.
     pub dispersion: f32,
+    /// The `PRISM_spectral` description, if the material (or an overlay) has one.
+    pub spectral: Option<SpectralMaterial>,
+}
+
+impl MaterialDesc {
+    /// Whether the material emits light (an RGB emissive colour or a spectral emission).
+    pub fn emits(&self) -> bool {
+        self.emission.is_some() || self.spectral.as_ref().is_some_and(|s| s.emission.is_some())
+    }
 }
 
 /// `KHR_materials_dispersion`'s `dispersion` (the gltf crate does not know the extension, so
@@ -75,6 +85,13 @@ impl Upsampler {
         })
     }
 
+    /// A linear sRGB colour as a spectrum of `kind` (illuminants under the space's white).
+    pub(crate) fn fit(&self, rgb: [f64; 3], kind: RgbKind) -> Result<RgbSpectrum, String> {
+        let illuminant = (kind == RgbKind::Illuminant).then(|| self.illuminant.clone());
+        RgbSpectrum::fit(&self.context, rgb, kind, illuminant)
+            .map_err(|e| format!("colour {rgb:?}: {e}"))
+    }
+
     /// A linear sRGB emission colour as an illuminant spectrum.
     pub(crate) fn emission(&self, rgb: [f64; 3]) -> Result<RgbSpectrum, LoadError> {
         RgbSpectrum::fit(
@@ -99,8 +116,9 @@ fn finite(name: &str, what: &str, values: &[f32]) -> Result<(), LoadError> {
 /// The spectral description of `material`.
 pub(crate) fn material(
     material: &gltf::Material,
-    upsampler: &Upsampler,
+    cx: &spectral::Context,
 ) -> Result<MaterialDesc, LoadError> {
+    let upsampler = cx.upsampler;
     let name = material.name().map_or_else(
         || format!("material {}", material.index().map_or(-1, |i| i as i64)),
         str::to_string,
@@ -145,6 +163,11 @@ pub(crate) fn material(
     };
     let unit = |v: f32| v.clamp(0.0, 1.0);
     let dispersion = dispersion(material, &name)?;
+    let spectral = material
+        .extension_value(spectral::EXTENSION)
+        .map(|v| spectral::material(v, cx))
+        .transpose()
+        .map_err(|e| LoadError::Spectral(format!("material {name}: {e}")))?;
     Ok(MaterialDesc {
         name,
         base_color,
@@ -156,5 +179,6 @@ pub(crate) fn material(
         double_sided: material.double_sided(),
         has_base_color_texture: pbr.base_color_texture().is_some(),
         dispersion,
+        spectral,
     })
 }

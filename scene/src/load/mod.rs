@@ -9,6 +9,7 @@ mod materials;
 mod summary;
 
 pub use error::LoadError;
-pub use geometry::{LoadedGeometry, MeshInstance, load_geometry};
+pub use geometry::{LoadedGeometry, MeshInstance, load_geometry, load_scene};
 pub use lights::LightDesc;
 pub use materials::MaterialDesc;
+pub(crate) use materials::Upsampler;

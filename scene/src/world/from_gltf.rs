@@ -14,7 +14,8 @@ use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
 pub struct SceneOptions {
     /// The camera by name (default: the first, else one framing the scene).
     pub camera: Option<String>,
-    /// A constant environment radiance, if any.
+    /// A constant environment radiance, replacing the file's own (`PRISM_spectral` on
+    /// the root), if any.
     pub environment: Option<SceneSpectrum>,
     /// BVH build effort.
     pub quality: BvhQuality,
@@ -29,7 +30,12 @@ pub struct SceneOptions {
 ///   scene uses diffuse BSDFs there); glTF's rough coating would add a few percent of
 ///   white, desaturating reflection that the scene's author did not ask for;
 /// - otherwise the glTF metallic-roughness BSDF.
+///
+/// A `PRISM_spectral` surface replaces all of this.
 fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) -> Material {
+    if let Some(surface) = desc.spectral.as_ref().and_then(|s| s.surface.clone()) {
+        return surface;
+    }
     let base = SceneSpectrum::Rgb(Arc::new(desc.base_color.clone()));
     if desc.transmission > 0.0 {
         // KHR_materials_dispersion: V_d = 20 / dispersion, Cauchy's law through n_d.
@@ -97,11 +103,17 @@ impl Scene {
                 } => {
                     let instance = &loaded.instances[*instance];
                     let Some(m) = instance.material else { continue };
-                    let Some(spectrum) = &loaded.materials[m].emission else {
-                        continue;
+                    let desc = &loaded.materials[m];
+                    // A spectral emission replaces the RGB one.
+                    let spectrum = match desc.spectral.as_ref().and_then(|s| s.emission.clone()) {
+                        Some(s) => s,
+                        None => match &desc.emission {
+                            Some(rgb) => SceneSpectrum::Rgb(Arc::new(rgb.clone())),
+                            None => continue,
+                        },
                     };
                     let e = *emission_of_material[m].get_or_insert_with(|| {
-                        emission.push(SceneSpectrum::Rgb(Arc::new(spectrum.clone())));
+                        emission.push(spectrum);
                         emission.len() as u32 - 1
                     });
                     for t in instance.first..instance.first + instance.count {
@@ -144,7 +156,11 @@ impl Scene {
                 }),
             }
         }
-        if let Some(radiance) = &options.environment {
+        if let Some(radiance) = options
+            .environment
+            .as_ref()
+            .or(loaded.spectral.environment.as_ref())
+        {
             lights.push(Light::Environment {
                 radiance: radiance.clone(),
             });
@@ -163,9 +179,6 @@ impl Scene {
     }
 }
 
-fn scaled(spectrum: &prism_upsample::RgbSpectrum, scale: f64) -> SceneSpectrum {
-    SceneSpectrum::Scaled(
-        Arc::new(SceneSpectrum::Rgb(Arc::new(spectrum.clone()))),
-        scale,
-    )
+fn scaled(spectrum: &SceneSpectrum, scale: f64) -> SceneSpectrum {
+    SceneSpectrum::Scaled(Arc::new(spectrum.clone()), scale)
 }

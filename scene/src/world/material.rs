@@ -3,11 +3,13 @@
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
+use prism_sampling::wavelength::ReradiationSampler;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::SceneSpectrum;
 use crate::bsdf::{
-    BsdfSample, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, RoughDielectric, TransportMode,
+    BsdfSample, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, RoughConductor, RoughDielectric,
+    TransportMode,
 };
 
 /// A surface's material, with spectral parameters not yet sampled.
@@ -37,6 +39,26 @@ pub enum Material {
         /// Perceptual roughness; alpha = roughness^2.
         roughness: f32,
     },
+    /// A conductor (metal) with complex index eta + i k relative to the outside, smooth
+    /// when `roughness` is 0.
+    Conductor {
+        /// Real part of the index.
+        eta: SceneSpectrum,
+        /// Extinction coefficient.
+        k: SceneSpectrum,
+        /// Perceptual roughness; alpha = roughness^2.
+        roughness: f32,
+    },
+    /// A Lambertian surface that re-radiates (fluorescence): light arriving at one
+    /// wavelength leaves at another. The elastic part (`reflectance`, light leaving at the
+    /// wavelength it came in at) is kept exact; the inelastic part is a discretized
+    /// re-radiation matrix without its diagonal ([`crate::bsdf::fluorescence_matrix`]).
+    Fluorescent {
+        /// Elastic (ordinary) reflectance in [0, 1].
+        reflectance: SceneSpectrum,
+        /// The inelastic re-radiation and its sampler.
+        reradiation: Arc<ReradiationSampler>,
+    },
 }
 
 impl Material {
@@ -45,7 +67,14 @@ impl Material {
         matches!(self, Material::Dielectric { ior, .. } if !matches!(ior, SceneSpectrum::Constant(_)))
     }
 
-    /// The BSDF at a hit, its parameters sampled at `wavelengths`.
+    /// Whether light changes wavelength here.
+    pub fn fluorescent(&self) -> bool {
+        matches!(self, Material::Fluorescent { .. })
+    }
+
+    /// The BSDF at a hit, its parameters sampled at `wavelengths`. For a fluorescent
+    /// material this is its elastic part only: the integrator handles the change of
+    /// wavelength itself (it must also change the wavelengths the path carries on with).
     pub fn bsdf<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> Bsdf<'_, N> {
         match self {
             Material::Diffuse { reflectance } => {
@@ -71,6 +100,17 @@ impl Material {
                     mode: TransportMode::Radiance,
                 })
             }
+            Material::Conductor { eta, k, roughness } => {
+                let alpha = roughness * roughness;
+                Bsdf::Conductor(RoughConductor {
+                    distribution: Ggx::new(alpha, alpha),
+                    eta: eta.at(wavelengths),
+                    k: k.at(wavelengths),
+                })
+            }
+            Material::Fluorescent { reflectance, .. } => {
+                Bsdf::Diffuse(Diffuse::new(reflectance.at(wavelengths)))
+            }
         }
     }
 }
@@ -84,6 +124,8 @@ pub enum Bsdf<'a, const N: usize> {
     MetallicRoughness(MetallicRoughness<'a, N>),
     /// Smooth or rough dielectric.
     Dielectric(RoughDielectric<N>),
+    /// Smooth or rough conductor.
+    Conductor(RoughConductor<N>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -93,6 +135,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Diffuse(b) => b.f(wo, wi),
             Bsdf::MetallicRoughness(b) => b.f(wo, wi),
             Bsdf::Dielectric(b) => b.f(wo, wi),
+            Bsdf::Conductor(b) => b.f(wo, wi),
         }
     }
 
@@ -102,6 +145,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
             Bsdf::MetallicRoughness(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
+            Bsdf::Conductor(b) => b.pdf(wo, wi),
         }
     }
 
@@ -111,11 +155,16 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Diffuse(b) => b.sample(wo, u),
             Bsdf::MetallicRoughness(b) => b.sample(wo, uc, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u),
+            Bsdf::Conductor(b) => b.sample(wo, u),
         }
     }
 
     /// Whether every lobe is a delta (light sampling cannot help).
     pub fn is_delta(&self) -> bool {
-        matches!(self, Bsdf::Dielectric(b) if b.distribution.effectively_smooth())
+        match self {
+            Bsdf::Dielectric(b) => b.distribution.effectively_smooth(),
+            Bsdf::Conductor(b) => b.distribution.effectively_smooth(),
+            _ => false,
+        }
     }
 }

@@ -162,7 +162,7 @@ impl Scene {
             .collect();
         let features = Features {
             dispersion: materials.iter().any(Material::dispersive),
-            fluorescence: false,
+            fluorescence: materials.iter().any(Material::fluorescent),
             transmission: materials
                 .iter()
                 .any(|m| matches!(m, Material::Dielectric { .. })),

@@ -3,8 +3,8 @@
 use std::sync::Arc;
 
 use prism_spectrum::Spectrum;
-use prism_spectrum::optics::Cauchy;
-use prism_spectrum::spectra::{Blackbody, DenselySampled};
+use prism_spectrum::optics::{Cauchy, Sellmeier};
+use prism_spectrum::spectra::{Blackbody, DenselySampled, Gaussian, NamedSpectrum};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 use prism_upsample::RgbSpectrum;
 
@@ -21,8 +21,15 @@ pub enum SceneSpectrum {
     Dense(Arc<DenselySampled>),
     /// Planck's law, normalized to a peak of 1.
     Blackbody(Blackbody),
+    /// A piecewise-linear table evaluated as it extrapolates (measured metal indices clamp
+    /// to their nearest measurement rather than fall to zero).
+    Table(Arc<prism_spectrum::spectra::PiecewiseLinear>),
+    /// A Gaussian band (narrow-band sources such as LEDs and lasers).
+    Gaussian(Gaussian),
     /// A Cauchy index of refraction (glTF's Abbe-number dispersion).
     Cauchy(Cauchy),
+    /// A Sellmeier index of refraction (named and measured glasses).
+    Sellmeier(Arc<Sellmeier>),
     /// A spectrum times a factor (light intensities).
     Scaled(Arc<SceneSpectrum>, f64),
 }
@@ -34,6 +41,34 @@ impl SceneSpectrum {
             SceneSpectrum::Constant(v) => SampledSpectrum::splat(*v as f32),
             _ => self.sample(wavelengths),
         }
+    }
+
+    /// A named spectrum in the form the scene samples fastest: tables become 1 nm dense
+    /// tables over their own range (zero outside), the rest stays analytic.
+    pub fn from_named(named: NamedSpectrum) -> Result<Self, prism_spectrum::SpectrumError> {
+        Ok(match named {
+            NamedSpectrum::Blackbody(b) => Self::Blackbody(b),
+            NamedSpectrum::Gaussian(g) => Self::Gaussian(g),
+            NamedSpectrum::Constant(c) => Self::Constant(c.value()),
+            NamedSpectrum::Table(t) => Self::dense(&t)?,
+        })
+    }
+
+    /// `spectrum` tabulated at every whole nanometre of its table's range.
+    pub fn dense(
+        table: &prism_spectrum::spectra::PiecewiseLinear,
+    ) -> Result<Self, prism_spectrum::SpectrumError> {
+        let (first, last) = match (table.lambdas().first(), table.lambdas().last()) {
+            (Some(a), Some(b)) => (a.floor() as i32, b.ceil() as i32),
+            _ => {
+                return Err(prism_spectrum::SpectrumError::InvalidTable(
+                    "empty table".into(),
+                ));
+            }
+        };
+        Ok(Self::Dense(Arc::new(DenselySampled::from_spectrum(
+            table, first, last,
+        )?)))
     }
 
     /// The mean over 360-830 nm at 5 nm steps: a cheap measure of power for choosing
@@ -53,7 +88,10 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Rgb(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Dense(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Blackbody(s) => s.evaluate(lambda_nm),
+            SceneSpectrum::Table(s) => s.evaluate(lambda_nm),
+            SceneSpectrum::Gaussian(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Cauchy(s) => s.evaluate(lambda_nm),
+            SceneSpectrum::Sellmeier(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Scaled(s, k) => s.evaluate(lambda_nm) * k,
         }
     }
@@ -64,7 +102,10 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Rgb(s) => s.max_value(),
             SceneSpectrum::Dense(s) => s.max_value(),
             SceneSpectrum::Blackbody(s) => s.max_value(),
+            SceneSpectrum::Table(s) => s.max_value(),
+            SceneSpectrum::Gaussian(s) => s.max_value(),
             SceneSpectrum::Cauchy(s) => s.max_value(),
+            SceneSpectrum::Sellmeier(s) => s.max_value(),
             SceneSpectrum::Scaled(s, k) => s.max_value() * k,
         }
     }

@@ -1,0 +1,62 @@
+//! `PRISM_spectral` on `KHR_lights_punctual` lights and on the glTF root.
+
+use serde_json::Value;
+
+use super::value::{Context, Role, only_keys, spectrum};
+use crate::world::SceneSpectrum;
+
+/// A punctual light's spectrum.
+#[derive(Debug, Clone)]
+pub struct SpectralLight {
+    /// The spectral shape replacing the light's RGB colour.
+    pub spectrum: SceneSpectrum,
+    /// Whether glTF's intensity is photometric (candela or lux of this spectrum, glTF's
+    /// meaning) or radiometric (the spectrum times the intensity is W sr^-1 nm^-1, or
+    /// W m^-2 nm^-1 for directional lights). Sources outside the visible (UV LEDs) have
+    /// no luminance to normalize by, so they must be radiometric.
+    pub radiometric: bool,
+}
+
+/// Parses a light's description: `{"spectrum": S, "units": "photometric" | "radiometric"}`.
+pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String> {
+    let map = value
+        .as_object()
+        .ok_or("PRISM_spectral on a light must be an object")?;
+    only_keys(map, &["spectrum", "units"])?;
+    let spectrum = spectrum(
+        map.get("spectrum").ok_or("needs 'spectrum'")?,
+        Role::Emission,
+        cx,
+    )
+    .map_err(|e| format!("spectrum: {e}"))?;
+    let radiometric = match map.get("units").map(|u| u.as_str()) {
+        None | Some(Some("photometric")) => false,
+        Some(Some("radiometric")) => true,
+        Some(_) => return Err("units must be \"photometric\" or \"radiometric\"".into()),
+    };
+    Ok(SpectralLight {
+        spectrum,
+        radiometric,
+    })
+}
+
+/// What the root's `PRISM_spectral` says about the whole scene.
+#[derive(Debug, Clone, Default)]
+pub struct SpectralScene {
+    /// Constant radiance arriving from every direction at infinity.
+    pub environment: Option<SceneSpectrum>,
+}
+
+/// Parses the root's description: `{"environment": S}`.
+pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String> {
+    let map = value
+        .as_object()
+        .ok_or("PRISM_spectral on the root must be an object")?;
+    only_keys(map, &["environment"])?;
+    Ok(SpectralScene {
+        environment: map
+            .get("environment")
+            .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("environment: {e}")))
+            .transpose()?,
+    })
+}

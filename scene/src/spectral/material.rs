@@ -1,0 +1,212 @@
+//! `PRISM_spectral` on materials: a spectral surface replacing glTF's, and spectral
+//! emission.
+
+use std::sync::Arc;
+
+use prism_sampling::wavelength::{ReradiationSampler, WavelengthRange};
+use serde_json::{Map, Value};
+
+use super::value::{Context, Role, ior, metal, number, only_keys, spectrum};
+use crate::bsdf::fluorescence_matrix;
+use crate::world::{Material, SceneSpectrum};
+
+/// The material types a description may give.
+pub const MATERIAL_TYPES: &str = "diffuse, dielectric, conductor, fluorescent";
+
+/// The default range and bin width of fluorescence matrices: from the near UV that
+/// blacklights emit to the end of the visible.
+pub const FLUORESCENCE_RANGE_NM: (f32, f32) = (300.0, 830.0);
+const FLUORESCENCE_BIN_NM: f32 = 2.0;
+
+/// A material's `PRISM_spectral` description.
+#[derive(Debug, Clone, Default)]
+pub struct SpectralMaterial {
+    /// The surface replacing glTF's (None: keep glTF's surface).
+    pub surface: Option<Material>,
+    /// Emitted radiance, W m^-2 sr^-1 nm^-1, replacing glTF's emissive colour.
+    pub emission: Option<SceneSpectrum>,
+}
+
+/// Parses a material's description.
+pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, String> {
+    let map = value
+        .as_object()
+        .ok_or("PRISM_spectral on a material must be an object")?;
+    let emission = map
+        .get("emission")
+        .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("emission: {e}")))
+        .transpose()?;
+    let Some(kind) = map.get("type") else {
+        only_keys(map, &["emission"])?;
+        return Ok(SpectralMaterial {
+            surface: None,
+            emission,
+        });
+    };
+    let field = |key: &str, role: Role| -> Result<SceneSpectrum, String> {
+        let v = map.get(key).ok_or_else(|| format!("needs '{key}'"))?;
+        spectrum(v, role, cx).map_err(|e| format!("{key}: {e}"))
+    };
+    let roughness = || -> Result<f32, String> {
+        match map.get("roughness") {
+            None => Ok(0.0),
+            Some(r) => {
+                let r = number(r, "roughness")?;
+                if (0.0..=1.0).contains(&r) {
+                    Ok(r as f32)
+                } else {
+                    Err(format!("roughness {r} is outside [0, 1]"))
+                }
+            }
+        }
+    };
+    let surface = match kind.as_str() {
+        Some("diffuse") => {
+            only_keys(map, &["type", "emission", "reflectance"])?;
+            Material::Diffuse {
+                reflectance: field("reflectance", Role::Fraction)?,
+            }
+        }
+        Some("dielectric") => {
+            only_keys(map, &["type", "emission", "ior", "roughness"])?;
+            let n = map.get("ior").ok_or("needs 'ior'")?;
+            Material::Dielectric {
+                ior: ior(n, cx).map_err(|e| format!("ior: {e}"))?,
+                roughness: roughness()?,
+            }
+        }
+        Some("conductor") => {
+            only_keys(map, &["type", "emission", "metal", "eta", "k", "roughness"])?;
+            let (eta, k) = match map.get("metal") {
+                Some(name) => metal(name.as_str().ok_or("metal must be a name")?)?,
+                None => (field("eta", Role::Plain)?, field("k", Role::Plain)?),
+            };
+            Material::Conductor {
+                eta,
+                k,
+                roughness: roughness()?,
+            }
+        }
+        Some("fluorescent") => fluorescent(map, cx)?,
+        _ => return Err(format!("type {kind} is not one of {MATERIAL_TYPES}")),
+    };
+    Ok(SpectralMaterial {
+        surface: Some(surface),
+        emission,
+    })
+}
+
+/// A fluorescent material from absorption, re-emission and quantum yield, or from a full
+/// re-radiation matrix.
+fn fluorescent(map: &Map<String, Value>, cx: &Context) -> Result<Material, String> {
+    only_keys(
+        map,
+        &[
+            "type",
+            "emission",
+            "reflectance",
+            "absorption",
+            "reemission",
+            "quantum_yield",
+            "range",
+            "bins",
+            "matrix",
+        ],
+    )?;
+    let reflectance = match map.get("reflectance") {
+        Some(v) => spectrum(v, Role::Fraction, cx).map_err(|e| format!("reflectance: {e}"))?,
+        None => SceneSpectrum::Constant(0.0),
+    };
+    let (lo, hi) = match map.get("range") {
+        None => FLUORESCENCE_RANGE_NM,
+        Some(r) => match r.as_array().map(Vec::as_slice) {
+            Some([a, b]) => (
+                number(a, "range start")? as f32,
+                number(b, "range end")? as f32,
+            ),
+            _ => return Err("range must be [start_nm, end_nm]".into()),
+        },
+    };
+    let range = WavelengthRange::new(lo, hi).map_err(|e| format!("range: {e}"))?;
+    let (bins, matrix) = if let Some(m) = map.get("matrix") {
+        for key in ["absorption", "reemission", "quantum_yield", "bins"] {
+            if map.contains_key(key) {
+                return Err(format!("'{key}' cannot be combined with 'matrix'"));
+            }
+        }
+        let (bins, m) = full_matrix(m)?;
+        // Energy: what leaves per unit energy arriving at l_i is the row's integral over l_o.
+        let width = f64::from(hi - lo) / bins as f64;
+        for i in 0..bins {
+            let out: f64 = m[i * bins..(i + 1) * bins].iter().sum::<f64>() * width;
+            if out > 1.0 + 1e-6 {
+                return Err(format!(
+                    "matrix row {i} re-radiates {out} of the light it receives (must be <= 1)"
+                ));
+            }
+        }
+        (bins, m)
+    } else {
+        let bins = match map.get("bins") {
+            None => ((hi - lo) / FLUORESCENCE_BIN_NM).ceil().max(1.0) as usize,
+            Some(b) => match b.as_u64() {
+                Some(n @ 1..=4096) => n as usize,
+                _ => return Err(format!("bins {b} must be a whole number in 1..=4096")),
+            },
+        };
+        let absorption = spectrum(
+            map.get("absorption").ok_or("needs 'absorption'")?,
+            Role::Fraction,
+            cx,
+        )
+        .map_err(|e| format!("absorption: {e}"))?;
+        let reemission = spectrum(
+            map.get("reemission").ok_or("needs 'reemission'")?,
+            Role::Plain,
+            cx,
+        )
+        .map_err(|e| format!("reemission: {e}"))?;
+        let q = number(
+            map.get("quantum_yield").ok_or("needs 'quantum_yield'")?,
+            "quantum_yield",
+        )?;
+        let m = fluorescence_matrix(range, bins, &reflectance, &absorption, &reemission, q)
+            .map_err(|e| e.to_string())?;
+        (bins, m)
+    };
+    let sampler = ReradiationSampler::new(range, bins, &matrix).map_err(|e| e.to_string())?;
+    Ok(Material::Fluorescent {
+        reflectance,
+        reradiation: Arc::new(sampler),
+    })
+}
+
+/// `matrix`: `rows`, one per incident bin, each with one density (per nm of incident
+/// wavelength) per outgoing bin; square, finite, >= 0.
+fn full_matrix(value: &Value) -> Result<(usize, Vec<f64>), String> {
+    let rows = value
+        .as_object()
+        .and_then(|m| {
+            only_keys(m, &["rows"]).ok()?;
+            m.get("rows")?.as_array()
+        })
+        .ok_or("matrix must be {\"rows\": [[..], ..]}")?;
+    let bins = rows.len();
+    let mut out = Vec::with_capacity(bins * bins);
+    for (i, row) in rows.iter().enumerate() {
+        let row = row.as_array().filter(|r| r.len() == bins).ok_or_else(|| {
+            format!("matrix row {i} must have {bins} entries (the matrix is square)")
+        })?;
+        for v in row {
+            let x = number(v, "matrix entry")?;
+            if x < 0.0 {
+                return Err(format!("matrix entry {x} in row {i} is negative"));
+            }
+            out.push(x);
+        }
+    }
+    if bins == 0 {
+        return Err("matrix has no rows".into());
+    }
+    Ok((bins, out))
+}
