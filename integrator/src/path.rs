@@ -6,8 +6,9 @@ use glam::{Vec2, Vec3};
 use prism_sampling::mis::power_heuristic;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
+use prism_scene::bsdf::Diffuse;
 use prism_scene::geometry::Ray;
-use prism_scene::world::Scene;
+use prism_scene::world::{Bsdf, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -68,7 +69,11 @@ impl Tracer<'_> {
     /// `sink` with the wavelengths and densities it was estimated with: once at the end,
     /// and once more before a package split (the estimate so far, with the whole
     /// package's densities).
-    pub(crate) fn trace<const N: usize>(
+    ///
+    /// `FLUORESCENCE` is whether the scene has re-radiating materials: without it the
+    /// wavelengths light is evaluated at are always the film's, and no vertex pays for
+    /// the check (the renderer picks the specialization from the scene's features).
+    pub(crate) fn trace<const N: usize, const FLUORESCENCE: bool>(
         &self,
         stream: &mut SobolStream,
         sample_base: u64,
@@ -85,6 +90,11 @@ impl Tracer<'_> {
                 rays: 0,
             };
         };
+        // The wavelengths light is evaluated at. They are the film's (`lambdas`, whose
+        // densities weigh the estimate) until a fluorescent vertex changes them: past it,
+        // each lane carries the incident wavelength it sampled, while its radiance still
+        // counts at the film wavelength it started with.
+        let mut transport = lambdas;
         let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
         let mut radiance = SampledSpectrum::<N>::splat(0.0);
         let mut beta = SampledSpectrum::<N>::splat(1.0);
@@ -96,7 +106,7 @@ impl Tracer<'_> {
         loop {
             rays += 1;
             let Some(hit) = self.scene.intersect(&ray) else {
-                if let Some((le, light_pdf)) = self.scene.escaped(&lambdas) {
+                if let Some((le, light_pdf)) = self.scene.escaped(&transport) {
                     let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
@@ -105,7 +115,7 @@ impl Tracer<'_> {
                 break;
             };
             let wo_world = -ray.direction.normalize();
-            let le = self.scene.emitted(&hit, wo_world, &lambdas);
+            let le = self.scene.emitted(&hit, wo_world, &transport);
             if !le.is_black() {
                 let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
                     power_heuristic(1, bsdf_pdf, 1, self.scene.light_pdf(from, &hit))
@@ -122,13 +132,47 @@ impl Tracer<'_> {
             let u_bsdf = stream.next_2d();
             let u_roulette = stream.next_1d();
 
-            let bsdf = self.scene.material(&hit).bsdf(&lambdas);
+            let material = self.scene.material(&hit);
+            let bsdf = match material {
+                Material::Fluorescent {
+                    reflectance,
+                    reradiation,
+                } if FLUORESCENCE => {
+                    // Each lane picks the wavelength its light arrived at: unchanged with
+                    // probability R / (R + F), else from the re-radiation column F. Either
+                    // way the estimator weight is R + F, and the surface is Lambertian.
+                    let u_wavelength = stream.next_1d();
+                    let r = reflectance.at(&transport);
+                    let mut incident = *transport.lambdas();
+                    for j in 0..N {
+                        let f = reradiation.incident_integral(transport.lambda(j)) as f32;
+                        let total = r[j] + f;
+                        if total > 0.0 && u_wavelength * total >= r[j] && f > 0.0 {
+                            let u = ((u_wavelength * total - r[j]) / f).min(0.999_999_9);
+                            if let Some(s) =
+                                reradiation.sample_incident(transport.lambda(j), f64::from(u))
+                            {
+                                incident[j] = s.lambda;
+                            }
+                        }
+                        beta[j] *= total;
+                    }
+                    transport = match SampledWavelengths::new(incident, *transport.pdfs()) {
+                        Ok(t) => t,
+                        Err(_) => break,
+                    };
+                    Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
+                }
+                _ => material.bsdf(&transport),
+            };
             let frame = Frame::from_normal(hit.normal);
             let wo = frame.to_local(wo_world);
 
             // Next-event estimation.
             if !bsdf.is_delta()
-                && let Some(light) = self.scene.sample_light(&hit, u_light, u_light_2d, &lambdas)
+                && let Some(light) = self
+                    .scene
+                    .sample_light(&hit, u_light, u_light_2d, &transport)
             {
                 let wi = frame.to_local(light.wi);
                 let f = bsdf.f(wo, wi) * wi.z.abs();
@@ -164,6 +208,9 @@ impl Tracer<'_> {
                     Some(l) => l,
                     None => break,
                 };
+                if !FLUORESCENCE {
+                    transport = lambdas;
+                }
             }
             previous = (!sample.delta).then_some((pdf, hit.p));
             let wi_world = frame.to_world(sample.wi);

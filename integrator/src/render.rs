@@ -75,6 +75,12 @@ impl<'a> Renderer<'a> {
         })
     }
 
+    /// Whether paths handle re-radiation (the scene has fluorescent materials). Scenes
+    /// without it run a path tracer compiled without the fluorescence code.
+    pub fn fluorescence(&self) -> bool {
+        self.scene.features().fluorescence
+    }
+
     /// Renders sample indices `samples` of every pixel into `film` (which must have the
     /// settings' size). `cancel` is polled between rows: when set, the render stops and
     /// returns `Ok(None)` leaving `film` as it was, so a caller stopping at a sample
@@ -104,12 +110,17 @@ impl<'a> Renderer<'a> {
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
-        let trace = match settings.wavelengths {
-            1 => trace_row::<1>,
-            2 => trace_row::<2>,
-            4 => trace_row::<4>,
-            8 => trace_row::<8>,
-            _ => trace_row::<16>,
+        let trace = match (settings.wavelengths, self.fluorescence()) {
+            (1, false) => trace_row::<1, false>,
+            (2, false) => trace_row::<2, false>,
+            (4, false) => trace_row::<4, false>,
+            (8, false) => trace_row::<8, false>,
+            (_, false) => trace_row::<16, false>,
+            (1, true) => trace_row::<1, true>,
+            (2, true) => trace_row::<2, true>,
+            (4, true) => trace_row::<4, true>,
+            (8, true) => trace_row::<8, true>,
+            (_, true) => trace_row::<16, true>,
         };
         let rows = Rows {
             width: settings.width,
@@ -190,7 +201,7 @@ pub fn render(
 }
 
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
-fn trace_row<const N: usize>(
+fn trace_row<const N: usize, const FLUORESCENCE: bool>(
     tracer: &Tracer,
     filter: &FilterSampler,
     settings: &Rows,
@@ -217,7 +228,7 @@ fn trace_row<const N: usize>(
             );
             let mut xyz = [0.0f64; 3];
             binned.clear();
-            let result = tracer.trace::<N>(
+            let result = tracer.trace::<N, FLUORESCENCE>(
                 &mut stream,
                 FIRST_BOUNCE_DIMENSION,
                 u_lambda,

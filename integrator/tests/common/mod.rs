@@ -6,6 +6,11 @@ use prism_scene::world::Scene;
 
 /// The repository's Cornell box as a render-ready scene.
 pub fn cornell() -> Scene {
+    cornell_with(|_| {})
+}
+
+/// The Cornell box, its loaded description edited by `edit` first.
+pub fn cornell_with(edit: impl FnOnce(&mut prism_scene::load::LoadedGeometry)) -> Scene {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
     let loaded = prism_scene::load::load_geometry(
@@ -14,5 +19,7 @@ pub fn cornell() -> Scene {
         None,
     )
     .unwrap();
+    let mut loaded = loaded;
+    edit(&mut loaded);
     Scene::from_loaded(&loaded, &Default::default()).unwrap()
 }

@@ -83,6 +83,15 @@ impl ReradiationSampler {
         }
     }
 
+    /// The integral over incident wavelengths of M(., outgoing): what a camera path's
+    /// throughput is multiplied by when it samples the incident wavelength (0 when
+    /// nothing re-radiates into `lambda_outgoing`).
+    pub fn incident_integral(&self, lambda_outgoing: f32) -> f64 {
+        self.bin(lambda_outgoing)
+            .and_then(|o| self.by_outgoing[o].as_ref())
+            .map_or(0.0, PiecewiseConstant1D::integral)
+    }
+
     /// Camera paths: an incident wavelength for outgoing `lambda_outgoing`, with density
     /// proportional to M(., outgoing). None if nothing re-radiates into that wavelength.
     pub fn sample_incident(&self, lambda_outgoing: f32, u: f64) -> Option<ReradiationSample> {

@@ -186,6 +186,11 @@ impl Scene {
         self.features
     }
 
+    /// The materials, indexed as triangles refer to them.
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
     /// The camera.
     pub fn camera(&self) -> &Camera {
         &self.camera
