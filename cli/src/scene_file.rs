@@ -1,19 +1,43 @@
 //! Reading scene files: the CLI owns the file system; prism-scene gets bytes and a
-//! resolver for the buffers a file refers to.
+//! resolver for the buffers and spectra a file refers to.
 
 use std::path::Path;
 
-use prism_scene::load::{LoadedGeometry, load_geometry};
+use prism_scene::load::{LoadedGeometry, load_scene};
+use prism_scene::spectral::Overlay;
 
-/// Loads `path` (a .gltf or .glb), resolving external buffers relative to it. Errors name
+/// Loads `path`: a .gltf or .glb, or a TOML overlay (`.toml`) naming the glTF it applies
+/// to. External buffers and `csv:` spectra resolve relative to the glTF file. Errors name
 /// the file.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<LoadedGeometry, String> {
-    let bytes =
-        std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let read =
+        |p: &Path| std::fs::read(p).map_err(|e| format!("cannot read '{}': {e}", p.display()));
+    let is_overlay = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let (gltf_path, overlay) = if is_overlay {
+        let text = String::from_utf8(read(path)?)
+            .map_err(|_| format!("'{}': not UTF-8 text", path.display()))?;
+        let overlay = Overlay::parse(&text).map_err(|e| format!("'{}': {e}", path.display()))?;
+        let gltf = overlay.gltf.clone().ok_or_else(|| {
+            format!(
+                "'{}': the overlay must name its scene (gltf = \"file.gltf\")",
+                path.display()
+            )
+        })?;
+        (
+            path.parent().unwrap_or(Path::new(".")).join(gltf),
+            Some(overlay),
+        )
+    } else {
+        (path.to_path_buf(), None)
+    };
+    let bytes = read(&gltf_path)?;
+    let dir = gltf_path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let resolve = move |uri: &str| {
         let file = dir.join(uri);
         std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
     };
-    load_geometry(&bytes, &resolve, scene).map_err(|e| format!("'{}': {e}", path.display()))
+    load_scene(&bytes, &resolve, scene, overlay.as_ref())
+        .map_err(|e| format!("'{}': {e}", path.display()))
 }

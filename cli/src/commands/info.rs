@@ -43,10 +43,23 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
     );
     println!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
     println!(
-        "features       transmission: {}, dispersion: {}, textures: {} (not evaluated yet)",
+        "features       transmission: {}, dispersion: {}, fluorescence: {}, textures: {} (not evaluated yet)",
         yes(s.uses_transmission),
         yes(s.uses_dispersion),
+        yes(s.uses_fluorescence),
         yes(s.uses_textures)
+    );
+    println!(
+        "light spectra  {}",
+        if s.light_spectra.is_empty() {
+            "none".into()
+        } else {
+            s.light_spectra.join("; ")
+        }
+    );
+    println!(
+        "wavelengths    {}-{} nm needed (lights and fluorescence; --spectral-range and the samplers' range should cover it)",
+        s.wavelength_range.0, s.wavelength_range.1
     );
     println!(
         "memory         {:.1} MB triangles + BVH (built in {:.0} ms)",

@@ -66,6 +66,11 @@ impl ReradiationSampler {
         })
     }
 
+    /// The wavelength range the matrix covers, nm.
+    pub fn range_nm(&self) -> (f32, f32) {
+        (self.range.min(), self.range.max())
+    }
+
     /// The bin of `lambda`, or None outside the range.
     pub fn bin(&self, lambda: f32) -> Option<usize> {
         if !self.range.contains(lambda) {

@@ -1,7 +1,10 @@
 //! What a loaded scene contains and uses: the report behind `prism info`, and the facts
 //! the integrator specializes on.
 
-use super::LoadedGeometry;
+use prism_spectrum::Spectrum;
+
+use super::{LightDesc, LoadedGeometry};
+use crate::world::{Material, SceneSpectrum};
 
 /// A summary of a loaded scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,8 +27,26 @@ pub struct SceneSummary {
     pub uses_transmission: bool,
     /// Whether any material references a base colour texture (not evaluated yet).
     pub uses_textures: bool,
-    /// Whether a transmissive material disperses (`KHR_materials_dispersion`).
+    /// Whether a transmissive material disperses (`KHR_materials_dispersion`, or a
+    /// spectral IOR from `PRISM_spectral`).
     pub uses_dispersion: bool,
+    /// Whether a material re-radiates (fluorescence).
+    pub uses_fluorescence: bool,
+    /// What the lights' spectra are, one line each, distinct.
+    pub light_spectra: Vec<String>,
+    /// The wavelengths (nm) the scene needs: the visible 360-830 nm, widened to where
+    /// its lights emit (above 1% of their peak) and its fluorescent materials absorb.
+    pub wavelength_range: (f32, f32),
+}
+
+/// Where `spectrum` exceeds 1% of its maximum, searched at 1 nm over 200-2500 nm.
+fn extent(spectrum: &SceneSpectrum) -> Option<(f32, f32)> {
+    let threshold = 0.01 * spectrum.max_value();
+    let above: Vec<f32> = (200..=2500)
+        .filter(|&nm| spectrum.evaluate(f64::from(nm)) > threshold)
+        .map(|nm| nm as f32)
+        .collect();
+    Some((*above.first()?, *above.last()?))
 }
 
 impl LoadedGeometry {
@@ -34,8 +55,44 @@ impl LoadedGeometry {
         let emits = |i: &super::MeshInstance| {
             i.material
                 .and_then(|m| self.materials.get(m))
-                .is_some_and(|m| m.emission.is_some())
+                .is_some_and(|m| m.emits())
         };
+        let surface = |m: &super::MaterialDesc| m.spectral.as_ref().and_then(|s| s.surface.clone());
+        // Light spectra: spectral emissions, RGB emissions, punctual lights, environment.
+        let mut spectra: Vec<SceneSpectrum> = Vec::new();
+        for i in self.instances.iter().filter(|i| emits(i)) {
+            let m = &self.materials[i.material.unwrap_or_default()];
+            match (
+                m.spectral.as_ref().and_then(|s| s.emission.clone()),
+                &m.emission,
+            ) {
+                (Some(s), _) => spectra.push(s),
+                (None, Some(rgb)) => {
+                    spectra.push(SceneSpectrum::Rgb(std::sync::Arc::new(rgb.clone())))
+                }
+                (None, None) => {}
+            }
+        }
+        for light in &self.lights {
+            if let LightDesc::Point { spectrum, .. }
+            | LightDesc::Spot { spectrum, .. }
+            | LightDesc::Directional { spectrum, .. } = light
+            {
+                spectra.push(spectrum.clone());
+            }
+        }
+        spectra.extend(self.spectral.environment.clone());
+        let mut light_spectra: Vec<String> = spectra.iter().map(SceneSpectrum::describe).collect();
+        light_spectra.sort();
+        light_spectra.dedup();
+        let mut range = (360.0f32, 830.0f32);
+        let mut widen = |r: (f32, f32)| range = (range.0.min(r.0), range.1.max(r.1));
+        spectra.iter().filter_map(extent).for_each(&mut widen);
+        for m in &self.materials {
+            if let Some(Material::Fluorescent { reradiation, .. }) = surface(m) {
+                widen(reradiation.range_nm());
+            }
+        }
         let (lo, hi) = self.bounds();
         SceneSummary {
             triangles: self.triangles.len(),
@@ -50,12 +107,21 @@ impl LoadedGeometry {
                 .sum(),
             cameras: self.cameras.iter().map(|c| c.name.clone()).collect(),
             bounds: (lo.to_array(), hi.to_array()),
-            uses_transmission: self.materials.iter().any(|m| m.transmission > 0.0),
+            uses_transmission: self.materials.iter().any(|m| match surface(m) {
+                Some(s) => matches!(s, Material::Dielectric { .. }),
+                None => m.transmission > 0.0,
+            }),
             uses_textures: self.materials.iter().any(|m| m.has_base_color_texture),
-            uses_dispersion: self
+            uses_dispersion: self.materials.iter().any(|m| match surface(m) {
+                Some(s) => s.dispersive(),
+                None => m.transmission > 0.0 && m.dispersion > 0.0,
+            }),
+            uses_fluorescence: self
                 .materials
                 .iter()
-                .any(|m| m.transmission > 0.0 && m.dispersion > 0.0),
+                .any(|m| surface(m).is_some_and(|s| s.fluorescent())),
+            light_spectra,
+            wavelength_range: range,
         }
     }
 }

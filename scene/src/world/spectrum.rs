@@ -71,6 +71,29 @@ impl SceneSpectrum {
         )?)))
     }
 
+    /// A short description for reports (`prism info`).
+    pub fn describe(&self) -> String {
+        match self {
+            SceneSpectrum::Constant(v) => format!("constant {v}"),
+            SceneSpectrum::Rgb(_) => "upsampled RGB".into(),
+            SceneSpectrum::Dense(d) => format!(
+                "table {}-{} nm",
+                d.first_nm(),
+                d.first_nm() + d.values().len() as f64 - 1.0
+            ),
+            SceneSpectrum::Table(_) => "measured table".into(),
+            SceneSpectrum::Blackbody(b) => format!("blackbody {} K", b.kelvin()),
+            SceneSpectrum::Gaussian(g) => format!(
+                "Gaussian band at {} nm (FWHM {:.1} nm)",
+                g.center_nm(),
+                g.sigma_nm() * 2.0 * (2.0 * std::f64::consts::LN_2).sqrt()
+            ),
+            SceneSpectrum::Cauchy(_) => "Cauchy index".into(),
+            SceneSpectrum::Sellmeier(_) => "Sellmeier index".into(),
+            SceneSpectrum::Scaled(s, _) => s.describe(),
+        }
+    }
+
     /// The mean over 360-830 nm at 5 nm steps: a cheap measure of power for choosing
     /// lights, not a colorimetric quantity.
     pub fn mean_visible(&self) -> f64 {
