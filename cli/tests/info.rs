@@ -35,3 +35,47 @@ fn bad_scenes_are_one_clear_line() {
         (&["info"], "required"),
     ]);
 }
+
+#[test]
+fn overlays_are_scenes_and_report_their_spectral_features() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
+    let out = prism(&["info", &format!("{dir}/cornell-blacklight.toml")]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("fluorescence: yes"), "{text}");
+    assert!(text.contains("Gaussian band at 365 nm"), "{text}");
+    assert!(text.contains("350-830 nm"), "{text}");
+    let plain = prism(&["info", &format!("{dir}/cornell-box.gltf")]);
+    let text = String::from_utf8_lossy(&plain.stdout);
+    assert!(text.contains("fluorescence: no"), "{text}");
+    assert!(text.contains("360-830 nm"), "{text}");
+
+    let tmp = common::temp_dir("overlays");
+    let write = |name: &str, text: &str| {
+        let p = tmp.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let gltf = format!("{dir}/cornell-box.gltf");
+    let unnamed = write(
+        "unnamed.toml",
+        "[materials.red]\ntype = \"diffuse\"\nreflectance = 0.5\n",
+    );
+    let typo = write(
+        "typo.toml",
+        &format!("gltf = \"{gltf}\"\n[materials.red]\ntype = \"diffuse\"\nreflectence = 0.5\n"),
+    );
+    let missing = write(
+        "missing.toml",
+        &format!("gltf = \"{gltf}\"\n[lights.sun]\nspectrum = \"blackbody:5800\"\n"),
+    );
+    assert_one_line_errors(&[
+        (&["info", &unnamed], "must name its scene"),
+        (&["info", &typo], "unknown key 'reflectence'"),
+        (&["info", &missing], "no light named 'sun'"),
+    ]);
+}

@@ -398,3 +398,31 @@ fn spectral_output_has_the_layout_channels() {
     ]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn renders_a_fluorescent_overlay() {
+    let dir = temp_dir("blacklight");
+    let png = dir.join("b.png");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenes/cornell-blacklight.toml"
+    );
+    let out = prism(&[
+        "render",
+        scene,
+        "--spp",
+        "2",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(&png).unwrap().len() > 0);
+}

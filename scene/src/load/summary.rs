@@ -34,8 +34,9 @@ pub struct SceneSummary {
     pub uses_fluorescence: bool,
     /// What the lights' spectra are, one line each, distinct.
     pub light_spectra: Vec<String>,
-    /// The wavelengths (nm) the scene needs: the visible 360-830 nm, widened to where
-    /// its lights emit (above 1% of their peak) and its fluorescent materials absorb.
+    /// The wavelengths (nm) the scene needs: the visible 360-830 nm, widened to where its
+    /// lights emit (above 1% of their peak) within the range of a fluorescent material
+    /// that can turn that light into visible light.
     pub wavelength_range: (f32, f32),
 }
 
@@ -85,12 +86,17 @@ impl LoadedGeometry {
         let mut light_spectra: Vec<String> = spectra.iter().map(SceneSpectrum::describe).collect();
         light_spectra.sort();
         light_spectra.dedup();
+        // The camera sees 360-830 nm; light outside it matters only where a fluorescent
+        // material can turn it into visible light.
         let mut range = (360.0f32, 830.0f32);
-        let mut widen = |r: (f32, f32)| range = (range.0.min(r.0), range.1.max(r.1));
-        spectra.iter().filter_map(extent).for_each(&mut widen);
         for m in &self.materials {
             if let Some(Material::Fluorescent { reradiation, .. }) = surface(m) {
-                widen(reradiation.range_nm());
+                let (lo, hi) = reradiation.range_nm();
+                for (a, b) in spectra.iter().filter_map(extent) {
+                    if a < hi && b > lo {
+                        range = (range.0.min(a.max(lo)), range.1.max(b.min(hi)));
+                    }
+                }
             }
         }
         let (lo, hi) = self.bounds();

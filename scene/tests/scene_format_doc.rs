@@ -1,0 +1,117 @@
+//! Every example in docs/scene-format.md loads: material descriptions on the Cornell box's
+//! "white" material, light descriptions as an added punctual light, root descriptions on
+//! the root, and overlays against the Cornell box.
+
+use prism_scene::load::{LoadError, LoadedGeometry, load_scene};
+use prism_scene::spectral::Overlay;
+use prism_scene::world::{Scene, SceneOptions};
+use serde_json::{Value, json};
+
+fn scenes_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes")
+}
+
+/// The fenced code blocks of `lang` in the document.
+fn blocks(doc: &str, lang: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut current: Option<String> = None;
+    for line in doc.lines() {
+        match (&mut current, line.trim_start()) {
+            (None, l) if l == format!("```{lang}") => current = Some(String::new()),
+            (Some(_), "```") => out.push(current.take().unwrap()),
+            (Some(text), l) => {
+                text.push_str(l);
+                text.push('\n');
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+fn load(doc: &Value, overlay: Option<&Overlay>) -> Result<LoadedGeometry, LoadError> {
+    let bytes = serde_json::to_vec(doc).unwrap();
+    let dir = scenes_dir();
+    load_scene(
+        &bytes,
+        &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+        None,
+        overlay,
+    )
+}
+
+#[test]
+fn every_documented_example_loads() {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/scene-format.md"),
+    )
+    .unwrap();
+    let cornell: Value =
+        serde_json::from_slice(&std::fs::read(scenes_dir().join("cornell-box.gltf")).unwrap())
+            .unwrap();
+    let examples = blocks(&text, "json");
+    assert!(
+        examples.len() >= 12,
+        "found {} JSON examples",
+        examples.len()
+    );
+    for example in &examples {
+        let value: Value = serde_json::from_str(example)
+            .unwrap_or_else(|e| panic!("example is not JSON ({e}):\n{example}"));
+        let mut doc = cornell.clone();
+        if value.get("name").is_some() {
+            doc["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+            doc["extensions"] = json!({"KHR_lights_punctual": {"lights": [value]}});
+            let nodes = doc["nodes"].as_array_mut().unwrap();
+            nodes
+                .push(json!({"name": "lamp", "extensions": {"KHR_lights_punctual": {"light": 0}}}));
+            let n = nodes.len() - 1;
+            doc["scenes"][0]["nodes"]
+                .as_array_mut()
+                .unwrap()
+                .push(json!(n));
+        } else if value.get("extensions").is_some() {
+            doc["extensions"] = value["extensions"].clone();
+        } else {
+            for m in doc["materials"].as_array_mut().unwrap() {
+                if m["name"] == "white" {
+                    m["extensions"] = json!({ "PRISM_spectral": value });
+                }
+            }
+        }
+        let loaded = load(&doc, None).unwrap_or_else(|e| panic!("{e}:\n{example}"));
+        Scene::from_loaded(&loaded, &SceneOptions::default())
+            .unwrap_or_else(|e| panic!("{e}:\n{example}"));
+    }
+    let overlays = blocks(&text, "toml");
+    assert!(!overlays.is_empty());
+    for example in &overlays {
+        let overlay = Overlay::parse(example).unwrap_or_else(|e| panic!("{e}:\n{example}"));
+        let loaded = load(&cornell, Some(&overlay)).unwrap_or_else(|e| panic!("{e}:\n{example}"));
+        Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    }
+}
+
+#[test]
+fn the_repository_overlays_load() {
+    for entry in std::fs::read_dir(scenes_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let overlay = Overlay::parse(&std::fs::read_to_string(&path).unwrap()).unwrap();
+            let gltf = overlay
+                .gltf
+                .clone()
+                .expect("overlays in scenes/ name their glTF");
+            let bytes = std::fs::read(scenes_dir().join(gltf)).unwrap();
+            let dir = scenes_dir();
+            let loaded = load_scene(
+                &bytes,
+                &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+                None,
+                Some(&overlay),
+            )
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+        }
+    }
+}
