@@ -5,9 +5,10 @@
 //! hierarchies, transforms, GLB, data URIs, cameras, metallic-roughness materials with RGB
 //! upsampled to spectra, emissive and `KHR_lights_punctual` lights), BSDFs (Lambertian,
 //! conductors, dielectrics with per-wavelength IOR, glTF metallic-roughness, fluorescent
-//! diffuse), and the render-ready scene (`world`) the integrator consumes. Textures, the
-//! remaining KHR material extensions and the spectral descriptions (`PRISM_spectral`, TOML
-//! overlay) are not built yet (see the issue tracker).
+//! diffuse), spectral descriptions (`spectral`: the `PRISM_spectral` extension and TOML
+//! overlays, see docs/scene-format.md), and the render-ready scene (`world`) the
+//! integrator consumes. Textures, shading normals and the remaining KHR material
+//! extensions are not built yet (see the issue tracker).
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit
@@ -29,6 +30,10 @@
 //!   (floating-point error bounds and ray origins), §9 (BSDFs, Fresnel).
 //! - E. Heitz, "Sampling the GGX distribution of visible normals", JCGT 7(4), 2018.
 //! - B. Walter et al., "Microfacet models for refraction through rough surfaces", EGSR 2007.
+//! - A. Wilkie et al., "Fluorescence in bi-spectral rendering", EGSR 2006 (re-radiation
+//!   matrices; the photon-to-energy factor l_i / l_o).
+//! - M. Hullin et al., "Fluorescent immersion range scanning", SIGGRAPH 2008 (measured
+//!   re-radiation matrices, the full-matrix form).
 
 pub mod bsdf;
 pub mod camera;
