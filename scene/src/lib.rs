@@ -32,8 +32,9 @@
 //! - B. Walter et al., "Microfacet models for refraction through rough surfaces", EGSR 2007.
 //! - A. Wilkie et al., "Fluorescence in bi-spectral rendering", EGSR 2006 (re-radiation
 //!   matrices; the photon-to-energy factor l_i / l_o).
-//! - M. Hullin et al., "Fluorescent immersion range scanning", SIGGRAPH 2008 (measured
-//!   re-radiation matrices, the full-matrix form).
+//! - M. Hullin et al., "Acquisition and analysis of bispectral bidirectional reflectance
+//!   and reradiation distribution functions", ACM TOG 29(4), 2010 (measured re-radiation
+//!   matrices, the full-matrix form).
 
 pub mod bsdf;
 pub mod camera;
