@@ -139,23 +139,50 @@ impl Tracer<'_> {
                     reradiation,
                 } if FLUORESCENCE => {
                     // Each lane picks the wavelength its light arrived at: unchanged with
-                    // probability R / (R + F), else from the re-radiation column F. Either
-                    // way the estimator weight is R + F, and the surface is Lambertian.
+                    // probability R / (R + F) (weight R + F), else from the re-radiation
+                    // column F or the lights' spectra, one-sample MIS with the balance
+                    // heuristic (weight (R + F) / F * M / p_mix). The surface is
+                    // Lambertian either way.
                     let u_wavelength = stream.next_1d();
+                    let guide = self.scene.light_wavelengths();
                     let r = reflectance.at(&transport);
                     let mut incident = *transport.lambdas();
                     for j in 0..N {
-                        let f = reradiation.incident_integral(transport.lambda(j)) as f32;
+                        let out = transport.lambda(j);
+                        let f = reradiation.incident_integral(out) as f32;
                         let total = r[j] + f;
-                        if total > 0.0 && u_wavelength * total >= r[j] && f > 0.0 {
+                        let mut weight = total;
+                        if total > 0.0 && f > 0.0 && u_wavelength * total >= r[j] {
                             let u = ((u_wavelength * total - r[j]) / f).min(0.999_999_9);
-                            if let Some(s) =
-                                reradiation.sample_incident(transport.lambda(j), f64::from(u))
-                            {
-                                incident[j] = s.lambda;
-                            }
+                            let lambda = match guide {
+                                None => reradiation
+                                    .sample_incident(out, f64::from(u))
+                                    .map(|s| s.lambda),
+                                Some(_) if u < 0.5 => reradiation
+                                    .sample_incident(out, f64::from(2.0 * u))
+                                    .map(|s| s.lambda),
+                                Some(g) => Some(g.sample(f64::from(2.0 * u - 1.0)).value as f32),
+                            };
+                            weight = match lambda {
+                                Some(l) => {
+                                    let p_column = reradiation.pdf_incident(l, out);
+                                    let p = match guide {
+                                        None => p_column,
+                                        Some(g) => {
+                                            0.5 * p_column + 0.5 * g.pdf(f64::from(l)) as f32
+                                        }
+                                    };
+                                    incident[j] = l;
+                                    if p > 0.0 {
+                                        total / f * reradiation.value(l, out) as f32 / p
+                                    } else {
+                                        0.0
+                                    }
+                                }
+                                None => 0.0,
+                            };
                         }
-                        beta[j] *= total;
+                        beta[j] *= weight;
                     }
                     transport = match SampledWavelengths::new(incident, *transport.pdfs()) {
                         Ok(t) => t,

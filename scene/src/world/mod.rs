@@ -4,6 +4,7 @@
 //! evaluate, never RGB.
 
 mod from_gltf;
+mod guide;
 mod light;
 mod material;
 mod spectrum;
@@ -98,6 +99,7 @@ pub struct Scene {
     camera: Camera,
     features: Features,
     radius: f32,
+    light_wavelengths: Option<prism_sampling::distribution::PiecewiseConstant1D>,
 }
 
 impl Scene {
@@ -167,6 +169,10 @@ impl Scene {
                 .iter()
                 .any(|m| matches!(m, Material::Dielectric { .. })),
         };
+        let light_wavelengths = features
+            .fluorescence
+            .then(|| guide::light_wavelengths(&materials, &lights, &power, &emission))
+            .flatten();
         let lights = Lights::new(lights, &power, triangles.len());
         Ok(Self {
             bvh,
@@ -178,12 +184,19 @@ impl Scene {
             camera,
             features,
             radius,
+            light_wavelengths,
         })
     }
 
     /// The features the scene uses.
     pub fn features(&self) -> Features {
         self.features
+    }
+
+    /// The lights' spectral power over the fluorescent materials' range, as a
+    /// distribution (None without fluorescence): see `guide.rs`.
+    pub fn light_wavelengths(&self) -> Option<&prism_sampling::distribution::PiecewiseConstant1D> {
+        self.light_wavelengths.as_ref()
     }
 
     /// The materials, indexed as triangles refer to them.
