@@ -192,7 +192,7 @@ impl Tracer<'_> {
                 }
                 _ => material.bsdf(&transport),
             };
-            let frame = Frame::from_normal(hit.normal);
+            let frame = Frame::from_normal(hit.shading_normal);
             let wo = frame.to_local(wo_world);
 
             // Next-event estimation.

@@ -97,6 +97,7 @@ fn each_wavelength_leaves_the_prism_where_snell_puts_it() {
         projection: Projection::Perspective { yfov },
     };
     let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
         triangles,
         triangle_material,
         materials: vec![

@@ -35,6 +35,7 @@ fn fluorescent(reflectance: f64, absorption: &Gaussian, reemission: &Gaussian, q
 fn floor_under_uv(material: Material, peak: f64, c: usize, sampler: LambdaSampler) -> Film {
     let s = 100.0;
     let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
         triangles: vec![
             [
                 Vec3::new(-s, -s, 0.0),

@@ -127,6 +127,7 @@ const SAMPLERS: [LambdaSampler; 4] = [
 fn furnace_scene() -> Scene {
     let triangles = icosphere(2);
     Scene::new(SceneParts {
+        attributes: Default::default(),
         triangle_material: vec![0; triangles.len()],
         triangles,
         materials: vec![Material::Diffuse {
@@ -217,6 +218,7 @@ fn floor_render(lights: Vec<Light>, emitter: Option<[Vec3; 4]>, sampler: LambdaS
         }
     }
     let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
         triangles,
         triangle_material,
         materials: vec![
@@ -453,6 +455,7 @@ fn dispersive_glass_furnace_returns_the_environment() {
     triangle_material.extend(vec![1; white_sphere.len()]);
     let triangles = [glass_sphere, white_sphere].concat();
     let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
         triangle_material,
         triangles,
         materials: vec![
@@ -513,6 +516,7 @@ fn spectral_film_recovers_a_blackbody_per_band() {
         Vec3::new(-2.0, 2.0, 0.0),
     ];
     let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
         triangles: vec![[q[0], q[1], q[2]], [q[0], q[2], q[3]]],
         triangle_material: vec![0, 0],
         materials: vec![Material::Diffuse {

@@ -1,4 +1,4 @@
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 
 use super::lights::{LightDesc, punctual};
 use super::materials::{MaterialDesc, Upsampler, material};
@@ -25,6 +25,12 @@ pub struct MeshInstance {
 pub struct LoadedGeometry {
     /// Triangles in world space, instance after instance.
     pub triangles: Vec<[Vec3; 3]>,
+    /// Unit shading normals at each triangle's vertices, world space (the geometric
+    /// normal where the file gives none), one entry per triangle.
+    pub normals: Vec<[Vec3; 3]>,
+    /// `TEXCOORD_0` at each triangle's vertices (zero where the file gives none), one
+    /// entry per triangle.
+    pub uvs: Vec<[Vec2; 3]>,
     /// Which node and primitive each range of triangles came from.
     pub instances: Vec<MeshInstance>,
     /// The cameras placed by the scene's nodes, in traversal order.
@@ -377,15 +383,53 @@ fn add_primitive(
             positions.len()
         )));
     }
+    let count = positions.len();
+    let attribute = |what: &str, n: usize| {
+        LoadError::Geometry(format!(
+            "{name}: {what} has {n} entries for {count} vertices"
+        ))
+    };
+    let normals: Option<Vec<Vec3>> = reader.read_normals().map(|n| n.map(Vec3::from).collect());
+    if let Some(n) = &normals
+        && n.len() != count
+    {
+        return Err(attribute("NORMAL", n.len()));
+    }
+    let uvs: Option<Vec<Vec2>> = reader
+        .read_tex_coords(0)
+        .map(|t| t.into_f32().map(Vec2::from).collect());
+    if let Some(t) = &uvs
+        && t.len() != count
+    {
+        return Err(attribute("TEXCOORD_0", t.len()));
+    }
+    // Normals transform by the inverse transpose (correct under non-uniform scale and
+    // mirroring).
+    let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
     // A mirroring transform flips the winding; swapping two vertices restores it so that
     // front faces stay front faces.
     let mirrored = world.determinant() < 0.0;
+    let order = |t: [usize; 3]| if mirrored { [t[0], t[2], t[1]] } else { t };
     let first = out.triangles.len();
     for tri in indices.chunks_exact(3) {
-        let [a, b, c] =
-            [tri[0], tri[1], tri[2]].map(|i| world.transform_point3(positions[i as usize]));
-        out.triangles
-            .push(if mirrored { [a, c, b] } else { [a, b, c] });
+        let t = order([tri[0] as usize, tri[1] as usize, tri[2] as usize]);
+        let v = t.map(|i| world.transform_point3(positions[i]));
+        let geometric = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        let shading = match &normals {
+            // Unusable normals (zero, non-finite) fall back to the face's own.
+            Some(n) => t.map(|i| {
+                let w = (normal_matrix * n[i]).normalize_or_zero();
+                if w == Vec3::ZERO { geometric } else { w }
+            }),
+            None => [geometric; 3],
+        };
+        let uv = match &uvs {
+            Some(uv) => t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }),
+            None => [Vec2::ZERO; 3],
+        };
+        out.triangles.push(v);
+        out.normals.push(shading);
+        out.uvs.push(uv);
     }
     out.instances.push(MeshInstance {
         node: name,

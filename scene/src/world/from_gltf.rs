@@ -168,6 +168,10 @@ impl Scene {
         let camera = loaded.camera(options.camera.as_deref())?;
         Scene::new(SceneParts {
             triangles: loaded.triangles.clone(),
+            attributes: super::VertexAttributes {
+                normals: loaded.normals.clone(),
+                uvs: loaded.uvs.clone(),
+            },
             triangle_material,
             materials,
             emission,

@@ -39,6 +39,8 @@ pub struct Features {
 pub struct SceneParts {
     /// World-space triangles.
     pub triangles: Vec<[Vec3; 3]>,
+    /// Per-vertex shading normals and texture coordinates.
+    pub attributes: VertexAttributes,
     /// The material of each triangle (index into `materials`).
     pub triangle_material: Vec<u32>,
     /// Materials.
@@ -53,6 +55,16 @@ pub struct SceneParts {
     pub quality: BvhQuality,
 }
 
+/// Per-vertex attributes of the triangles, each list parallel to the triangles or empty
+/// (empty normals: flat shading; empty UVs: texture coordinates 0).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct VertexAttributes {
+    /// Unit shading normals at the vertices.
+    pub normals: Vec<[Vec3; 3]>,
+    /// Texture coordinates at the vertices.
+    pub uvs: Vec<[glam::Vec2; 3]>,
+}
+
 /// Where a ray meets the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {
@@ -62,6 +74,10 @@ pub struct Hit {
     pub error: Vec3,
     /// Unit geometric normal, on the side the triangle's counter-clockwise winding faces.
     pub normal: Vec3,
+    /// Unit shading normal (interpolated vertex normals), on the geometric normal's side.
+    pub shading_normal: Vec3,
+    /// Texture coordinates.
+    pub uv: glam::Vec2,
     /// The ray parameter.
     pub t: f32,
     /// The triangle.
@@ -92,6 +108,7 @@ impl Hit {
 pub struct Scene {
     bvh: Bvh,
     triangles: Vec<[Vec3; 3]>,
+    attributes: VertexAttributes,
     triangle_material: Vec<u32>,
     materials: Vec<Material>,
     emission: Vec<SceneSpectrum>,
@@ -109,6 +126,7 @@ impl Scene {
     pub fn new(parts: SceneParts) -> Result<Self, String> {
         let SceneParts {
             triangles,
+            attributes,
             triangle_material,
             materials,
             emission,
@@ -122,6 +140,17 @@ impl Scene {
                 triangle_material.len(),
                 triangles.len()
             ));
+        }
+        for (what, n) in [
+            ("shading normals", attributes.normals.len()),
+            ("texture coordinates", attributes.uvs.len()),
+        ] {
+            if n != 0 && n != triangles.len() {
+                return Err(format!(
+                    "{n} triangles' {what} for {} triangles",
+                    triangles.len()
+                ));
+            }
         }
         if let Some(m) = triangle_material
             .iter()
@@ -177,6 +206,7 @@ impl Scene {
         Ok(Self {
             bvh,
             triangles,
+            attributes,
             triangle_material,
             materials,
             emission,
@@ -238,10 +268,35 @@ impl Scene {
         let b = hit.hit.barycentric;
         let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
         let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        let shading_normal = match self.attributes.normals.get(hit.triangle) {
+            Some(n) => {
+                let s = (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]).normalize_or_zero();
+                // Vertex normals that cancel, or face away from the surface, are not a
+                // shading frame prism can use: the face's own normal is.
+                let d = s.dot(normal);
+                if d > 0.0 {
+                    s
+                } else if d < 0.0 {
+                    -s
+                } else {
+                    normal
+                }
+            }
+            None => normal,
+        };
+        let uv = self
+            .attributes
+            .uvs
+            .get(hit.triangle)
+            .map_or(glam::Vec2::ZERO, |t| {
+                b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
+            });
         Some(Hit {
             p,
             error: triangle_point_error(v, b),
             normal,
+            shading_normal,
+            uv,
             t: hit.hit.t,
             triangle: hit.triangle as u32,
         })

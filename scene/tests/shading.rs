@@ -1,0 +1,115 @@
+//! Shading normals and texture coordinates: read from glTF, transformed by the inverse
+//! transpose (mirroring and non-uniform scale included), interpolated at hits.
+
+use glam::{Vec2, Vec3};
+use prism_scene::geometry::Ray;
+use prism_scene::load::{LoadedGeometry, load_geometry};
+use prism_scene::world::{Scene, SceneOptions};
+use serde_json::{Value, json};
+
+/// One triangle with normals and UVs in one external buffer, placed by `node`.
+fn doc(node: Value) -> (Value, Vec<u8>) {
+    let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    let normals = [-h, 0.0, h, h, 0.0, h, 0.0, 0.0, 1.0];
+    let uvs = [0.0f32, 0.0, 1.0, 0.0, 0.0, 1.0];
+    let bin: Vec<u8> = positions
+        .iter()
+        .chain(&normals)
+        .chain(&uvs)
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [node, {"camera": 0, "translation": [0, 0, 5]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"}
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+            {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+            {"buffer": 0, "byteOffset": 72, "byteLength": 24}
+        ],
+        "buffers": [{"byteLength": 96, "uri": "tri.bin"}]
+    });
+    (doc, bin)
+}
+
+fn load(node: Value) -> LoadedGeometry {
+    let (doc, bin) = doc(node);
+    load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &move |_| Ok(bin.clone()),
+        None,
+    )
+    .unwrap()
+}
+
+#[test]
+fn normals_follow_the_inverse_transpose() {
+    let plain = load(json!({"mesh": 0}));
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    assert!((plain.normals[0][0] - Vec3::new(-h, 0.0, h)).length() < 1e-6);
+    assert_eq!(plain.uvs[0], [Vec2::ZERO, Vec2::X, Vec2::Y]);
+    // Mirrored and stretched in x: normals scale by the inverse (x / -2), and the swapped
+    // winding swaps the vertices' attributes with them.
+    let mirrored = load(json!({"mesh": 0, "scale": [-2, 1, 1]}));
+    let t = mirrored.triangles[0];
+    assert!(
+        (t[1] - t[0]).cross(t[2] - t[0]).normalize().z > 0.99,
+        "still faces +z"
+    );
+    for k in 0..3 {
+        let i = [0, 2, 1][k];
+        let expected = {
+            let n = plain.normals[0][i];
+            Vec3::new(-n.x / 2.0, n.y, n.z).normalize()
+        };
+        assert!(
+            (mirrored.normals[0][k] - expected).length() < 1e-6,
+            "vertex {k}"
+        );
+        assert_eq!(mirrored.uvs[0][k], plain.uvs[0][i]);
+    }
+}
+
+#[test]
+fn hits_interpolate_normals_and_uvs() {
+    let loaded = load(json!({"mesh": 0}));
+    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    // Barycentrics (0.5, 0.25, 0.25) at (0.25, 0.25).
+    let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z, f32::INFINITY);
+    let hit = scene.intersect(&ray).unwrap();
+    let n = loaded.normals[0];
+    let expected = (0.5 * n[0] + 0.25 * n[1] + 0.25 * n[2]).normalize();
+    assert!(
+        (hit.shading_normal - expected).length() < 1e-5,
+        "{}",
+        hit.shading_normal
+    );
+    assert_eq!(hit.normal, Vec3::Z);
+    assert!((hit.uv - Vec2::new(0.25, 0.25)).length() < 1e-6);
+}
+
+#[test]
+fn attribute_counts_must_match_the_vertices() {
+    let (mut doc, bin) = doc(json!({"mesh": 0}));
+    doc["accessors"][1]["count"] = json!(2);
+    doc["bufferViews"][1]["byteLength"] = json!(24);
+    let result = load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &move |_| Ok(bin.clone()),
+        None,
+    );
+    let Err(err) = result else {
+        panic!("should fail")
+    };
+    let err = err.to_string();
+    assert!(err.contains("NORMAL has 2 entries for 3 vertices"), "{err}");
+}
