@@ -145,7 +145,7 @@ impl Tracer<'_> {
                     // Lambertian either way.
                     let u_wavelength = stream.next_1d();
                     let guide = self.scene.light_wavelengths();
-                    let r = reflectance.at(&transport);
+                    let r = reflectance.at_uv(hit.uv, &transport);
                     let mut incident = *transport.lambdas();
                     for j in 0..N {
                         let out = transport.lambda(j);
@@ -190,7 +190,7 @@ impl Tracer<'_> {
                     };
                     Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
                 }
-                _ => material.bsdf(&transport),
+                _ => material.bsdf(hit.uv, &transport),
             };
             let frame = Frame::from_normal(hit.shading_normal);
             let wo = frame.to_local(wo_world);

@@ -7,8 +7,10 @@
 //! conductors, dielectrics with per-wavelength IOR, glTF metallic-roughness, fluorescent
 //! diffuse), spectral descriptions (`spectral`: the `PRISM_spectral` extension and TOML
 //! overlays, see docs/scene-format.md), and the render-ready scene (`world`) the
-//! integrator consumes. Textures, shading normals and the remaining KHR material
-//! extensions are not built yet (see the issue tracker).
+//! integrator consumes, with shading normals and base colour textures (RGB filtered, then
+//! upsampled per lookup through a coefficient table fitted at load when a texture needs
+//! it). Emissive, metallic-roughness and normal textures and `KHR_materials_volume` are
+//! not built yet (see the issue tracker).
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit

@@ -43,7 +43,7 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
     );
     println!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
     println!(
-        "features       transmission: {}, dispersion: {}, fluorescence: {}, textures: {} (not evaluated yet)",
+        "features       transmission: {}, dispersion: {}, fluorescence: {}, textures: {}",
         yes(s.uses_transmission),
         yes(s.uses_dispersion),
         yes(s.uses_fluorescence),

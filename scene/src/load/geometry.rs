@@ -187,9 +187,10 @@ pub fn load_scene(
         });
     if let Some(upsampler) = &upsampler {
         let cx = spectral::Context { resolve, upsampler };
+        let textures = super::textures::TextureLoader::new(&buffers, resolve, &upsampler.context);
         out.materials = gltf
             .materials()
-            .map(|m| material(&m, &cx))
+            .map(|m| material(&m, &cx, &textures))
             .collect::<Result<_, _>>()?;
         if let Some(v) = root_spectral {
             out.spectral = spectral::scene(v, &cx).map_err(LoadError::Spectral)?;

@@ -9,6 +9,9 @@ use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
+use crate::world::SceneSpectrum;
+
+use super::textures::TextureLoader;
 
 /// A glTF metallic-roughness material, spectral.
 #[derive(Debug, Clone)]
@@ -31,8 +34,11 @@ pub struct MaterialDesc {
     pub emission: Option<RgbSpectrum>,
     /// Whether both faces are front faces (emission from both sides).
     pub double_sided: bool,
-    /// Whether a base colour texture is referenced (textures are not evaluated yet).
+    /// Whether a base colour texture is referenced.
     pub has_base_color_texture: bool,
+    /// The base colour texture times baseColorFactor, as reflectance spectra (replaces
+    /// `base_color` where present).
+    pub base_color_texture: Option<SceneSpectrum>,
     /// `KHR_materials_dispersion`'s dispersion, 20 / V_d (0: none), for transmissive
     /// materials.
     pub dispersion: f32,
@@ -69,7 +75,7 @@ fn dispersion(material: &gltf::Material, name: &str) -> Result<f32, LoadError> {
 
 /// Everything upsampling needs, built once per load: glTF colours are linear sRGB.
 pub(crate) struct Upsampler {
-    context: FitContext,
+    pub(crate) context: FitContext,
     illuminant: Arc<DenselySampled>,
 }
 
@@ -117,6 +123,7 @@ fn finite(name: &str, what: &str, values: &[f32]) -> Result<(), LoadError> {
 pub(crate) fn material(
     material: &gltf::Material,
     cx: &spectral::Context,
+    textures: &TextureLoader,
 ) -> Result<MaterialDesc, LoadError> {
     let upsampler = cx.upsampler;
     let name = material.name().map_or_else(
@@ -168,6 +175,11 @@ pub(crate) fn material(
         .map(|v| spectral::material(v, cx))
         .transpose()
         .map_err(|e| LoadError::Spectral(format!("material {name}: {e}")))?;
+    let base_color_texture = pbr
+        .base_color_texture()
+        .map(|info| textures.base_color(&info, [base[0], base[1], base[2]]))
+        .transpose()
+        .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     Ok(MaterialDesc {
         name,
         base_color,
@@ -178,6 +190,7 @@ pub(crate) fn material(
         emission,
         double_sided: material.double_sided(),
         has_base_color_texture: pbr.base_color_texture().is_some(),
+        base_color_texture,
         dispersion,
         spectral,
     })

@@ -4,12 +4,15 @@
 mod base64;
 mod error;
 mod geometry;
+mod images;
 mod lights;
 mod materials;
 mod summary;
+mod textures;
 
 pub use error::LoadError;
 pub use geometry::{LoadedGeometry, MeshInstance, load_geometry, load_scene};
+pub use images::{DecodedImage, decode_image};
 pub use lights::LightDesc;
 pub use materials::MaterialDesc;
 pub(crate) use materials::Upsampler;

@@ -25,7 +25,7 @@ pub struct SceneSummary {
     pub bounds: ([f32; 3], [f32; 3]),
     /// Whether any material transmits (glass).
     pub uses_transmission: bool,
-    /// Whether any material references a base colour texture (not evaluated yet).
+    /// Whether any material has a base colour texture.
     pub uses_textures: bool,
     /// Whether a transmissive material disperses (`KHR_materials_dispersion`, or a
     /// spectral IOR from `PRISM_spectral`).

@@ -36,7 +36,10 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
     if let Some(surface) = desc.spectral.as_ref().and_then(|s| s.surface.clone()) {
         return surface;
     }
-    let base = SceneSpectrum::Rgb(Arc::new(desc.base_color.clone()));
+    let base = match &desc.base_color_texture {
+        Some(texture) => texture.clone(),
+        None => SceneSpectrum::Rgb(Arc::new(desc.base_color.clone())),
+    };
     if desc.transmission > 0.0 {
         // KHR_materials_dispersion: V_d = 20 / dispersion, Cauchy's law through n_d.
         let abbe = 20.0 / f64::from(desc.dispersion);

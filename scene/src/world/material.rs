@@ -72,13 +72,18 @@ impl Material {
         matches!(self, Material::Fluorescent { .. })
     }
 
-    /// The BSDF at a hit, its parameters sampled at `wavelengths`. For a fluorescent
+    /// The BSDF at a hit with texture coordinate `uv`, its parameters sampled at
+    /// `wavelengths`. For a fluorescent
     /// material this is its elastic part only: the integrator handles the change of
     /// wavelength itself (it must also change the wavelengths the path carries on with).
-    pub fn bsdf<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> Bsdf<'_, N> {
+    pub fn bsdf<const N: usize>(
+        &self,
+        uv: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> Bsdf<'_, N> {
         match self {
             Material::Diffuse { reflectance } => {
-                Bsdf::Diffuse(Diffuse::new(reflectance.at(wavelengths)))
+                Bsdf::Diffuse(Diffuse::new(reflectance.at_uv(uv, wavelengths)))
             }
             Material::MetallicRoughness {
                 base,
@@ -86,7 +91,7 @@ impl Material {
                 roughness,
                 coating,
             } => Bsdf::MetallicRoughness(MetallicRoughness::new(
-                base.at(wavelengths),
+                base.at_uv(uv, wavelengths),
                 *metallic,
                 *roughness,
                 coating,
@@ -109,7 +114,7 @@ impl Material {
                 })
             }
             Material::Fluorescent { reflectance, .. } => {
-                Bsdf::Diffuse(Diffuse::new(reflectance.at(wavelengths)))
+                Bsdf::Diffuse(Diffuse::new(reflectance.at_uv(uv, wavelengths)))
             }
         }
     }

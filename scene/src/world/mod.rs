@@ -8,11 +8,13 @@ mod guide;
 mod light;
 mod material;
 mod spectrum;
+mod texture;
 
 pub use from_gltf::SceneOptions;
 pub use light::{Light, LightSample, Lights};
 pub use material::{Bsdf, Material};
 pub use spectrum::SceneSpectrum;
+pub use texture::{RgbTexture, SpectralTexture, UvTransform, Wrap};
 
 use glam::{Vec2, Vec3};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};

@@ -32,6 +32,9 @@ pub enum SceneSpectrum {
     Sellmeier(Arc<Sellmeier>),
     /// A spectrum times a factor (light intensities).
     Scaled(Arc<SceneSpectrum>, f64),
+    /// A colour texture, upsampled per lookup. Without a texture coordinate (`at`,
+    /// `evaluate`) it is its mean colour's spectrum.
+    Texture(Arc<super::SpectralTexture>),
 }
 
 impl SceneSpectrum {
@@ -40,6 +43,18 @@ impl SceneSpectrum {
         match self {
             SceneSpectrum::Constant(v) => SampledSpectrum::splat(*v as f32),
             _ => self.sample(wavelengths),
+        }
+    }
+
+    /// The values at texture coordinate `uv` (textures vary with it, nothing else does).
+    pub fn at_uv<const N: usize>(
+        &self,
+        uv: glam::Vec2,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        match self {
+            SceneSpectrum::Texture(t) => t.at(uv, wavelengths),
+            _ => self.at(wavelengths),
         }
     }
 
@@ -91,6 +106,7 @@ impl SceneSpectrum {
             SceneSpectrum::Cauchy(_) => "Cauchy index".into(),
             SceneSpectrum::Sellmeier(_) => "Sellmeier index".into(),
             SceneSpectrum::Scaled(s, _) => s.describe(),
+            SceneSpectrum::Texture(_) => "texture".into(),
         }
     }
 
@@ -116,6 +132,7 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Cauchy(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Sellmeier(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Scaled(s, k) => s.evaluate(lambda_nm) * k,
+            SceneSpectrum::Texture(t) => t.evaluate(lambda_nm),
         }
     }
 
@@ -130,6 +147,7 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Cauchy(s) => s.max_value(),
             SceneSpectrum::Sellmeier(s) => s.max_value(),
             SceneSpectrum::Scaled(s, k) => s.max_value() * k,
+            SceneSpectrum::Texture(t) => t.max_value(),
         }
     }
 }

@@ -1,0 +1,231 @@
+//! Colour textures: 8-bit sRGB texels sampled bilinearly in linear RGB, upsampled to a
+//! reflectance spectrum per lookup (Jakob and Hanika's table), as pbrt-v4 does for RGB
+//! textures: RGB is filtered first, then turned into a spectrum.
+
+use std::sync::Arc;
+
+use glam::Vec2;
+use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use prism_upsample::{CoefficientTable, SigmoidPolynomial};
+
+/// How texture coordinates outside [0, 1] wrap (glTF sampler modes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Wrap {
+    /// Repeat.
+    Repeat,
+    /// Clamp to the edge texel.
+    Clamp,
+    /// Repeat, mirroring every other copy.
+    Mirror,
+}
+
+impl Wrap {
+    /// The texel index for integer coordinate `i` of a side of `n` texels.
+    fn texel(self, i: i64, n: u32) -> usize {
+        let n = i64::from(n);
+        (match self {
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Clamp => i.clamp(0, n - 1),
+            Wrap::Mirror => {
+                let m = i.rem_euclid(2 * n);
+                if m < n { m } else { 2 * n - 1 - m }
+            }
+        }) as usize
+    }
+}
+
+/// `KHR_texture_transform`: uv' = offset + rotation(scale * uv).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UvTransform {
+    /// Offset added last.
+    pub offset: Vec2,
+    /// Rotation, radians (counter-clockwise in the extension's convention).
+    pub rotation: f32,
+    /// Scale applied first.
+    pub scale: Vec2,
+}
+
+impl Default for UvTransform {
+    fn default() -> Self {
+        Self {
+            offset: Vec2::ZERO,
+            rotation: 0.0,
+            scale: Vec2::ONE,
+        }
+    }
+}
+
+impl UvTransform {
+    /// The transformed coordinates (the extension's matrix T R S, with R's rows
+    /// (cos, sin) and (-sin, cos)).
+    pub fn apply(&self, uv: Vec2) -> Vec2 {
+        let s = uv * self.scale;
+        let (sin, cos) = self.rotation.sin_cos();
+        self.offset + Vec2::new(cos * s.x + sin * s.y, -sin * s.x + cos * s.y)
+    }
+}
+
+/// An sRGB-encoded 8-bit RGB texture, times a linear factor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RgbTexture {
+    width: u32,
+    height: u32,
+    texels: Arc<Vec<[u8; 3]>>,
+    wrap: [Wrap; 2],
+    transform: UvTransform,
+    factor: [f32; 3],
+}
+
+/// sRGB-encoded byte to linear, the IEC 61966-2-1 curve.
+fn srgb_to_linear(v: u8) -> f32 {
+    let c = f32::from(v) / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+impl RgbTexture {
+    /// A texture of `width` x `height` texels (rows from the top), wrapping as `wrap`
+    /// (s, t), its coordinates transformed by `transform`, its colour multiplied by
+    /// `factor` (glTF's baseColorFactor). Errors if the texel count does not match.
+    pub fn new(
+        width: u32,
+        height: u32,
+        texels: Arc<Vec<[u8; 3]>>,
+        wrap: [Wrap; 2],
+        transform: UvTransform,
+        factor: [f32; 3],
+    ) -> Result<Self, String> {
+        if width == 0 || height == 0 || texels.len() != width as usize * height as usize {
+            return Err(format!(
+                "{} texels for a {width}x{height} texture",
+                texels.len()
+            ));
+        }
+        if !(transform.offset.is_finite()
+            && transform.scale.is_finite()
+            && transform.rotation.is_finite()
+            && factor.iter().all(|f| f.is_finite()))
+        {
+            return Err("texture transform or factor is not finite".into());
+        }
+        Ok(Self {
+            width,
+            height,
+            texels,
+            wrap,
+            transform,
+            factor,
+        })
+    }
+
+    fn linear(&self, x: i64, y: i64) -> [f32; 3] {
+        let i = self.wrap[1].texel(y, self.height) * self.width as usize
+            + self.wrap[0].texel(x, self.width);
+        self.texels[i].map(srgb_to_linear)
+    }
+
+    /// Linear RGB at `uv` (glTF: u right, v down from the top-left), bilinearly filtered
+    /// between texel centres, times the factor. Finite for every input.
+    pub fn sample(&self, uv: Vec2) -> [f32; 3] {
+        let uv = self.transform.apply(uv);
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        // Texel centres sit at half-integers; keep the integer part within i64 even for
+        // absurd coordinates (wrapping makes the exact multiple irrelevant).
+        let x = (uv.x * self.width as f32 - 0.5).clamp(-1e9, 1e9);
+        let y = (uv.y * self.height as f32 - 0.5).clamp(-1e9, 1e9);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let c = [
+            self.linear(x0, y0),
+            self.linear(x0 + 1, y0),
+            self.linear(x0, y0 + 1),
+            self.linear(x0 + 1, y0 + 1),
+        ];
+        std::array::from_fn(|k| {
+            let top = c[0][k] * (1.0 - fx) + c[1][k] * fx;
+            let bottom = c[2][k] * (1.0 - fx) + c[3][k] * fx;
+            (top * (1.0 - fy) + bottom * fy) * self.factor[k]
+        })
+    }
+
+    /// The mean linear colour over the texels, times the factor.
+    pub fn mean(&self) -> [f32; 3] {
+        let mut sum = [0.0f64; 3];
+        for t in self.texels.iter() {
+            for k in 0..3 {
+                sum[k] += f64::from(srgb_to_linear(t[k]));
+            }
+        }
+        let n = self.texels.len() as f64;
+        std::array::from_fn(|k| (sum[k] / n) as f32 * self.factor[k])
+    }
+}
+
+/// A reflectance texture: RGB texels upsampled through a coefficient table at every
+/// lookup. As a function of wavelength alone (the [`Spectrum`] impl) it is the spectrum
+/// of its mean colour, which is what light selection and reports need.
+#[derive(Debug, Clone)]
+pub struct SpectralTexture {
+    rgb: RgbTexture,
+    table: Arc<CoefficientTable>,
+    mean: Reflectance,
+}
+
+/// The spectrum of one linear RGB reflectance: exact for black and greys (the table is
+/// not needed there), the table's sigmoid otherwise.
+#[derive(Debug, Clone, Copy)]
+enum Reflectance {
+    Constant(f32),
+    Sigmoid(SigmoidPolynomial),
+}
+
+impl Reflectance {
+    fn of(rgb: [f32; 3], table: &CoefficientTable) -> Self {
+        let rgb = rgb.map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
+        if rgb[0] == rgb[1] && rgb[1] == rgb[2] {
+            Reflectance::Constant(rgb[0])
+        } else {
+            Reflectance::Sigmoid(table.lookup(rgb.map(f64::from)))
+        }
+    }
+
+    fn evaluate(&self, lambda: f64) -> f64 {
+        match self {
+            Reflectance::Constant(v) => f64::from(*v),
+            Reflectance::Sigmoid(s) => s.evaluate(lambda),
+        }
+    }
+}
+
+impl SpectralTexture {
+    /// Reflectance spectra of `rgb` through `table` (fitted for the texture's colour
+    /// space, sRGB for glTF).
+    pub fn new(rgb: RgbTexture, table: Arc<CoefficientTable>) -> Self {
+        let mean = Reflectance::of(rgb.mean(), &table);
+        Self { rgb, table, mean }
+    }
+
+    /// The reflectance at `uv`, at the package's wavelengths.
+    pub fn at<const N: usize>(
+        &self,
+        uv: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        let r = Reflectance::of(self.rgb.sample(uv), &self.table);
+        SampledSpectrum::from_fn(|i| r.evaluate(f64::from(wavelengths.lambda(i))) as f32)
+    }
+}
+
+impl Spectrum for SpectralTexture {
+    fn evaluate(&self, lambda_nm: f64) -> f64 {
+        self.mean.evaluate(lambda_nm)
+    }
+
+    fn max_value(&self) -> f64 {
+        1.0
+    }
+}

@@ -1,0 +1,206 @@
+//! Colour textures: decoding, wrapping, filtering, KHR_texture_transform, and upsampling
+//! per lookup, loaded from a glTF with an embedded PNG.
+
+use std::sync::Arc;
+
+use glam::Vec2;
+use prism_scene::load::{decode_image, load_geometry};
+use prism_scene::world::{
+    Material, RgbTexture, Scene, SceneOptions, SceneSpectrum, UvTransform, Wrap,
+};
+use prism_spectrum::SampledWavelengths;
+use proptest::prelude::*;
+use serde_json::json;
+
+fn png(width: u32, height: u32, rgb: &[[u8; 3]]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, width, height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_image_data(&rgb.concat()).unwrap();
+    writer.finish().unwrap();
+    out
+}
+
+fn texture(wrap: Wrap, transform: UvTransform) -> RgbTexture {
+    // 2 x 2: red, green / blue, white.
+    let texels = vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]];
+    RgbTexture::new(2, 2, Arc::new(texels), [wrap; 2], transform, [1.0; 3]).unwrap()
+}
+
+fn close(a: [f32; 3], b: [f32; 3]) -> bool {
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-5)
+}
+
+#[test]
+fn texel_centres_return_their_texels_and_wrap_modes_differ() {
+    let t = texture(Wrap::Repeat, UvTransform::default());
+    assert!(close(t.sample(Vec2::new(0.25, 0.25)), [1.0, 0.0, 0.0]));
+    assert!(close(t.sample(Vec2::new(0.75, 0.25)), [0.0, 1.0, 0.0]));
+    assert!(close(t.sample(Vec2::new(0.25, 0.75)), [0.0, 0.0, 1.0]));
+    // Halfway between red and green: the mean in linear RGB.
+    assert!(close(t.sample(Vec2::new(0.5, 0.25)), [0.5, 0.5, 0.0]));
+    // Repeat: u = 1.25 is u = 0.25; clamp: it is the right edge (green); mirror: the
+    // mirrored copy starts with the right column again.
+    assert!(close(t.sample(Vec2::new(1.25, 0.25)), [1.0, 0.0, 0.0]));
+    let c = texture(Wrap::Clamp, UvTransform::default());
+    assert!(close(c.sample(Vec2::new(1.25, 0.25)), [0.0, 1.0, 0.0]));
+    let m = texture(Wrap::Mirror, UvTransform::default());
+    assert!(close(m.sample(Vec2::new(1.25, 0.25)), [0.0, 1.0, 0.0]));
+    assert!(close(m.sample(Vec2::new(1.75, 0.25)), [1.0, 0.0, 0.0]));
+    // sRGB decoding: 128 is 0.2158 linear.
+    let grey = RgbTexture::new(
+        1,
+        1,
+        Arc::new(vec![[128; 3]]),
+        [Wrap::Repeat; 2],
+        UvTransform::default(),
+        [1.0; 3],
+    )
+    .unwrap();
+    assert!(close(grey.sample(Vec2::ZERO), [0.215_861; 3]));
+}
+
+#[test]
+fn texture_transform_scales_rotates_then_offsets() {
+    // Scale by 0.5 maps u = 0.5 to 0.25 (red); an offset of 0.5 moves it to green.
+    let scaled = texture(
+        Wrap::Repeat,
+        UvTransform {
+            scale: Vec2::splat(0.5),
+            ..Default::default()
+        },
+    );
+    assert!(close(scaled.sample(Vec2::new(0.5, 0.5)), [1.0, 0.0, 0.0]));
+    let shifted = texture(
+        Wrap::Repeat,
+        UvTransform {
+            offset: Vec2::new(0.5, 0.0),
+            ..Default::default()
+        },
+    );
+    assert!(close(
+        shifted.sample(Vec2::new(0.25, 0.25)),
+        [0.0, 1.0, 0.0]
+    ));
+    // The extension's rotation: (u, v) -> (cos u + sin v, -sin u + cos v); a quarter turn
+    // takes (0.25, -0.75) to (-0.75, -0.25), which repeats to (0.25, 0.75): blue.
+    let turned = texture(
+        Wrap::Repeat,
+        UvTransform {
+            rotation: std::f32::consts::FRAC_PI_2,
+            ..Default::default()
+        },
+    );
+    assert!(
+        close(turned.sample(Vec2::new(0.25, -0.75)), [0.0, 0.0, 1.0]),
+        "{:?}",
+        turned.sample(Vec2::new(0.25, -0.75))
+    );
+}
+
+proptest! {
+    #[test]
+    fn sampling_is_finite_anywhere(u in prop::num::f32::ANY, v in prop::num::f32::ANY, wrap in 0..3usize) {
+        let wrap = [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror][wrap];
+        let t = texture(wrap, UvTransform { rotation: 0.3, scale: Vec2::new(1e30, -2.0), offset: Vec2::new(-1e-40, 7.0) });
+        let c = t.sample(Vec2::new(u, v));
+        prop_assert!(c.iter().all(|x| x.is_finite() && *x >= 0.0 && *x <= 1.0), "{c:?}");
+    }
+}
+
+#[test]
+fn broken_images_are_errors_not_panics() {
+    let good = png(2, 1, &[[255, 0, 0], [0, 255, 0]]);
+    let decoded = decode_image(&good).unwrap();
+    assert_eq!((decoded.width, decoded.height), (2, 1));
+    assert_eq!(decoded.rgb, vec![[255, 0, 0], [0, 255, 0]]);
+    for (bytes, expected) in [
+        (good[..good.len() / 2].to_vec(), "PNG"),
+        (b"GIF89a".to_vec(), "not a PNG or JPEG"),
+        (vec![0xFF, 0xD8, 0xFF, 0xE0, 0, 0, 1, 2, 3], "JPEG"),
+        (vec![0xFF, 0xD8], "JPEG"),
+    ] {
+        let e = decode_image(&bytes).expect_err("should fail");
+        assert!(e.contains(expected), "{e}");
+    }
+}
+
+/// A glTF quad whose base colour is a 2 x 1 PNG (red | green) in the binary buffer: the
+/// loaded material's reflectance follows the texture, red at the left, green at the right.
+#[test]
+fn gltf_base_colour_textures_become_spectra() {
+    let image = png(2, 1, &[[255, 0, 0], [0, 255, 0]]);
+    let mut bin: Vec<u8> = [
+        0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0,
+    ]
+    .iter()
+    .flat_map(|f| f.to_le_bytes())
+    .collect();
+    let uv_offset = bin.len();
+    bin.extend(
+        [
+            0.0f32, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0,
+        ]
+        .iter()
+        .flat_map(|f| f.to_le_bytes()),
+    );
+    let image_offset = bin.len();
+    bin.extend(&image);
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "materials": [{"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}],
+        "textures": [{"source": 0}],
+        "images": [{"bufferView": 2, "mimeType": "image/png"}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 6, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 6, "type": "VEC2"}
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": uv_offset},
+            {"buffer": 0, "byteOffset": uv_offset, "byteLength": image_offset - uv_offset},
+            {"buffer": 0, "byteOffset": image_offset, "byteLength": image.len()}
+        ],
+        "buffers": [{"byteLength": bin.len(), "uri": "quad.bin"}]
+    });
+    let loaded = load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &move |_| Ok(bin.clone()),
+        None,
+    )
+    .unwrap();
+    assert!(loaded.materials[0].base_color_texture.is_some());
+    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let Material::Diffuse { reflectance } = &scene.materials()[0] else {
+        panic!("a rough non-metal is Lambertian")
+    };
+    assert!(matches!(reflectance, SceneSpectrum::Texture(_)));
+    let lambdas = SampledWavelengths::new([530.0, 650.0], [1.0, 1.0]).unwrap();
+    let left = reflectance.at_uv(Vec2::new(0.25, 0.5), &lambdas);
+    let right = reflectance.at_uv(Vec2::new(0.75, 0.5), &lambdas);
+    assert!(left[1] > 0.8 && left[0] < 0.2, "red texel: {left:?}");
+    assert!(right[0] > 0.6 && right[1] < 0.2, "green texel: {right:?}");
+    // A missing image file is an error naming the image.
+    let mut doc = doc.clone();
+    doc["images"] = json!([{"uri": "missing.png"}]);
+    let result = load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &|uri| {
+            if uri == "quad.bin" {
+                Ok(vec![0; 4096])
+            } else {
+                Err("no such file".into())
+            }
+        },
+        None,
+    );
+    let Err(e) = result else {
+        panic!("should fail")
+    };
+    assert!(e.to_string().contains("image 0"), "{e}");
+}
