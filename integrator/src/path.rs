@@ -115,6 +115,15 @@ impl Tracer<'_> {
                 break;
             };
             let wo_world = -ray.direction.normalize();
+            // Leaving an absorbing volume through its boundary (the ray meets the inside
+            // of the surface): the segment just traced ran inside it (Beer-Lambert).
+            if let Some(sigma) = self.scene.material(&hit).absorption()
+                && ray.direction.dot(hit.normal) > 0.0
+            {
+                let distance = hit.t * ray.direction.length();
+                let sigma = sigma.at(&transport);
+                beta *= SampledSpectrum::from_fn(|i| (-sigma[i] * distance).exp());
+            }
             let le = self.scene.emitted(&hit, wo_world, &transport);
             if !le.is_black() {
                 let w = previous.map_or(1.0, |(bsdf_pdf, from)| {

@@ -104,6 +104,7 @@ fn each_wavelength_leaves_the_prism_where_snell_puts_it() {
             Material::Dielectric {
                 ior: SceneSpectrum::Sellmeier(Arc::new(glass.clone())),
                 roughness: 0.0,
+                absorption: None,
             },
             Material::Diffuse {
                 reflectance: SceneSpectrum::Constant(0.0),

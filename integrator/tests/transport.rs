@@ -462,6 +462,7 @@ fn dispersive_glass_furnace_returns_the_environment() {
             Material::Dielectric {
                 ior: SceneSpectrum::Dense(std::sync::Arc::new(ior)),
                 roughness: 0.0,
+                absorption: None,
             },
             Material::Diffuse {
                 reflectance: SceneSpectrum::Constant(1.0),
@@ -590,5 +591,66 @@ fn spectral_film_recovers_a_blackbody_per_band() {
         }
         let decoded = prism_integrator::decode_exr(&exr).unwrap();
         assert_eq!(decoded.channels.len(), 3 + 16);
+    }
+}
+
+/// Beer-Lambert: through an index-matched (n = 1) cube of side 2 whose inside absorbs
+/// sigma = 0.5 per unit, a uniform environment of radiance 1 is seen as exp(-1); the
+/// front faces and the path inside see no absorption until the ray leaves.
+#[test]
+fn absorbing_volumes_follow_beer_lambert() {
+    let c = [
+        Vec3::new(-1.0, -1.0, -1.0),
+        Vec3::new(1.0, -1.0, -1.0),
+        Vec3::new(1.0, 1.0, -1.0),
+        Vec3::new(-1.0, 1.0, -1.0),
+        Vec3::new(-1.0, -1.0, 1.0),
+        Vec3::new(1.0, -1.0, 1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+    ];
+    // Outward-wound faces (counter-clockwise seen from outside).
+    let faces = [
+        [0, 3, 2, 1],
+        [4, 5, 6, 7],
+        [0, 1, 5, 4],
+        [2, 3, 7, 6],
+        [1, 2, 6, 5],
+        [0, 4, 7, 3],
+    ];
+    let triangles: Vec<[Vec3; 3]> = faces
+        .iter()
+        .flat_map(|f| [[c[f[0]], c[f[1]], c[f[2]]], [c[f[0]], c[f[2]], c[f[3]]]])
+        .collect();
+    for t in &triangles {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        assert!(n.dot(t[0] + t[1] + t[2]) > 0.0, "faces wound outward");
+    }
+    let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangle_material: vec![0; triangles.len()],
+        triangles,
+        materials: vec![Material::Dielectric {
+            ior: SceneSpectrum::Constant(1.0),
+            roughness: 0.0,
+            absorption: Some(SceneSpectrum::Constant(0.5)),
+        }],
+        emission: vec![],
+        lights: vec![Light::Environment {
+            radiance: SceneSpectrum::Constant(1.0),
+        }],
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 0.5),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap();
+    let (film, _) = render(&scene, &settings(8, 16, 4, LambdaSampler::Visible)).unwrap();
+    let expected = constant_xyz((-1.0f64).exp());
+    for k in 0..3 {
+        let (mean, error) = mean_and_error(&film, k);
+        assert!(
+            (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
+            "channel {k}: {mean} vs {}",
+            expected[k]
+        );
     }
 }

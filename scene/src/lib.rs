@@ -9,8 +9,9 @@
 //! overlays, see docs/scene-format.md), and the render-ready scene (`world`) the
 //! integrator consumes, with shading normals and base colour textures (RGB filtered, then
 //! upsampled per lookup through a coefficient table fitted at load when a texture needs
-//! it). Emissive, metallic-roughness and normal textures and `KHR_materials_volume` are
-//! not built yet (see the issue tracker).
+//! it), and absorbing volumes (`KHR_materials_volume`, spectral Beer-Lambert absorption
+//! applied by the integrator when a ray leaves through a boundary's inside). Emissive,
+//! metallic-roughness and normal textures are not built yet (see the issue tracker).
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit

@@ -119,8 +119,9 @@ fn dielectrics_take_every_ior_form() {
         ),
     ] {
         let doc = with_material_extension("white", json!({"type": "dielectric", "ior": ior}));
-        let Material::Dielectric { ior: n, roughness } =
-            surface(&load(&doc, None, &[]).unwrap(), "white")
+        let Material::Dielectric {
+            ior: n, roughness, ..
+        } = surface(&load(&doc, None, &[]).unwrap(), "white")
         else {
             panic!("not a dielectric")
         };
@@ -384,4 +385,44 @@ fn files_that_require_the_extension_still_load() {
     doc["extensionsUsed"] = json!(["KHR_materials_emissive_strength", "PRISM_spectral"]);
     doc["extensionsRequired"] = json!(["PRISM_spectral"]);
     assert!(load(&doc, None, &[]).is_ok());
+}
+
+#[test]
+fn gltf_volumes_absorb_by_beer_lambert() {
+    let mut doc = cornell_json();
+    doc["extensionsUsed"] = json!(["KHR_materials_transmission", "KHR_materials_volume"]);
+    for m in doc["materials"].as_array_mut().unwrap() {
+        if m["name"] == "white" {
+            m["extensions"] = json!({
+                "KHR_materials_transmission": {"transmissionFactor": 1.0},
+                "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 2.0,
+                                         "attenuationColor": [0.5, 0.5, 0.5]}
+            });
+        }
+    }
+    let loaded = load(&doc, None, &[]).unwrap();
+    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let Material::Dielectric {
+        absorption: Some(sigma),
+        ..
+    } = &scene.materials()[1]
+    else {
+        panic!("white should be an absorbing dielectric")
+    };
+    // What is left after 2 units is 0.5: sigma = ln 2 / 2 at every wavelength.
+    for nm in [400.0, 550.0, 700.0] {
+        assert!((sigma.evaluate(nm) - std::f64::consts::LN_2 / 2.0).abs() < 1e-6);
+    }
+    // A spectral absorption in PRISM_spectral.
+    let doc = with_material_extension(
+        "white",
+        json!({"type": "dielectric", "ior": 1.33, "absorption": [[400, 0.01], [700, 0.4]]}),
+    );
+    assert!(matches!(
+        surface(&load(&doc, None, &[]).unwrap(), "white"),
+        Material::Dielectric {
+            absorption: Some(_),
+            ..
+        }
+    ));
 }

@@ -68,11 +68,15 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
             }
         }
         Some("dielectric") => {
-            only_keys(map, &["type", "emission", "ior", "roughness"])?;
+            only_keys(map, &["type", "emission", "ior", "roughness", "absorption"])?;
             let n = map.get("ior").ok_or("needs 'ior'")?;
             Material::Dielectric {
                 ior: ior(n, cx).map_err(|e| format!("ior: {e}"))?,
                 roughness: roughness()?,
+                absorption: map
+                    .get("absorption")
+                    .map(|a| spectrum(a, Role::Plain, cx).map_err(|e| format!("absorption: {e}")))
+                    .transpose()?,
             }
         }
         Some("conductor") => {

@@ -50,6 +50,7 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         return Material::Dielectric {
             ior,
             roughness: desc.roughness,
+            absorption: desc.absorption.clone(),
         };
     }
     if desc.metallic == 0.0 && desc.roughness == 1.0 {

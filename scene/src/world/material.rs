@@ -38,6 +38,9 @@ pub enum Material {
         ior: SceneSpectrum,
         /// Perceptual roughness; alpha = roughness^2.
         roughness: f32,
+        /// Absorption coefficient of the inside, per unit of scene length (Beer-Lambert:
+        /// light crossing a distance d keeps exp(-sigma d)); None: clear.
+        absorption: Option<SceneSpectrum>,
     },
     /// A conductor (metal) with complex index eta + i k relative to the outside, smooth
     /// when `roughness` is 0.
@@ -65,6 +68,14 @@ impl Material {
     /// Whether the index of refraction varies with wavelength (dispersion).
     pub fn dispersive(&self) -> bool {
         matches!(self, Material::Dielectric { ior, .. } if !matches!(ior, SceneSpectrum::Constant(_)))
+    }
+
+    /// The absorption coefficient inside, if the material bounds an absorbing volume.
+    pub fn absorption(&self) -> Option<&SceneSpectrum> {
+        match self {
+            Material::Dielectric { absorption, .. } => absorption.as_ref(),
+            _ => None,
+        }
     }
 
     /// Whether light changes wavelength here.
@@ -96,7 +107,7 @@ impl Material {
                 *roughness,
                 coating,
             )),
-            Material::Dielectric { ior, roughness } => {
+            Material::Dielectric { ior, roughness, .. } => {
                 let alpha = roughness * roughness;
                 let eta = ior.at(wavelengths).0.map(|e| e.max(1e-3));
                 Bsdf::Dielectric(RoughDielectric {
