@@ -369,7 +369,7 @@ fn spectral_output_has_the_layout_channels() {
                 "-o",
                 o,
             ],
-            "spectral range",
+            "--spectral-range '800:400'",
         ),
         (
             &[
@@ -425,4 +425,111 @@ fn renders_a_fluorescent_overlay() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(std::fs::metadata(&png).unwrap().len() > 0);
+}
+
+/// Mean R / B of an EXR.
+fn red_over_blue(path: &std::path::Path) -> f64 {
+    let image = prism_integrator::decode_exr(&std::fs::read(path).unwrap()).unwrap();
+    let mean = |name: &str| {
+        let (_, v) = image.channels.iter().find(|(n, _)| n == name).unwrap();
+        v.iter().map(|&x| f64::from(x)).sum::<f64>() / v.len() as f64
+    };
+    mean("R") / mean("B")
+}
+
+#[test]
+fn white_balance_energy_and_wavelength_range() {
+    let dir = temp_dir("balance");
+    let gltf = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
+    let lit_by = |name: &str, illuminant: &str| {
+        let overlay = dir.join(format!("{name}.toml"));
+        std::fs::write(
+            &overlay,
+            format!("gltf = \"{gltf}\"\n[materials.white-emitter]\nemission = {{ spectrum = \"{illuminant}\", scale = 0.2 }}\n"),
+        )
+        .unwrap();
+        overlay.to_str().unwrap().to_string()
+    };
+    let (tungsten, d65) = (
+        lit_by("tungsten", "illuminant:A"),
+        lit_by("d65", "illuminant:D65"),
+    );
+    let render_scene = |scene: &str, extra: &[&str], out: &std::path::Path| {
+        let mut args = vec![
+            "render",
+            scene,
+            "--spp",
+            "4",
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let result = prism(&args);
+        assert!(
+            result.status.success(),
+            "{}",
+            String::from_utf8_lossy(&result.stderr)
+        );
+        result
+    };
+    let (plain, balanced, daylight) = (
+        dir.join("plain.exr"),
+        dir.join("balanced.exr"),
+        dir.join("d65.exr"),
+    );
+    let render = |extra: &[&str], out: &std::path::Path| render_scene(&tungsten, extra, out);
+    render(&[], &plain);
+    render(&["--white-balance", "illuminant:A"], &balanced);
+    // The same box under D65, sRGB's white, for what balanced colours look like.
+    render_scene(&d65, &[], &daylight);
+    let (before, after, reference) = (
+        red_over_blue(&plain),
+        red_over_blue(&balanced),
+        red_over_blue(&daylight),
+    );
+    assert!(
+        before > 1.5 * reference,
+        "tungsten light is orange: R/B {before} vs {reference}"
+    );
+    assert!(
+        (after - reference).abs() < 0.15 * reference,
+        "balanced to A the box looks as under daylight: R/B {after} vs {reference}"
+    );
+
+    let energy = dir.join("energy.exr");
+    let out = render(
+        &["--energy", "--stats", "-q", "--wavelength-range", "300:900"],
+        &energy,
+    );
+    let stats: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        stats["energy"]["range_nm"],
+        serde_json::json!([300.0, 900.0])
+    );
+    assert!(stats["energy"]["mean_radiance_w_m2_sr"].as_f64().unwrap() > 0.0);
+    let image = prism_integrator::decode_exr(&std::fs::read(&energy).unwrap()).unwrap();
+    for name in ["energy.radiance", "energy.eV", "energy.photons"] {
+        assert!(
+            image.channels.iter().any(|(n, _)| n == name),
+            "{name} missing"
+        );
+    }
+    assert_one_line_errors(&[
+        (
+            &["render", "--white-balance", "illuminant:Q9", "-o", "x.png"],
+            "illuminant",
+        ),
+        (
+            &["render", "--wavelength-range", "830:360", "-o", "x.png"],
+            "--wavelength-range",
+        ),
+        (
+            &["render", "--energy", "--checkpoint", "5", "-o", "x.exr"],
+            "--energy",
+        ),
+    ]);
 }

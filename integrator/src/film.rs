@@ -21,6 +21,9 @@ pub struct Film {
     /// Per-band sums of spectral radiance estimates (W m^-2 sr^-1 nm^-1 per sample),
     /// `bands.count()` values per pixel, when the film is spectral.
     spectral: Option<(SpectralBands, Vec<f64>)>,
+    /// Per-pixel sums of (radiance W m^-2 sr^-1, photon radiance s^-1 m^-2 sr^-1)
+    /// estimates, when the film records energy.
+    energy: Option<Vec<[f64; 2]>>,
 }
 
 impl Film {
@@ -33,7 +36,28 @@ impl Film {
             samples: 0,
             nonfinite: 0,
             spectral: None,
+            energy: None,
         }
+    }
+
+    /// This film, also recording radiance and photon radiance per pixel.
+    pub fn with_energy(mut self) -> Self {
+        self.energy = Some(vec![[0.0; 2]; self.sums.len()]);
+        self
+    }
+
+    /// Whether the film records energy.
+    pub fn has_energy(&self) -> bool {
+        self.energy.is_some()
+    }
+
+    /// Pixel (x, y)'s radiance integrated over the rendered range (W m^-2 sr^-1) and its
+    /// photon radiance (photons s^-1 m^-2 sr^-1), when the film records energy.
+    pub fn energy(&self, x: u32, y: u32) -> Option<[f64; 2]> {
+        let sums = self.energy.as_ref()?;
+        let n = self.samples.max(1) as f64;
+        let e = sums[(y * self.width + x) as usize];
+        Some([e[0] / n, e[1] / n])
     }
 
     /// A black film that also accumulates spectral radiance in `bands`.
@@ -45,11 +69,17 @@ impl Film {
         }
     }
 
-    /// A black film of the settings' size, spectral when they ask for bands.
+    /// A black film of the settings' size, spectral when they ask for bands, recording
+    /// energy when they ask for it.
     pub fn for_settings(settings: &crate::RenderSettings) -> Self {
-        match settings.bands {
+        let film = match settings.bands {
             Some(bands) => Self::with_bands(settings.width, settings.height, bands),
             None => Self::new(settings.width, settings.height),
+        };
+        if settings.energy {
+            film.with_energy()
+        } else {
+            film
         }
     }
 
@@ -89,6 +119,7 @@ impl Film {
             samples,
             nonfinite,
             spectral: None,
+            energy: None,
         })
     }
 
@@ -117,12 +148,18 @@ impl Film {
         &self.sums
     }
 
-    /// The XYZ sums and the spectral sums (empty when not spectral), for filling by rows.
-    pub(crate) fn sums_mut(&mut self) -> (&mut [[f64; 3]], &mut [f64]) {
-        match &mut self.spectral {
-            Some((_, s)) => (&mut self.sums, s),
-            None => (&mut self.sums, &mut []),
-        }
+    /// The XYZ sums, the spectral sums (empty when not spectral) and the energy sums
+    /// (empty without energy), for filling by rows.
+    pub(crate) fn sums_mut(&mut self) -> (&mut [[f64; 3]], &mut [f64], &mut [[f64; 2]]) {
+        let spectral: &mut [f64] = match &mut self.spectral {
+            Some((_, s)) => s,
+            None => &mut [],
+        };
+        let energy: &mut [[f64; 2]] = match &mut self.energy {
+            Some(e) => e,
+            None => &mut [],
+        };
+        (&mut self.sums, spectral, energy)
     }
 
     pub(crate) fn finish_pass(&mut self, samples: u64, nonfinite: u64) {
@@ -150,6 +187,16 @@ impl Film {
             .collect()
     }
 
+    /// This film with every XYZ sum transformed by `m` (white balance: a chromatic
+    /// adaptation matrix); spectral and energy sums are physical and stay as they are.
+    pub fn adapted(&self, m: &prism_spectrum::color::Mat3) -> Film {
+        let mut film = self.clone();
+        for s in &mut film.sums {
+            *s = m.apply(*s);
+        }
+        film
+    }
+
     /// Adds another film of the same size (sample ranges rendered apart).
     pub fn merge(&mut self, other: &Film) -> Result<(), String> {
         if (self.width, self.height) != (other.width, other.height) {
@@ -166,6 +213,16 @@ impl Film {
             }
             (None, None) => {}
             _ => return Err("films differ in their spectral bands".into()),
+        }
+        match (&mut self.energy, &other.energy) {
+            (Some(a), Some(b)) => {
+                for (x, y) in a.iter_mut().zip(b) {
+                    x[0] += y[0];
+                    x[1] += y[1];
+                }
+            }
+            (None, None) => {}
+            _ => return Err("one film records energy and the other does not".into()),
         }
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
             for (acc, v) in a.iter_mut().zip(b) {

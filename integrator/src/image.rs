@@ -30,6 +30,10 @@ pub struct ExrMetadata {
 /// W m^-2 sr^-1 nm^-1, the attributes `spectralLayoutVersion` = "1.0" and `emissiveUnits`
 /// = "W.m^-2.sr^-1", and R, G, B as the preview.
 ///
+/// A film that records energy adds `energy.radiance` (W m^-2 sr^-1 over the rendered
+/// wavelength range), `energy.eV` (the same in eV s^-1 m^-2 sr^-1) and `energy.photons`
+/// (photons s^-1 m^-2 sr^-1).
+///
 /// prism's facts (`spp=N;...`) go in the typed `comments` attribute: the exr crate keeps
 /// other attributes in a HashMap whose order changes per process, so each of its maps holds
 /// at most one entry and the file's bytes stay a function of the image.
@@ -57,6 +61,26 @@ pub fn encode_exr(
                 .map(|p| (sums[p * count + b] / n) as f32)
                 .collect();
             list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
+        }
+    }
+    if film.has_energy() {
+        // Radiance over the rendered range in W m^-2 sr^-1, the same in eV s^-1 m^-2
+        // sr^-1, and photons s^-1 m^-2 sr^-1.
+        let per_pixel: Vec<[f64; 2]> = (0..h as u32)
+            .flat_map(|y| (0..w as u32).map(move |x| (x, y)))
+            .map(|(x, y)| film.energy(x, y).unwrap_or_default())
+            .collect();
+        let ev = prism_spectrum::constants::ELEMENTARY_CHARGE;
+        for (name, f) in [
+            (
+                "energy.radiance",
+                &(|e: [f64; 2]| e[0]) as &dyn Fn([f64; 2]) -> f64,
+            ),
+            ("energy.eV", &|e: [f64; 2]| e[0] / ev),
+            ("energy.photons", &|e: [f64; 2]| e[1]),
+        ] {
+            let values = per_pixel.iter().map(|&e| f(e) as f32).collect();
+            list.push(AnyChannel::new(name, FlatSamples::F32(values)));
         }
     }
     let mut facts = format!("spp={}", metadata.spp);

@@ -133,8 +133,8 @@ impl<'a> Renderer<'a> {
         self.pool.install(|| {
             let width = settings.width as usize;
             let spectral_width = width * settings.bands.map_or(0, |b| b.count());
-            let (sums, spectral) = pass.sums_mut();
-            // A non-spectral film has no spectral sums: each row gets an empty slice.
+            let (sums, spectral, energy) = pass.sums_mut();
+            // Films without spectral or energy sums give each row an empty slice.
             let spectral_rows: Vec<&mut [f64]> = if spectral_width == 0 {
                 (0..settings.height)
                     .map(|_| -> &mut [f64] { &mut [] })
@@ -142,14 +142,27 @@ impl<'a> Renderer<'a> {
             } else {
                 spectral.chunks_mut(spectral_width).collect()
             };
+            let energy_rows: Vec<&mut [[f64; 2]]> = if energy.is_empty() {
+                (0..settings.height)
+                    .map(|_| -> &mut [[f64; 2]] { &mut [] })
+                    .collect()
+            } else {
+                energy.chunks_mut(width).collect()
+            };
             sums.par_chunks_mut(width)
                 .zip(spectral_rows)
+                .zip(energy_rows)
                 .enumerate()
-                .for_each(|(y, (row, spectral_row))| {
+                .for_each(|(y, ((row, spectral_row), energy_row))| {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, row, spectral_row);
+                    let out = RowOutput {
+                        xyz: row,
+                        spectral: spectral_row,
+                        energy: energy_row,
+                    };
+                    let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
                     rays.fetch_add(r, Ordering::Relaxed);
                     nonfinite.fetch_add(n, Ordering::Relaxed);
                 });
@@ -200,15 +213,32 @@ pub fn render(
     Ok((film, stats))
 }
 
+/// One row's sums: XYZ, spectral bands (empty when not spectral) and energy (empty
+/// without energy output).
+struct RowOutput<'a> {
+    xyz: &'a mut [[f64; 3]],
+    spectral: &'a mut [f64],
+    energy: &'a mut [[f64; 2]],
+}
+
+/// Photons per joule at 1 nm: a photon of wavelength l nm carries hc / (l 1e-9) J.
+const PHOTONS_PER_JOULE_NM: f64 =
+    1e-9 / (prism_spectrum::constants::PLANCK * prism_spectrum::constants::SPEED_OF_LIGHT);
+
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
 fn trace_row<const N: usize, const FLUORESCENCE: bool>(
     tracer: &Tracer,
     filter: &FilterSampler,
     settings: &Rows,
     y: u32,
-    row: &mut [[f64; 3]],
-    spectral_row: &mut [f64],
+    out: RowOutput,
 ) -> (u64, u64) {
+    let RowOutput {
+        xyz: row,
+        spectral: spectral_row,
+        energy: energy_row,
+    } = out;
+    let record_energy = !energy_row.is_empty();
     let (w, h) = (settings.width, settings.height);
     let aspect = w as f32 / h as f32;
     let (mut rays, mut rejected) = (0u64, 0u64);
@@ -227,6 +257,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 (y as f32 + 0.5 + offset.y) / h as f32,
             );
             let mut xyz = [0.0f64; 3];
+            let mut energy = [0.0f64; 2];
             binned.clear();
             let result = tracer.trace::<N, FLUORESCENCE>(
                 &mut stream,
@@ -239,6 +270,19 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                     xyz[0] += c.x;
                     xyz[1] += c.y;
                     xyz[2] += c.z;
+                    if record_energy {
+                        // (1/C) sum_j L_j / pdf_j estimates the radiance integral; each
+                        // lane's photons are its energy times lambda / hc.
+                        for j in 0..N {
+                            let pdf = f64::from(lambdas.pdf(j));
+                            if pdf > 0.0 {
+                                let e = f64::from(radiance[j]) / pdf / N as f64;
+                                energy[0] += e;
+                                energy[1] +=
+                                    e * f64::from(lambdas.lambda(j)) * PHOTONS_PER_JOULE_NM;
+                            }
+                        }
+                    }
                     if let Some(bands) = settings.bands {
                         // Each lane estimates (1/C) L / pdf of its band's integral; per nm,
                         // divided by the band's width.
@@ -255,8 +299,9 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 },
             );
             rays += result.rays;
-            let finite =
-                xyz.iter().all(|v| v.is_finite()) && binned.iter().all(|b| b.1.is_finite());
+            let finite = xyz.iter().all(|v| v.is_finite())
+                && binned.iter().all(|b| b.1.is_finite())
+                && energy.iter().all(|v| v.is_finite());
             if result.valid && finite {
                 let scale = match settings.clamp {
                     Some(c) if xyz[1] > c => c / xyz[1],
@@ -267,6 +312,10 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 }
                 for &(band, v) in &binned {
                     spectral_row[x * band_count + band] += v * scale;
+                }
+                if record_energy {
+                    energy_row[x][0] += energy[0] * scale;
+                    energy_row[x][1] += energy[1] * scale;
                 }
             } else {
                 rejected += 1;

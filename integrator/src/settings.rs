@@ -77,6 +77,9 @@ pub struct RenderSettings {
     pub clamp: Option<f64>,
     /// Spectral output: the film also accumulates spectral radiance in these bands.
     pub bands: Option<SpectralBands>,
+    /// Energy output: the film also accumulates radiance integrated over `range` and the
+    /// photon radiance (the same with each wavelength's radiance divided by hc / lambda).
+    pub energy: bool,
 }
 
 impl Default for RenderSettings {
@@ -96,6 +99,7 @@ impl Default for RenderSettings {
             filter: Filter::Box,
             clamp: None,
             bands: None,
+            energy: false,
         }
     }
 }

@@ -70,6 +70,19 @@ pub struct RenderArgs {
     /// The range of the spectral bands, nm.
     #[arg(long, value_name = "A:B", default_value = "380:780")]
     pub spectral_range: String,
+    /// Energy output: EXR outputs also get energy.radiance (W m^-2 sr^-1 over the
+    /// wavelength range), energy.eV and energy.photons channels; --stats gains their
+    /// image means.
+    #[arg(long)]
+    pub energy: bool,
+    /// The wavelengths camera paths sample, nm (wider than 360:830 to include UV or
+    /// infrared; only what the observer sees shows in RGB).
+    #[arg(long, value_name = "A:B", default_value = "360:830")]
+    pub wavelength_range: String,
+    /// White balance: adapt the image from this illuminant's white to the output space's
+    /// white (Bradford), e.g. illuminant:A, blackbody:3200, daylight:5000 or a CSV file.
+    #[arg(long, value_name = "SPECTRUM")]
+    pub white_balance: Option<String>,
     /// Output colour space of EXR and PNG files.
     #[arg(long, default_value = "srgb")]
     pub space: String,
@@ -155,8 +168,15 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         filter,
         clamp: args.clamp,
         bands: spectral_bands(args)?,
+        energy: args.energy,
+        range: parse_nm_range("--wavelength-range", &args.wavelength_range)?,
         ..RenderSettings::default()
     };
+    let white_balance = args
+        .white_balance
+        .as_deref()
+        .map(|spec| white_balance(spec, space_id))
+        .transpose()?;
     settings.validate().map_err(|e| e.to_string())?;
     // The film, one pass's film and the output's RGB: 24 + 24 + 12 bytes per pixel.
     let film_bytes = u64::from(width) * u64::from(height) * 60;
@@ -179,11 +199,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let checkpoint_every = seconds_arg("checkpoint", args.checkpoint)?;
     let range = settings.samples.clone();
     let fingerprint = fingerprint(args, width, height);
-    if settings.bands.is_some()
+    if (settings.bands.is_some() || settings.energy)
         && (args.resume.is_some() || args.checkpoint.is_some() || samples_only.is_some())
     {
         return Err(
-            "--spectral-bands cannot be combined with --checkpoint, --resume or --sample-range yet (accumulation files hold XYZ only)"
+            "--spectral-bands and --energy cannot be combined with --checkpoint, --resume or --sample-range yet (accumulation files hold XYZ only)"
                 .into(),
         );
     }
@@ -218,12 +238,20 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             write_atomically(out, &bytes)?;
         }
     } else {
-        let facts = vec![
+        let mut facts = vec![
             ("seed".into(), args.seed.to_string()),
             ("wavelengths".into(), args.wavelengths.to_string()),
             ("lambda_sampler".into(), args.lambda_sampler.clone()),
+            ("wavelength_range".into(), args.wavelength_range.clone()),
         ];
-        write_images(&film, &args.outputs, space_id, args.exposure, facts)?;
+        if let Some(spec) = &args.white_balance {
+            facts.push(("white_balance".into(), spec.clone()));
+        }
+        let shown = match &white_balance {
+            Some(m) => film.adapted(m),
+            None => film.clone(),
+        };
+        write_images(&shown, &args.outputs, space_id, args.exposure, facts)?;
     }
     if stats.nonfinite > 0 {
         eprintln!(
@@ -247,6 +275,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "peak_memory_bytes": crate::memory::peak_bytes(),
             "wavelengths": args.wavelengths,
             "lambda_sampler": args.lambda_sampler,
+            "energy": energy_stats(&film, settings.range),
         });
         println!("{json}");
     }
@@ -273,21 +302,66 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     }
 }
 
+/// `A:B` in nm, 0 < A < B.
+fn parse_nm_range(flag: &str, text: &str) -> Result<(f32, f32), String> {
+    let bad = || format!("{flag} '{text}': expected A:B in nm with 0 < A < B");
+    let (a, b) = text.split_once(':').ok_or_else(bad)?;
+    let (a, b): (f32, f32) = (
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    );
+    if a.is_finite() && b.is_finite() && 0.0 < a && a < b {
+        Ok((a, b))
+    } else {
+        Err(bad())
+    }
+}
+
+/// The chromatic adaptation (Bradford) from the white of the illuminant `spec` to the
+/// white of the output space.
+fn white_balance(spec: &str, space: RgbSpaceId) -> Result<prism_spectrum::color::Mat3, String> {
+    use prism_spectrum::color::{AdaptationMethod, adaptation_matrix};
+    use prism_spectrum::colorimetry::{Observer, WhitePoint, emission_xyz};
+    let spectrum = crate::spectrum_spec::parse(spec).map_err(|e| format!("--white-balance {e}"))?;
+    let white = WhitePoint::from_xyz(emission_xyz(&*spectrum, Observer::Cie1931))
+        .map_err(|e| format!("--white-balance '{spec}': {e}"))?;
+    Ok(adaptation_matrix(
+        white,
+        space.space().white(),
+        AdaptationMethod::Bradford,
+    ))
+}
+
+/// The image means of the energy channels, or null without --energy.
+fn energy_stats(film: &Film, range: (f32, f32)) -> serde_json::Value {
+    if !film.has_energy() {
+        return serde_json::Value::Null;
+    }
+    let (w, h) = (film.width(), film.height());
+    let mut sum = [0.0f64; 2];
+    for y in 0..h {
+        for x in 0..w {
+            let e = film.energy(x, y).unwrap_or_default();
+            sum[0] += e[0];
+            sum[1] += e[1];
+        }
+    }
+    let n = f64::from(w) * f64::from(h);
+    let ev = prism_spectrum::constants::ELEMENTARY_CHARGE;
+    serde_json::json!({
+        "range_nm": [range.0, range.1],
+        "mean_radiance_w_m2_sr": sum[0] / n,
+        "mean_radiance_ev_s_m2_sr": sum[0] / n / ev,
+        "mean_photon_radiance_s_m2_sr": sum[1] / n,
+    })
+}
+
 /// The bands of `--spectral-bands N --spectral-range A:B`.
 fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
     let Some(count) = args.spectral_bands else {
         return Ok(None);
     };
-    let range = args
-        .spectral_range
-        .split_once(':')
-        .and_then(|(a, b)| Some((a.trim().parse::<f32>().ok()?, b.trim().parse::<f32>().ok()?)))
-        .ok_or_else(|| {
-            format!(
-                "--spectral-range '{}': expected A:B in nm",
-                args.spectral_range
-            )
-        })?;
+    let range = parse_nm_range("--spectral-range", &args.spectral_range)?;
     SpectralBands::new(range.0, range.1, count)
         .map(Some)
         .map_err(|e| e.to_string())
@@ -296,7 +370,7 @@ fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
 /// What must match for a checkpoint to be resumed or parts merged.
 fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
     format!(
-        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?}",
+        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={}",
         args.scene
             .as_ref()
             .map_or("(default)".into(), |p| p.display().to_string()),
@@ -307,7 +381,8 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.lambda_sampler,
         args.filter,
         args.clamp,
-        args.environment
+        args.environment,
+        args.wavelength_range
     )
 }
 
