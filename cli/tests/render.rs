@@ -533,3 +533,58 @@ fn white_balance_energy_and_wavelength_range() {
         ),
     ]);
 }
+
+#[test]
+fn camera_response_files_render_false_colour() {
+    let dir = temp_dir("nir");
+    let png = dir.join("nir.png");
+    let csv = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/nir-camera.csv");
+    let out = prism(&[
+        "render",
+        "--camera-response",
+        csv,
+        "--spp",
+        "2",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "--lambda-sampler",
+        "response",
+        "-o",
+        png.to_str().unwrap(),
+        "--stats",
+        "-q",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(&png).unwrap().len() > 0);
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "700,1,1\n").unwrap();
+    let bad = bad.to_str().unwrap();
+    assert_one_line_errors(&[
+        (
+            &["render", "--camera-response", bad, "-o", "x.png"],
+            "four numbers",
+        ),
+        (
+            &["render", "--camera-response", "/no/such.csv", "-o", "x.png"],
+            "cannot read",
+        ),
+        (
+            &[
+                "render",
+                "--camera-response",
+                csv,
+                "--white-balance",
+                "illuminant:A",
+                "-o",
+                "x.png",
+            ],
+            "--white-balance",
+        ),
+    ]);
+}

@@ -24,6 +24,9 @@ pub struct Film {
     /// Per-pixel sums of (radiance W m^-2 sr^-1, photon radiance s^-1 m^-2 sr^-1)
     /// estimates, when the film records energy.
     energy: Option<Vec<[f64; 2]>>,
+    /// Whether the three sums are a camera's raw channels (shown as they are) rather
+    /// than XYZ.
+    raw: bool,
 }
 
 impl Film {
@@ -37,7 +40,20 @@ impl Film {
             nonfinite: 0,
             spectral: None,
             energy: None,
+            raw: false,
         }
+    }
+
+    /// This film holding a camera's raw channels instead of XYZ: `to_rgb` shows them as
+    /// they are (false colour outside the visible).
+    pub fn with_raw_channels(mut self) -> Self {
+        self.raw = true;
+        self
+    }
+
+    /// Whether the sums are a camera's raw channels.
+    pub fn is_raw(&self) -> bool {
+        self.raw
     }
 
     /// This film, also recording radiance and photon radiance per pixel.
@@ -76,8 +92,13 @@ impl Film {
             Some(bands) => Self::with_bands(settings.width, settings.height, bands),
             None => Self::new(settings.width, settings.height),
         };
-        if settings.energy {
+        let film = if settings.energy {
             film.with_energy()
+        } else {
+            film
+        };
+        if settings.camera.is_some() {
+            film.with_raw_channels()
         } else {
             film
         }
@@ -120,6 +141,7 @@ impl Film {
             nonfinite,
             spectral: None,
             energy: None,
+            raw: false,
         })
     }
 
@@ -181,7 +203,11 @@ impl Film {
         self.sums
             .iter()
             .map(|s| {
-                let rgb = space.xyz_to_rgb(Xyz::new(s[0] / n, s[1] / n, s[2] / n));
+                let rgb = if self.raw {
+                    s.map(|v| v / n)
+                } else {
+                    space.xyz_to_rgb(Xyz::new(s[0] / n, s[1] / n, s[2] / n))
+                };
                 rgb.map(|c| if c.is_finite() { c as f32 } else { 0.0 })
             })
             .collect()
@@ -213,6 +239,9 @@ impl Film {
             }
             (None, None) => {}
             _ => return Err("films differ in their spectral bands".into()),
+        }
+        if self.raw != other.raw {
+            return Err("one film holds a camera's raw channels and the other XYZ".into());
         }
         match (&mut self.energy, &other.energy) {
             (Some(a), Some(b)) => {

@@ -18,6 +18,8 @@ pub(crate) struct Tracer<'a> {
     pub distribution: &'a WavelengthDistribution,
     pub scheme: PackageScheme,
     pub observer: Observer,
+    /// A camera's response curves replacing the observer, if any.
+    pub camera: Option<&'a crate::CameraResponse>,
     /// Bounces after which a path ends (u32::MAX: unbounded).
     pub max_depth: u32,
 }

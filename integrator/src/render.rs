@@ -106,6 +106,7 @@ impl<'a> Renderer<'a> {
             distribution: &self.distribution,
             scheme: settings.scheme,
             observer: settings.observer,
+            camera: settings.camera.as_deref(),
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
@@ -266,10 +267,13 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 film,
                 aspect,
                 &mut |radiance, lambdas| {
-                    let c = radiance.to_xyz(lambdas, tracer.observer);
-                    xyz[0] += c.x;
-                    xyz[1] += c.y;
-                    xyz[2] += c.z;
+                    let c = match tracer.camera {
+                        Some(camera) => camera.channels(radiance, lambdas),
+                        None => radiance.to_xyz(lambdas, tracer.observer).to_array(),
+                    };
+                    xyz[0] += c[0];
+                    xyz[1] += c[1];
+                    xyz[2] += c[2];
                     if record_energy {
                         // (1/C) sum_j L_j / pdf_j estimates the radiance integral; each
                         // lane's photons are its energy times lambda / hc.

@@ -68,6 +68,9 @@ pub struct RenderSettings {
     pub range: (f32, f32),
     /// The observer turning spectra into XYZ.
     pub observer: Observer,
+    /// A camera with its own response curves instead of the observer: the film then holds
+    /// its raw channels (shown as R, G, B), and the response sampler follows its curves.
+    pub camera: Option<std::sync::Arc<crate::CameraResponse>>,
     /// Worker threads (0: one per core). Does not change the image.
     pub threads: usize,
     /// The pixel reconstruction filter.
@@ -95,6 +98,7 @@ impl Default for RenderSettings {
             scheme: PackageScheme::HeroRotation,
             range: (360.0, 830.0),
             observer: Observer::Cie1931,
+            camera: None,
             threads: 0,
             filter: Filter::Box,
             clamp: None,
@@ -153,7 +157,14 @@ impl RenderSettings {
         let range = WavelengthRange::new(self.range.0, self.range.1)
             .map_err(|e| RenderError::Setting(format!("wavelength range: {e}")))?;
         let observer = self.observer;
-        let cmf = |k: usize| move |l: f64| observer.cmf(l)[k];
+        let camera = self.camera.clone();
+        let cmf = |k: usize| {
+            let camera = camera.clone();
+            move |l: f64| match &camera {
+                Some(c) => c.response(l)[k],
+                None => observer.cmf(l)[k],
+            }
+        };
         let (x, y, z) = (cmf(0), cmf(1), cmf(2));
         let response_sum = |l: f64| x(l) + y(l) + z(l);
         let bins = ((self.range.1 - self.range.0).ceil() as usize).max(1);

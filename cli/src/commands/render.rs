@@ -75,10 +75,16 @@ pub struct RenderArgs {
     /// image means.
     #[arg(long)]
     pub energy: bool,
-    /// The wavelengths camera paths sample, nm (wider than 360:830 to include UV or
-    /// infrared; only what the observer sees shows in RGB).
-    #[arg(long, value_name = "A:B", default_value = "360:830")]
-    pub wavelength_range: String,
+    /// The wavelengths camera paths sample, nm (default 360:830, or the camera
+    /// response's range; wider to include UV or infrared, of which only what the observer
+    /// sees shows in RGB).
+    #[arg(long, value_name = "A:B")]
+    pub wavelength_range: Option<String>,
+    /// A camera's response curves (CSV: nm, r, g, b) instead of the CIE observer, for any
+    /// band (near-infrared, UV, a real sensor): outputs hold its raw channels as R, G, B,
+    /// false colour outside the visible; the response sampler follows its curves.
+    #[arg(long, value_name = "CSV")]
+    pub camera_response: Option<PathBuf>,
     /// White balance: adapt the image from this illuminant's white to the output space's
     /// white (Bradford), e.g. illuminant:A, blackbody:3200, daylight:5000 or a CSV file.
     #[arg(long, value_name = "SPECTRUM")]
@@ -156,6 +162,27 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let scene = Scene::from_loaded(&loaded, &options).map_err(|e| e.to_string())?;
     let height = args.height.unwrap_or(512);
     let width = args.width.unwrap_or(height);
+    let camera = args
+        .camera_response
+        .as_deref()
+        .map(|path| {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            prism_integrator::CameraResponse::from_csv(&text)
+                .map_err(|e| format!("'{}': {e}", path.display()))
+        })
+        .transpose()?;
+    if camera.is_some() && args.white_balance.is_some() {
+        return Err(
+            "--white-balance applies to XYZ; with --camera-response the channels are the camera's own"
+                .into(),
+        );
+    }
+    let range = match (&args.wavelength_range, &camera) {
+        (Some(text), _) => parse_nm_range("--wavelength-range", text)?,
+        (None, Some(c)) => c.range(),
+        (None, None) => (360.0, 830.0),
+    };
     let settings = RenderSettings {
         width,
         height,
@@ -169,7 +196,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         clamp: args.clamp,
         bands: spectral_bands(args)?,
         energy: args.energy,
-        range: parse_nm_range("--wavelength-range", &args.wavelength_range)?,
+        range,
+        camera: camera.map(Arc::new),
         ..RenderSettings::default()
     };
     let white_balance = args
@@ -199,11 +227,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let checkpoint_every = seconds_arg("checkpoint", args.checkpoint)?;
     let range = settings.samples.clone();
     let fingerprint = fingerprint(args, width, height);
-    if (settings.bands.is_some() || settings.energy)
+    if (settings.bands.is_some() || settings.energy || settings.camera.is_some())
         && (args.resume.is_some() || args.checkpoint.is_some() || samples_only.is_some())
     {
         return Err(
-            "--spectral-bands and --energy cannot be combined with --checkpoint, --resume or --sample-range yet (accumulation files hold XYZ only)"
+            "--spectral-bands, --energy and --camera-response cannot be combined with --checkpoint, --resume or --sample-range yet (accumulation files hold XYZ only)"
                 .into(),
         );
     }
@@ -242,7 +270,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             ("seed".into(), args.seed.to_string()),
             ("wavelengths".into(), args.wavelengths.to_string()),
             ("lambda_sampler".into(), args.lambda_sampler.clone()),
-            ("wavelength_range".into(), args.wavelength_range.clone()),
+            (
+                "wavelength_range".into(),
+                format!("{}:{}", settings.range.0, settings.range.1),
+            ),
         ];
         if let Some(spec) = &args.white_balance {
             facts.push(("white_balance".into(), spec.clone()));
@@ -382,7 +413,7 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.filter,
         args.clamp,
         args.environment,
-        args.wavelength_range
+        args.wavelength_range.as_deref().unwrap_or("360:830")
     )
 }
 
