@@ -3,13 +3,22 @@
 
 use std::path::Path;
 
-use prism_scene::load::{LoadedGeometry, load_scene};
+use prism_scene::load::{LoadOptions, LoadedGeometry, Upsampling, load_scene};
 use prism_scene::spectral::Overlay;
 
 /// Loads `path`: a .gltf or .glb, or a TOML overlay (`.toml`) naming the glTF it applies
 /// to. External buffers and `csv:` spectra resolve relative to the glTF file. Errors name
 /// the file.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<LoadedGeometry, String> {
+    load_with(path, scene, Upsampling::Exact)
+}
+
+/// [`load`] with a choice of upsampling (`prism trade` measures them).
+pub fn load_with(
+    path: &Path,
+    scene: Option<usize>,
+    upsampling: Upsampling,
+) -> Result<LoadedGeometry, String> {
     let read =
         |p: &Path| std::fs::read(p).map_err(|e| format!("cannot read '{}': {e}", p.display()));
     let is_overlay = path
@@ -38,6 +47,10 @@ pub fn load(path: &Path, scene: Option<usize>) -> Result<LoadedGeometry, String>
         let file = dir.join(uri);
         std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
     };
-    load_scene(&bytes, &resolve, scene, overlay.as_ref())
-        .map_err(|e| format!("'{}': {e}", path.display()))
+    let options = LoadOptions {
+        scene,
+        overlay: overlay.as_ref(),
+        upsampling,
+    };
+    load_scene(&bytes, &resolve, &options).map_err(|e| format!("'{}': {e}", path.display()))
 }

@@ -2,7 +2,7 @@
 //! "white" material, light descriptions as an added punctual light, root descriptions on
 //! the root, and overlays against the Cornell box.
 
-use prism_scene::load::{LoadError, LoadedGeometry, load_scene};
+use prism_scene::load::{LoadError, LoadOptions, LoadedGeometry, load_scene};
 use prism_scene::spectral::Overlay;
 use prism_scene::world::{Scene, SceneOptions};
 use serde_json::{Value, json};
@@ -35,8 +35,10 @@ fn load(doc: &Value, overlay: Option<&Overlay>) -> Result<LoadedGeometry, LoadEr
     load_scene(
         &bytes,
         &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-        overlay,
+        &LoadOptions {
+            overlay: overlay,
+            ..LoadOptions::default()
+        },
     )
 }
 
@@ -107,8 +109,10 @@ fn the_repository_overlays_load() {
             let loaded = load_scene(
                 &bytes,
                 &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-                None,
-                Some(&overlay),
+                &LoadOptions {
+                    overlay: Some(&overlay),
+                    ..LoadOptions::default()
+                },
             )
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();

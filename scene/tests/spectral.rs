@@ -1,7 +1,7 @@
 //! Spectral descriptions: the `PRISM_spectral` extension and the TOML overlay, what they
 //! build, and their errors.
 
-use prism_scene::load::{LightDesc, LoadError, LoadedGeometry, load_scene};
+use prism_scene::load::{LightDesc, LoadError, LoadOptions, LoadedGeometry, load_scene};
 use prism_scene::spectral::Overlay;
 use prism_scene::world::{Material, Scene, SceneOptions, SceneSpectrum};
 use prism_spectrum::Spectrum;
@@ -34,8 +34,10 @@ fn load(
             Some((_, text)) => Ok(text.clone().into_bytes()),
             None => std::fs::read(scenes_dir().join(uri)).map_err(|e| e.to_string()),
         },
-        None,
-        overlay.as_ref(),
+        &LoadOptions {
+            overlay: overlay.as_ref(),
+            ..LoadOptions::default()
+        },
     )
 }
 

@@ -52,6 +52,44 @@ impl RgbSpectrum {
         kind: RgbKind,
         illuminant: Option<Arc<DenselySampled>>,
     ) -> Result<Self, UpsampleError> {
+        Self::build(rgb, kind, illuminant, &|target| {
+            let fit = context.fit(target, [0.0; 3]);
+            (fit.spectrum, fit.residual)
+        })
+    }
+
+    /// [`RgbSpectrum::fit`] with the shape looked up in `table` (fitted for `context`'s
+    /// space) instead of fitted, then improved by `refine_steps` solver steps (0: the plain
+    /// trilinear lookup). Faster, slightly less accurate (docs/upsample-accuracy.md). The
+    /// residual is the refined fit's; plain lookups report 0 (their error is not measured
+    /// per colour).
+    pub fn from_table(
+        table: &crate::CoefficientTable,
+        context: &FitContext,
+        rgb: [f64; 3],
+        kind: RgbKind,
+        illuminant: Option<Arc<DenselySampled>>,
+        refine_steps: u32,
+    ) -> Result<Self, UpsampleError> {
+        Self::build(rgb, kind, illuminant, &|target| {
+            if refine_steps == 0 {
+                (table.lookup(target), 0.0)
+            } else {
+                let fit =
+                    context.fit_with_budget(target, table.lookup_normalized(target), refine_steps);
+                (fit.spectrum, fit.residual)
+            }
+        })
+    }
+
+    /// The policies of the module doc, with `solve` giving the shape (and its residual)
+    /// of a normalized, non-grey, non-black target.
+    fn build(
+        rgb: [f64; 3],
+        kind: RgbKind,
+        illuminant: Option<Arc<DenselySampled>>,
+        solve: &dyn Fn([f64; 3]) -> (SigmoidPolynomial, f64),
+    ) -> Result<Self, UpsampleError> {
         if rgb.iter().any(|c| !c.is_finite()) {
             return Err(UpsampleError::NonFinite(rgb));
         }
@@ -75,8 +113,8 @@ impl RgbSpectrum {
             if target[0] == target[1] && target[1] == target[2] {
                 (Some(SigmoidPolynomial::constant(target[0])), 0.0)
             } else {
-                let fit = context.fit(target, [0.0; 3]);
-                (Some(fit.spectrum), fit.residual)
+                let (spectrum, residual) = solve(target);
+                (Some(spectrum), residual)
             }
         };
         Ok(Self {

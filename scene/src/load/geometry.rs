@@ -93,19 +93,38 @@ pub fn load_geometry(
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     scene: Option<usize>,
 ) -> Result<LoadedGeometry, LoadError> {
-    load_scene(bytes, resolve, scene, None)
+    load_scene(
+        bytes,
+        resolve,
+        &LoadOptions {
+            scene,
+            ..LoadOptions::default()
+        },
+    )
 }
 
-/// [`load_geometry`] with an optional TOML overlay applied to the document first (its
-/// descriptions replace the file's own `PRISM_spectral` for the materials and lights it
-/// names). Files named in descriptions (`csv:PATH`) are read through `resolve` too.
+/// Choices made while loading.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LoadOptions<'a> {
+    /// The glTF scene to load (default: the file's default scene, else scene 0).
+    pub scene: Option<usize>,
+    /// A TOML overlay to apply to the document first.
+    pub overlay: Option<&'a Overlay>,
+    /// How constant RGB colours become spectra.
+    pub upsampling: super::Upsampling,
+}
+
+/// [`load_geometry`] with options: an optional TOML overlay applied to the document first
+/// (its descriptions replace the file's own `PRISM_spectral` for the materials and lights
+/// it names; files named in descriptions, `csv:PATH`, are read through `resolve` too), and
+/// the upsampling mode.
 pub fn load_scene(
     bytes: &[u8],
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-    scene: Option<usize>,
-    overlay: Option<&Overlay>,
+    options: &LoadOptions,
 ) -> Result<LoadedGeometry, LoadError> {
-    let gltf = parse(bytes, overlay)?;
+    let scene = options.scene;
+    let gltf = parse(bytes, options.overlay)?;
     let buffers = gltf
         .buffers()
         .map(|buffer| {
@@ -165,7 +184,7 @@ pub fn load_scene(
     let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
     let root_spectral = gltf.extension_value(spectral::EXTENSION);
     let upsampler = (gltf.materials().len() > 0 || has_lights || root_spectral.is_some())
-        .then(Upsampler::new)
+        .then(|| Upsampler::new(options.upsampling))
         .transpose()?;
     // The raw `PRISM_spectral` of each punctual light (the gltf crate keeps light
     // extensions as raw JSON).
@@ -187,7 +206,7 @@ pub fn load_scene(
         });
     if let Some(upsampler) = &upsampler {
         let cx = spectral::Context { resolve, upsampler };
-        let textures = super::textures::TextureLoader::new(&buffers, resolve, &upsampler.context);
+        let textures = super::textures::TextureLoader::new(&buffers, resolve, upsampler);
         out.materials = gltf
             .materials()
             .map(|m| material(&m, &cx, &textures))

@@ -102,14 +102,79 @@ fn volume_absorption(
     Ok(Some(SceneSpectrum::Dense(Arc::new(dense))))
 }
 
+/// How a scene's constant RGB colours become spectra: the speed-accuracy trade of
+/// upsampling (`prism trade` measures it). Textures always go through a table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Upsampling {
+    /// An exact fit per colour (the default: colours are few, fits take microseconds).
+    #[default]
+    Exact,
+    /// A trilinear lookup in a table of this resolution (16, 32, 64 or 128).
+    Table(usize),
+    /// A lookup in a table of this resolution refined by one solver step.
+    Refined(usize),
+}
+
+impl Upsampling {
+    /// Names accepted by [`Upsampling::from_name`].
+    pub const NAMES: &'static str =
+        "exact, table16, table32, table64, table128, refined16, refined32, refined64, refined128";
+
+    /// Parses `exact`, `tableN` or `refinedN`.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        let resolution = |n: &str| match n.parse::<usize>() {
+            Ok(r @ (16 | 32 | 64 | 128)) => Ok(r),
+            _ => Err(format!(
+                "unknown upsampling '{name}' (valid: {})",
+                Self::NAMES
+            )),
+        };
+        match name {
+            "exact" => Ok(Self::Exact),
+            _ if name.starts_with("table") => Ok(Self::Table(resolution(&name[5..])?)),
+            _ if name.starts_with("refined") => Ok(Self::Refined(resolution(&name[7..])?)),
+            _ => Err(format!(
+                "unknown upsampling '{name}' (valid: {})",
+                Self::NAMES
+            )),
+        }
+    }
+
+    /// The table resolution this mode uses, if any.
+    fn resolution(self) -> Option<usize> {
+        match self {
+            Upsampling::Exact => None,
+            Upsampling::Table(r) | Upsampling::Refined(r) => Some(r),
+        }
+    }
+}
+
+/// The table textures use when the mode names none: 32^3 fits in about 0.3 s on two
+/// cores (docs/upsample-accuracy.md), far below a just-noticeable error.
+const TEXTURE_TABLE_RESOLUTION: usize = 32;
+
 /// Everything upsampling needs, built once per load: glTF colours are linear sRGB.
 pub(crate) struct Upsampler {
     pub(crate) context: FitContext,
     illuminant: Arc<DenselySampled>,
+    mode: Upsampling,
+    table: std::cell::OnceCell<Arc<prism_upsample::CoefficientTable>>,
 }
 
 impl Upsampler {
-    pub(crate) fn new() -> Result<Self, LoadError> {
+    /// The coefficient table of the mode's resolution (or the texture default), fitted
+    /// on first use.
+    pub(crate) fn table(&self) -> Result<Arc<prism_upsample::CoefficientTable>, String> {
+        if let Some(t) = self.table.get() {
+            return Ok(t.clone());
+        }
+        let resolution = self.mode.resolution().unwrap_or(TEXTURE_TABLE_RESOLUTION);
+        let (table, _) = prism_upsample::CoefficientTable::fit(&self.context, resolution, &|_| {})
+            .map_err(|e| format!("fitting the sRGB upsampling table: {e}"))?;
+        Ok(self.table.get_or_init(|| Arc::new(table)).clone())
+    }
+
+    pub(crate) fn new(mode: Upsampling) -> Result<Self, LoadError> {
         let id = RgbSpaceId::Srgb;
         let to_error = |e: prism_upsample::UpsampleError| {
             LoadError::Geometry(format!("upsampling setup: {e}"))
@@ -117,25 +182,35 @@ impl Upsampler {
         Ok(Self {
             context: FitContext::new(id.space(), &id.illuminant()).map_err(to_error)?,
             illuminant: normalized_illuminant(&id.illuminant()).map_err(to_error)?,
+            mode,
+            table: std::cell::OnceCell::new(),
         })
     }
 
     /// A linear sRGB colour as a spectrum of `kind` (illuminants under the space's white).
     pub(crate) fn fit(&self, rgb: [f64; 3], kind: RgbKind) -> Result<RgbSpectrum, String> {
         let illuminant = (kind == RgbKind::Illuminant).then(|| self.illuminant.clone());
-        RgbSpectrum::fit(&self.context, rgb, kind, illuminant)
-            .map_err(|e| format!("colour {rgb:?}: {e}"))
+        let result = match self.mode {
+            Upsampling::Exact => RgbSpectrum::fit(&self.context, rgb, kind, illuminant),
+            Upsampling::Table(_) | Upsampling::Refined(_) => {
+                let steps = u32::from(matches!(self.mode, Upsampling::Refined(_)));
+                RgbSpectrum::from_table(
+                    &*self.table()?,
+                    &self.context,
+                    rgb,
+                    kind,
+                    illuminant,
+                    steps,
+                )
+            }
+        };
+        result.map_err(|e| format!("colour {rgb:?}: {e}"))
     }
 
     /// A linear sRGB emission colour as an illuminant spectrum.
     pub(crate) fn emission(&self, rgb: [f64; 3]) -> Result<RgbSpectrum, LoadError> {
-        RgbSpectrum::fit(
-            &self.context,
-            rgb,
-            RgbKind::Illuminant,
-            Some(self.illuminant.clone()),
-        )
-        .map_err(|e| LoadError::Geometry(format!("emission colour {rgb:?}: {e}")))
+        self.fit(rgb, RgbKind::Illuminant)
+            .map_err(|e| LoadError::Geometry(format!("emission {e}")))
     }
 }
 
@@ -182,20 +257,17 @@ pub(crate) fn material(
         )));
     }
     let rgb = |c: [f32; 3]| c.map(f64::from);
-    let fit = |c: [f64; 3], kind: RgbKind, illuminant| {
-        RgbSpectrum::fit(&upsampler.context, c, kind, illuminant)
+    let fit = |c: [f64; 3], kind: RgbKind| {
+        upsampler
+            .fit(c, kind)
             .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))
     };
-    let base_color = fit(rgb([base[0], base[1], base[2]]), RgbKind::Albedo, None)?;
+    let base_color = fit(rgb([base[0], base[1], base[2]]), RgbKind::Albedo)?;
     let emitted = rgb(emissive).map(|c| c * f64::from(strength.max(0.0)));
     let emission = if emitted.iter().all(|&c| c <= 0.0) {
         None
     } else {
-        Some(fit(
-            emitted,
-            RgbKind::Illuminant,
-            Some(upsampler.illuminant.clone()),
-        )?)
+        Some(fit(emitted, RgbKind::Illuminant)?)
     };
     let unit = |v: f32| v.clamp(0.0, 1.0);
     let dispersion = dispersion(material, &name)?;

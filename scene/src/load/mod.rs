@@ -11,8 +11,8 @@ mod summary;
 mod textures;
 
 pub use error::LoadError;
-pub use geometry::{LoadedGeometry, MeshInstance, load_geometry, load_scene};
+pub use geometry::{LoadOptions, LoadedGeometry, MeshInstance, load_geometry, load_scene};
 pub use images::{DecodedImage, decode_image};
 pub use lights::LightDesc;
-pub use materials::MaterialDesc;
 pub(crate) use materials::Upsampler;
+pub use materials::{MaterialDesc, Upsampling};

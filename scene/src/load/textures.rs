@@ -1,23 +1,17 @@
 //! glTF base colour textures: images decoded once each, sampler wrap modes,
-//! `KHR_texture_transform`, and the sRGB coefficient table fitted once per load, only when
-//! a texture needs it.
+//! `KHR_texture_transform`, upsampled through the loader's sRGB coefficient table (fitted
+//! once per load, only when needed).
 
-use std::cell::{OnceCell, RefCell};
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::Vec2;
 use gltf::texture::WrappingMode;
-use prism_upsample::{CoefficientTable, FitContext};
 
 use super::base64;
 use super::images::decode_image;
 use crate::world::{RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap};
-
-/// Resolution of the coefficient table textures are upsampled through: 32^3 fits in
-/// about 0.3 s on two cores (docs/upsample-accuracy.md) with a mean dE2000 well under one
-/// hundredth of a just-noticeable difference.
-const TABLE_RESOLUTION: usize = 32;
 
 /// A decoded image shared by the textures that use it: width, height, texels.
 type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>);
@@ -26,23 +20,21 @@ type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>);
 pub(crate) struct TextureLoader<'a> {
     pub buffers: &'a [Vec<u8>],
     pub resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
-    pub context: &'a FitContext,
+    pub upsampler: &'a super::Upsampler,
     images: RefCell<HashMap<usize, SharedImage>>,
-    table: OnceCell<Arc<CoefficientTable>>,
 }
 
 impl<'a> TextureLoader<'a> {
     pub(crate) fn new(
         buffers: &'a [Vec<u8>],
         resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
-        context: &'a FitContext,
+        upsampler: &'a super::Upsampler,
     ) -> Self {
         Self {
             buffers,
             resolve,
-            context,
+            upsampler,
             images: RefCell::new(HashMap::new()),
-            table: OnceCell::new(),
         }
     }
 
@@ -79,17 +71,8 @@ impl<'a> TextureLoader<'a> {
         let rgb = RgbTexture::new(width, height, texels, wrap, uv, factor)?;
         Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::new(
             rgb,
-            self.table()?,
+            self.upsampler.table()?,
         ))))
-    }
-
-    fn table(&self) -> Result<Arc<CoefficientTable>, String> {
-        if let Some(t) = self.table.get() {
-            return Ok(t.clone());
-        }
-        let (table, _) = CoefficientTable::fit(self.context, TABLE_RESOLUTION, &|_| {})
-            .map_err(|e| format!("fitting the sRGB upsampling table: {e}"))?;
-        Ok(self.table.get_or_init(|| Arc::new(table)).clone())
     }
 
     fn image(&self, image: &gltf::Image) -> Result<SharedImage, String> {

@@ -1,0 +1,65 @@
+//! The upsampling modes a load can use: exact fits, table lookups, refined lookups.
+
+use prism_scene::load::{LoadOptions, LoadedGeometry, Upsampling, load_scene};
+use prism_spectrum::Spectrum;
+
+fn cornell(upsampling: Upsampling) -> LoadedGeometry {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
+    load_scene(
+        &bytes,
+        &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+        &LoadOptions {
+            upsampling,
+            ..LoadOptions::default()
+        },
+    )
+    .unwrap()
+}
+
+#[test]
+fn table_and_refined_lookups_approach_the_exact_fit() {
+    let exact = cornell(Upsampling::Exact);
+    let table = cornell(Upsampling::Table(16));
+    let refined = cornell(Upsampling::Refined(16));
+    // The red wall: coloured, so a table lookup differs from the fit, slightly; a refining
+    // step brings it closer.
+    let red = |g: &LoadedGeometry| {
+        g.materials
+            .iter()
+            .find(|m| m.name == "red")
+            .unwrap()
+            .base_color
+            .clone()
+    };
+    let (e, t, r) = (red(&exact), red(&table), red(&refined));
+    let distance = |a: &dyn Spectrum, b: &dyn Spectrum| {
+        (400..=700)
+            .step_by(10)
+            .map(|nm| (a.evaluate(f64::from(nm)) - b.evaluate(f64::from(nm))).abs())
+            .fold(0.0, f64::max)
+    };
+    let (dt, dr) = (distance(&t, &e), distance(&r, &e));
+    assert!(dt > 0.0 && dt < 0.05, "table lookup differs by {dt}");
+    assert!(dr <= dt, "refined {dr} vs table {dt}");
+    // Emission goes through the same mode and stays close.
+    let light = |g: &LoadedGeometry| g.materials[0].emission.clone().unwrap();
+    let (le, lt) = (light(&exact), light(&table));
+    assert!((le.evaluate(550.0) - lt.evaluate(550.0)).abs() < 0.02 * le.evaluate(550.0));
+}
+
+#[test]
+fn mode_names() {
+    assert_eq!(Upsampling::from_name("exact"), Ok(Upsampling::Exact));
+    assert_eq!(Upsampling::from_name("table64"), Ok(Upsampling::Table(64)));
+    assert_eq!(
+        Upsampling::from_name("refined32"),
+        Ok(Upsampling::Refined(32))
+    );
+    for bad in ["table", "table17", "refined", "fast", ""] {
+        assert!(
+            Upsampling::from_name(bad).unwrap_err().contains("table16"),
+            "{bad}"
+        );
+    }
+}
