@@ -36,7 +36,7 @@ fn load(doc: &Value, overlay: Option<&Overlay>) -> Result<LoadedGeometry, LoadEr
         &bytes,
         &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
         &LoadOptions {
-            overlay: overlay,
+            overlay,
             ..LoadOptions::default()
         },
     )
