@@ -10,6 +10,7 @@ mod output;
 mod scene_file;
 mod session;
 mod spectrum_spec;
+mod svg_plot;
 mod table_cache;
 
 use std::process::ExitCode;
@@ -38,6 +39,8 @@ enum Command {
     Compare(commands::compare::CompareArgs),
     /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
     Info(commands::info::InfoArgs),
+    /// Measure the speed-accuracy trade of a scene: error against time per setting.
+    Trade(commands::trade::TradeArgs),
     /// Fit and inspect RGB-to-spectrum coefficient tables.
     #[command(subcommand)]
     Table(commands::table::TableCommand),
@@ -56,6 +59,7 @@ fn main() -> ExitCode {
         Command::Merge(args) => commands::merge::run(&args),
         Command::Compare(args) => commands::compare::run(&args),
         Command::Table(command) => commands::table::run(&command),
+        Command::Trade(args) => commands::trade::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

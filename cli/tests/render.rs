@@ -588,3 +588,65 @@ fn camera_response_files_render_false_colour() {
         ),
     ]);
 }
+
+#[test]
+fn trade_measures_every_sweep_and_redraws_reports() {
+    let dir = temp_dir("trade");
+    let out_dir = dir.join("box");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
+    let out = prism(&[
+        "trade",
+        scene,
+        "-o",
+        out_dir.to_str().unwrap(),
+        "--spp",
+        "2,1",
+        "--reference-spp",
+        "8",
+        "--width",
+        "8",
+        "--height",
+        "8",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(out_dir.join("runs.csv")).unwrap();
+    // 5 package sizes + 4 samplers + 5 upsampling modes, at 2 sample counts.
+    assert_eq!(csv.lines().count(), 1 + 14 * 2, "{csv}");
+    assert!(csv.lines().all(|l| l.split(',').count() == 7));
+    for sweep in ["wavelengths", "sampler", "upsampling"] {
+        let svg = std::fs::read_to_string(out_dir.join(format!("{sweep}.svg"))).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.contains("<polyline"),
+            "{sweep}"
+        );
+    }
+    assert!(out_dir.join("reference.exr").exists());
+    // A peer's rows join the plots and tables on --report.
+    std::fs::write(
+        out_dir.join("peer.csv"),
+        "scene,sweep,setting,spp,seconds,setup_seconds,relmse\ncornell-box,peer,mitsuba scalar_spectral,2,0.5,0.1,0.2\n",
+    )
+    .unwrap();
+    let out = prism(&["trade", "--report", "-o", out_dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = std::fs::read_to_string(out_dir.join("summary.md")).unwrap();
+    assert!(
+        summary.contains("mitsuba scalar_spectral") && summary.contains("Most efficient"),
+        "{summary}"
+    );
+    let o = out_dir.to_str().unwrap();
+    assert_one_line_errors(&[
+        (&["trade", "-o", o], "needs a SCENE"),
+        (&["trade", scene, "-o", o, "--spp", "0"], "--spp"),
+        (&["trade", scene, "-o", o, "--budget", "-1"], "--budget"),
+        (&["trade", "--report", "-o", "/no/such/dir"], "cannot read"),
+    ]);
+}

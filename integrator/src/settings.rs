@@ -8,7 +8,7 @@ use prism_spectrum::colorimetry::Observer;
 use crate::{Filter, RenderError, SpectralBands};
 
 /// How the hero wavelength of each path is chosen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum LambdaSampler {
     /// Uniform over the range.
     Uniform,

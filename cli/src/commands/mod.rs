@@ -6,4 +6,5 @@ pub mod info;
 pub mod merge;
 pub mod render;
 pub mod table;
+pub mod trade;
 pub mod upsample;

@@ -104,7 +104,7 @@ fn volume_absorption(
 
 /// How a scene's constant RGB colours become spectra: the speed-accuracy trade of
 /// upsampling (`prism trade` measures it). Textures always go through a table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Upsampling {
     /// An exact fit per colour (the default: colours are few, fits take microseconds).
     #[default]
