@@ -58,7 +58,8 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Longest path in bounces (None: unbounded, ended by Russian roulette).
     pub max_depth: Option<u32>,
-    /// Wavelengths per path: 1, 2, 4, 8 or 16.
+    /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
+    /// measured scenes, docs/trade-offs.md).
     pub wavelengths: usize,
     /// How the hero wavelength is chosen.
     pub lambda_sampler: LambdaSampler,
@@ -93,7 +94,7 @@ impl Default for RenderSettings {
             samples: 0..64,
             seed: 0,
             max_depth: None,
-            wavelengths: 4,
+            wavelengths: 8,
             lambda_sampler: LambdaSampler::default(),
             scheme: PackageScheme::HeroRotation,
             range: (360.0, 830.0),

@@ -55,7 +55,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub max_depth: Option<u32>,
     /// Wavelengths per path: 1, 2, 4, 8 or 16.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 8)]
     pub wavelengths: usize,
     /// Hero wavelength sampler: uniform, visible, response or spd.
     #[arg(long, default_value = "visible")]
