@@ -1,5 +1,6 @@
-//! prism-upsample: one exact fit, a table lookup (trilinear and refined), and evaluation
-//! of a sigmoid polynomial per wavelength in packages of 4 and 16 lanes.
+//! prism-upsample: one exact fit, a whole table fit (16^3 and 32^3), a table lookup
+//! (trilinear and refined), and evaluation of a sigmoid polynomial per wavelength in
+//! packages of 4 and 16 lanes.
 
 use std::hint::black_box;
 
@@ -33,6 +34,15 @@ fn upsample(c: &mut Criterion) {
             black_box(context.fit(black_box(rgb[i]), [0.0; 3]))
         })
     });
+    // A whole table: what a scene with textures pays at load (and `prism table fit`).
+    let mut group = c.benchmark_group("table fit");
+    group.sample_size(10);
+    for res in [16usize, 32] {
+        group.bench_function(BenchmarkId::from_parameter(res), |b| {
+            b.iter(|| black_box(CoefficientTable::fit(&context, res, &|_| {}).expect("valid")))
+        });
+    }
+    group.finish();
     let mut group = c.benchmark_group("table lookup");
     group.throughput(Throughput::Elements(1));
     for res in [16usize, 32, 64] {

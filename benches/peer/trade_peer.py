@@ -34,20 +34,25 @@ def main():
     ap.add_argument("--spp", default="4,16,64,256")
     ap.add_argument("--width", type=int, default=128)
     ap.add_argument("--variants", default="scalar_spectral")
+    ap.add_argument("--repeat", type=int, default=1, help="renders per point (seeds 1..N); medians are kept")
     a = ap.parse_args()
     reference = read_exr(os.path.join(a.dir, "reference.exr"))
-    rows = ["scene,sweep,setting,spp,seconds,setup_seconds,relmse"]
+    rows = ["scene,sweep,setting,spp,seconds,setup_seconds,relmse,repeats"]
     out = tempfile.mkdtemp(prefix="prism-trade-peer-")
     for variant in a.variants.split(","):
         for spp in sorted(int(s) for s in a.spp.split(",")):
-            exr = os.path.join(out, f"{variant}-{spp}.exr")
-            run = subprocess.run([sys.executable, os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"),
-                                  variant, a.scene, str(spp), "--width", str(a.width), "--out", exr],
-                                 check=True, capture_output=True, text=True)
-            stats = json.loads(run.stdout.strip().splitlines()[-1])
-            image = read_exr(exr)
-            relmse = float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))
-            rows.append(f"{NAMES[a.scene]},peer,mitsuba {variant},{spp},{stats['seconds']:.6f},0,{relmse:.6e}")
+            times, errors = [], []
+            for seed in range(1, a.repeat + 1):
+                exr = os.path.join(out, f"{variant}-{spp}-{seed}.exr")
+                run = subprocess.run([sys.executable, os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"),
+                                      variant, a.scene, str(spp), "--width", str(a.width), "--out", exr,
+                                      "--seed", str(seed)],
+                                     check=True, capture_output=True, text=True)
+                times.append(json.loads(run.stdout.strip().splitlines()[-1])["seconds"])
+                image = read_exr(exr)
+                errors.append(float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2))))
+            rows.append(f"{NAMES[a.scene]},peer,mitsuba {variant},{spp},{np.median(times):.6f},0,"
+                        f"{np.median(errors):.6e},{a.repeat}")
             print(rows[-1], file=sys.stderr)
     with open(os.path.join(a.dir, "peer.csv"), "w") as f:
         f.write("\n".join(rows) + "\n")

@@ -616,7 +616,7 @@ fn trade_measures_every_sweep_and_redraws_reports() {
     let csv = std::fs::read_to_string(out_dir.join("runs.csv")).unwrap();
     // 5 package sizes + 4 samplers + 5 upsampling modes, at 2 sample counts.
     assert_eq!(csv.lines().count(), 1 + 14 * 2, "{csv}");
-    assert!(csv.lines().all(|l| l.split(',').count() == 7));
+    assert!(csv.lines().all(|l| l.split(',').count() == 8));
     for sweep in ["wavelengths", "sampler", "upsampling"] {
         let svg = std::fs::read_to_string(out_dir.join(format!("{sweep}.svg"))).unwrap();
         assert!(
@@ -648,5 +648,67 @@ fn trade_measures_every_sweep_and_redraws_reports() {
         (&["trade", scene, "-o", o, "--spp", "0"], "--spp"),
         (&["trade", scene, "-o", o, "--budget", "-1"], "--budget"),
         (&["trade", "--report", "-o", "/no/such/dir"], "cannot read"),
+    ]);
+}
+
+#[test]
+fn the_complete_spectral_example_renders_and_scene_options_work() {
+    let dir = temp_dir("spectral-example");
+    let png = dir.join("s.png");
+    let scenes = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
+    let scene = format!("{scenes}/cornell-spectral.gltf");
+    let out = prism(&[
+        "render",
+        &scene,
+        "--spp",
+        "2",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "--bvh",
+        "slow",
+        "--scene-index",
+        "0",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // A scene that describes its own (near-infrared) camera renders through it.
+    let overlay = dir.join("nir.toml");
+    std::fs::write(
+        &overlay,
+        format!("gltf = \"{scenes}/cornell-box.gltf\"\n[camera_response]\nr = \"gaussian:900:60\"\ng = \"gaussian:850:60\"\nb = \"gaussian:800:60\"\n[materials.white-emitter]\nemission = \"blackbody:3000\"\n"),
+    )
+    .unwrap();
+    let out = prism(&[
+        "render",
+        overlay.to_str().unwrap(),
+        "--spp",
+        "2",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-o",
+        png.to_str().unwrap(),
+        "--stats",
+        "-q",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_one_line_errors(&[
+        (&["render", &scene, "--bvh", "fast", "-o", "x.png"], "--bvh"),
+        (
+            &["render", &scene, "--scene-index", "3", "-o", "x.png"],
+            "no scene 3",
+        ),
     ]);
 }

@@ -47,7 +47,7 @@ pub use accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
 };
 pub use bands::SpectralBands;
-pub use camera_response::CameraResponse;
+pub use camera_response::{CameraResponse, ResponseCurve};
 pub use compare::{ChannelImage, Comparison, compare_images, decode_exr};
 pub use error::RenderError;
 pub use film::Film;

@@ -428,3 +428,22 @@ fn gltf_volumes_absorb_by_beer_lambert() {
         }
     ));
 }
+
+#[test]
+fn scenes_can_describe_a_camera_response() {
+    let mut doc = cornell_json();
+    doc["extensions"] = json!({"PRISM_spectral": {"camera_response": {
+        "r": "gaussian:900:60", "g": "gaussian:850:60", "b": [[700, 0.0], [800, 1.0], [900, 0.0]]}}});
+    let loaded = load(&doc, None, &[]).unwrap();
+    let curves = loaded.spectral.camera_response.as_ref().unwrap();
+    assert!((curves[0].evaluate(900.0) - 1.0).abs() < 1e-9);
+    assert!((curves[2].evaluate(800.0) - 1.0).abs() < 1e-9);
+    // Where a 60 nm Gaussian exceeds 0.1% of its peak: +-3.72 sigma = +-95 nm.
+    let (lo, hi) = curves[1].extent(1e-3).unwrap();
+    assert!(
+        (lo - 755.0).abs() <= 1.0 && (hi - 945.0).abs() <= 1.0,
+        "{lo}-{hi}"
+    );
+    doc["extensions"] = json!({"PRISM_spectral": {"camera_response": {"r": 1.0, "g": 1.0}}});
+    assert!(error(load(&doc, None, &[])).contains("camera_response needs 'b'"));
+}

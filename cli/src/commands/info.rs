@@ -11,7 +11,7 @@ pub struct InfoArgs {
     /// A .gltf or .glb file.
     pub scene: PathBuf,
     /// Which scene of the file (default: its default scene).
-    #[arg(long)]
+    #[arg(long, visible_alias = "scene", value_name = "N")]
     pub scene_index: Option<usize>,
 }
 

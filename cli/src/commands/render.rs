@@ -8,9 +8,10 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use prism_integrator::{
-    DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings, SpectralBands,
-    decode_accumulation, encode_accumulation, encode_exr, encode_png,
+    CameraResponse, DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings,
+    ResponseCurve, SpectralBands, decode_accumulation, encode_accumulation, encode_exr, encode_png,
 };
+use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, load_geometry};
 use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
 use prism_spectrum::color::RgbSpaceId;
@@ -95,6 +96,12 @@ pub struct RenderArgs {
     /// The camera, by name (default: the file's first).
     #[arg(long)]
     pub camera: Option<String>,
+    /// The glTF scene to render, by index (default: the file's default scene).
+    #[arg(long, visible_alias = "scene", value_name = "N")]
+    pub scene_index: Option<usize>,
+    /// BVH build effort: medium (default) or slow (a better tree for long renders).
+    #[arg(long, default_value = "medium")]
+    pub bvh: String,
     /// A constant environment radiance (relative units, as emissive colours).
     #[arg(long, allow_negative_numbers = true)]
     pub environment: Option<f64>,
@@ -124,12 +131,29 @@ pub struct RenderArgs {
     pub stats: bool,
 }
 
-fn load(path: Option<&Path>) -> Result<LoadedGeometry, String> {
+fn load(path: Option<&Path>, scene: Option<usize>) -> Result<LoadedGeometry, String> {
     match path {
-        Some(p) => crate::scene_file::load(p, None),
-        None => load_geometry(DEFAULT_GLTF, &|_| Ok(DEFAULT_BIN.to_vec()), None)
+        Some(p) => crate::scene_file::load(p, scene),
+        None => load_geometry(DEFAULT_GLTF, &|_| Ok(DEFAULT_BIN.to_vec()), scene)
             .map_err(|e| format!("embedded scene: {e}")),
     }
+}
+
+/// The camera response a scene describes (`camera_response` on the root's
+/// `PRISM_spectral`), over where its curves exceed 0.1% of their peaks.
+fn scene_camera(loaded: &LoadedGeometry) -> Result<Option<CameraResponse>, String> {
+    let Some(curves) = &loaded.spectral.camera_response else {
+        return Ok(None);
+    };
+    let range = curves
+        .iter()
+        .filter_map(|c| c.extent(1e-3))
+        .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+        .ok_or("the scene's camera_response is zero everywhere")?;
+    let curves: [ResponseCurve; 3] = curves.clone().map(|c| Arc::new(c) as ResponseCurve);
+    CameraResponse::new(curves, range)
+        .map(Some)
+        .map_err(|e| format!("the scene's {e}"))
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
@@ -153,11 +177,16 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         ));
     }
     let started = Instant::now();
-    let loaded = load(args.scene.as_deref())?;
+    let loaded = load(args.scene.as_deref(), args.scene_index)?;
+    let quality = match args.bvh.as_str() {
+        "medium" => BvhQuality::Medium,
+        "slow" => BvhQuality::Slow,
+        other => return Err(format!("--bvh '{other}': expected medium or slow")),
+    };
     let options = SceneOptions {
         camera: args.camera.clone(),
         environment: args.environment.map(SceneSpectrum::Constant),
-        ..SceneOptions::default()
+        quality,
     };
     let scene = Scene::from_loaded(&loaded, &options).map_err(|e| e.to_string())?;
     let height = args.height.unwrap_or(512);
@@ -168,13 +197,17 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .map(|path| {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
-            prism_integrator::CameraResponse::from_csv(&text)
-                .map_err(|e| format!("'{}': {e}", path.display()))
+            CameraResponse::from_csv(&text).map_err(|e| format!("'{}': {e}", path.display()))
         })
         .transpose()?;
+    // The command line's camera wins over the scene's own.
+    let camera = match camera {
+        Some(c) => Some(c),
+        None => scene_camera(&loaded)?,
+    };
     if camera.is_some() && args.white_balance.is_some() {
         return Err(
-            "--white-balance applies to XYZ; with --camera-response the channels are the camera's own"
+            "--white-balance applies to XYZ; with a camera response the channels are the camera's own"
                 .into(),
         );
     }
@@ -401,7 +434,7 @@ fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
 /// What must match for a checkpoint to be resumed or parts merged.
 fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
     format!(
-        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={}",
+        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?}",
         args.scene
             .as_ref()
             .map_or("(default)".into(), |p| p.display().to_string()),
@@ -413,7 +446,8 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.filter,
         args.clamp,
         args.environment,
-        args.wavelength_range.as_deref().unwrap_or("360:830")
+        args.wavelength_range.as_deref().unwrap_or("360:830"),
+        args.scene_index
     )
 }
 

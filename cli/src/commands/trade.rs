@@ -55,6 +55,10 @@ pub struct TradeArgs {
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
+    /// Render every run this many times (seeds 1, 2, ...) and record the medians of its
+    /// time and error: shared machines are noisy, and so is one seed's error.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
     /// Only redraw the plots and summary from DIR/runs.csv (and DIR/peer.csv).
     #[arg(long)]
     pub report: bool,
@@ -70,9 +74,25 @@ struct Run {
     seconds: f64,
     setup_seconds: f64,
     relmse: f64,
+    /// How many renders the time and error are medians of.
+    repeats: u32,
 }
 
-const CSV_HEADER: &str = "scene,sweep,setting,spp,seconds,setup_seconds,relmse";
+const CSV_HEADER: &str = "scene,sweep,setting,spp,seconds,setup_seconds,relmse,repeats";
+
+/// The median of `values` (the mean of the middle two for an even count).
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
 
 /// What one run varies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -213,6 +233,9 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
         .scene
         .as_ref()
         .ok_or("prism trade needs a SCENE (or --report to redraw from an earlier run)")?;
+    if args.repeat == 0 {
+        return Err("--repeat must be at least 1".into());
+    }
     if !(args.budget.is_finite() && args.budget > 0.0) {
         return Err(format!(
             "--budget {} must be finite and > 0 seconds",
@@ -286,14 +309,20 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
                 }
                 load_once(&mut scenes, scene_path, knobs.upsampling)?;
                 let (scene, setup) = &scenes[&knobs.upsampling];
-                let t = Instant::now();
-                let (film, _) =
-                    render(scene, &settings_for(knobs, 1)).map_err(|e| e.to_string())?;
-                let seconds = t.elapsed().as_secs_f64();
-                let image = linear_srgb(&film, args.width, args.height);
-                let relmse = compare_images(&image, &reference)
-                    .map_err(|e| format!("comparing with the reference: {e}"))?
-                    .relmse;
+                let (mut times, mut errors) = (Vec::new(), Vec::new());
+                for seed in 1..=u64::from(args.repeat) {
+                    let t = Instant::now();
+                    let (film, _) =
+                        render(scene, &settings_for(knobs, seed)).map_err(|e| e.to_string())?;
+                    times.push(t.elapsed().as_secs_f64());
+                    let image = linear_srgb(&film, args.width, args.height);
+                    errors.push(
+                        compare_images(&image, &reference)
+                            .map_err(|e| format!("comparing with the reference: {e}"))?
+                            .relmse,
+                    );
+                }
+                let (seconds, relmse) = (median(times), median(errors));
                 eprintln!(
                     "prism trade: {sweep} {setting} {spp} spp: {seconds:.2} s, relMSE {relmse:.3e}"
                 );
@@ -308,6 +337,7 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
                 seconds,
                 setup_seconds,
                 relmse,
+                repeats: args.repeat,
             });
         }
     }
@@ -321,8 +351,8 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
     csv.push('\n');
     for r in &runs {
         csv.push_str(&format!(
-            "{},{},{},{},{:.6},{:.6},{:.6e}\n",
-            r.scene, r.sweep, r.setting, r.spp, r.seconds, r.setup_seconds, r.relmse
+            "{},{},{},{},{:.6},{:.6},{:.6e},{}\n",
+            r.scene, r.sweep, r.setting, r.spp, r.seconds, r.setup_seconds, r.relmse, r.repeats
         ));
     }
     write_atomically(&args.dir.join("runs.csv"), csv.as_bytes())
@@ -335,7 +365,8 @@ fn read_runs(path: &Path) -> Result<Vec<Run>, String> {
     for (i, line) in text.lines().enumerate().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
         let bad = || format!("'{}' line {}: expected {CSV_HEADER}", path.display(), i + 1);
-        if f.len() != 7 {
+        // The repeats column is optional (1 when absent).
+        if f.len() != 7 && f.len() != 8 {
             return Err(bad());
         }
         let number = |s: &str| s.trim().parse::<f64>().map_err(|_| bad());
@@ -347,6 +378,10 @@ fn read_runs(path: &Path) -> Result<Vec<Run>, String> {
             seconds: number(f[4])?,
             setup_seconds: number(f[5])?,
             relmse: number(f[6])?,
+            repeats: match f.get(7) {
+                Some(r) => r.trim().parse().map_err(|_| bad())?,
+                None => 1,
+            },
         });
     }
     Ok(runs)
@@ -418,7 +453,7 @@ fn report(dir: &Path) -> Result<(), String> {
         );
         write_atomically(&dir.join(format!("{sweep}.svg")), svg.as_bytes())?;
         summary.push_str(&format!(
-            "## {sweep}\n\n![{sweep}]({sweep}.svg)\n\n| setting | spp | seconds | relMSE | efficiency |\n| --- | --- | --- | --- | --- |\n"
+            "## {sweep}\n\n![{sweep}]({sweep}.svg)\n\n| setting | spp | seconds | relMSE | efficiency | medians of |\n| --- | --- | --- | --- | --- | --- |\n"
         ));
         let mut rows: Vec<&Run> = runs
             .iter()
@@ -434,12 +469,13 @@ fn report(dir: &Path) -> Result<(), String> {
         rows.sort_by_key(|r| (r.spp, order(r)));
         for r in &rows {
             summary.push_str(&format!(
-                "| {} | {} | {:.3} | {:.3e} | {:.3e} |\n",
+                "| {} | {} | {:.3} | {:.3e} | {:.3e} | {} |\n",
                 r.setting,
                 r.spp,
                 r.seconds + r.setup_seconds,
                 r.relmse,
-                efficiency(r)
+                efficiency(r),
+                r.repeats
             ));
         }
         // The most efficient setting at the largest sample count measured for all.

@@ -1,8 +1,6 @@
 //! What a loaded scene contains and uses: the report behind `prism info`, and the facts
 //! the integrator specializes on.
 
-use prism_spectrum::Spectrum;
-
 use super::{LightDesc, LoadedGeometry};
 use crate::world::{Material, SceneSpectrum};
 
@@ -38,16 +36,6 @@ pub struct SceneSummary {
     /// lights emit (above 1% of their peak) within the range of a fluorescent material
     /// that can turn that light into visible light.
     pub wavelength_range: (f32, f32),
-}
-
-/// Where `spectrum` exceeds 1% of its maximum, searched at 1 nm over 200-2500 nm.
-fn extent(spectrum: &SceneSpectrum) -> Option<(f32, f32)> {
-    let threshold = 0.01 * spectrum.max_value();
-    let above: Vec<f32> = (200..=2500)
-        .filter(|&nm| spectrum.evaluate(f64::from(nm)) > threshold)
-        .map(|nm| nm as f32)
-        .collect();
-    Some((*above.first()?, *above.last()?))
 }
 
 impl LoadedGeometry {
@@ -92,7 +80,7 @@ impl LoadedGeometry {
         for m in &self.materials {
             if let Some(Material::Fluorescent { reradiation, .. }) = surface(m) {
                 let (lo, hi) = reradiation.range_nm();
-                for (a, b) in spectra.iter().filter_map(extent) {
+                for (a, b) in spectra.iter().filter_map(|s| s.extent(0.01)) {
                     if a < hi && b > lo {
                         range = (range.0.min(a.max(lo)), range.1.max(b.min(hi)));
                     }

@@ -45,18 +45,39 @@ pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String
 pub struct SpectralScene {
     /// Constant radiance arriving from every direction at infinity.
     pub environment: Option<SceneSpectrum>,
+    /// The camera's response curves (channels shown as R, G, B) instead of the CIE 1931
+    /// observer.
+    pub camera_response: Option<[SceneSpectrum; 3]>,
 }
 
-/// Parses the root's description: `{"environment": S}`.
+/// Parses the root's description: `{"environment": S, "camera_response": {"r": S, "g":
+/// S, "b": S}}`.
 pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String> {
     let map = value
         .as_object()
         .ok_or("PRISM_spectral on the root must be an object")?;
-    only_keys(map, &["environment"])?;
+    only_keys(map, &["environment", "camera_response"])?;
+    let camera_response = match map.get("camera_response") {
+        None => None,
+        Some(v) => {
+            let curves = v
+                .as_object()
+                .ok_or("camera_response must be {\"r\": S, \"g\": S, \"b\": S}")?;
+            only_keys(curves, &["r", "g", "b"])?;
+            let curve = |k: &str| {
+                let c = curves
+                    .get(k)
+                    .ok_or_else(|| format!("camera_response needs '{k}'"))?;
+                spectrum(c, Role::Plain, cx).map_err(|e| format!("camera_response {k}: {e}"))
+            };
+            Some([curve("r")?, curve("g")?, curve("b")?])
+        }
+    };
     Ok(SpectralScene {
         environment: map
             .get("environment")
             .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("environment: {e}")))
             .transpose()?,
+        camera_response,
     })
 }

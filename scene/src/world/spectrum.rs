@@ -86,6 +86,16 @@ impl SceneSpectrum {
         )?)))
     }
 
+    /// Where the spectrum exceeds `fraction` of its maximum, searched at every nanometre
+    /// over 200-2500 nm (None where it never does).
+    pub fn extent(&self, fraction: f64) -> Option<(f32, f32)> {
+        let threshold = fraction * self.max_value();
+        let mut above = (200..=2500).filter(|&nm| self.evaluate(f64::from(nm)) > threshold);
+        let first = above.next()?;
+        let last = above.next_back().unwrap_or(first);
+        Some((first as f32, last as f32))
+    }
+
     /// A short description for reports (`prism info`).
     pub fn describe(&self) -> String {
         match self {
