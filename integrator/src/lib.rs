@@ -3,7 +3,8 @@
 //! Renders a [`prism_scene::world::Scene`] by solving the rendering equation per
 //! wavelength: unidirectional path tracing with next-event estimation and multiple
 //! importance sampling (power heuristic) between light and BSDF sampling, Russian roulette,
-//! and hero-wavelength packages of 1 to 16 wavelengths (Wilkie et al. 2014). Each path's
+//! light paths for the caustics the camera sees directly (in scenes with smooth glass or
+//! metal), and hero-wavelength packages of 1 to 16 wavelengths (Wilkie et al. 2014). Each path's
 //! spectral radiance becomes XYZ with its wavelengths' densities and is accumulated on an
 //! f64 [`Film`]; the film is encoded as EXR or PNG bytes.
 //!
@@ -12,7 +13,12 @@
 //!   pixel, sample index, dimension) (`prism-sampling`'s Owen-scrambled Sobol stream) and
 //!   every pixel sums its samples in index order on one thread, so an image depends only on
 //!   the scene, the settings and the seed, never on thread count or scheduling; a sample
-//!   range rendered elsewhere merges into the same sums.
+//!   range rendered elsewhere merges into the same sums. Light paths land anywhere on the
+//!   film, so their splats are collected per row and added in row order.
+//! - **Caustics by the estimator that can find them.** Light, then delta bounces, then a
+//!   surface the camera sees: light paths count exactly these paths and camera paths skip
+//!   them, a partition of path space rather than MIS (`light_path`), so the image stays
+//!   unbiased while a spot light through a prism casts its spectrum.
 //! - **Light lost to a split package is not counted twice.** At a dispersive delta event
 //!   the radiance gathered so far goes to the film with the whole package's densities,
 //!   then the secondaries end and the hero carries on alone with its density divided by C
@@ -27,6 +33,8 @@
 //!   1997, §9 (multiple importance sampling, the power heuristic).
 //! - A. Wilkie, S. Nawaz, M. Droske, A. Weidlich, J. Hanika, "Hero wavelength spectral
 //!   sampling", EGSR 2014, §4 (packages, spectral MIS).
+//! - E. Veach, 1997 (above), §5.3 (adjoint BSDFs with shading normals), §10.2 (light
+//!   tracing and the camera's importance).
 //! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §13.4 (path tracing with NEE),
 //!   §5.4 (film), §4.5.4 (sampled spectra to XYZ).
 
@@ -38,9 +46,11 @@ mod error;
 mod film;
 mod filter;
 mod image;
+mod light_path;
 mod path;
 mod png;
 mod render;
+mod sample_value;
 mod settings;
 
 pub use accumulation::{

@@ -22,6 +22,10 @@ pub(crate) struct Tracer<'a> {
     pub camera: Option<&'a crate::CameraResponse>,
     /// Bounces after which a path ends (u32::MAX: unbounded).
     pub max_depth: u32,
+    /// Whether light paths carry the caustics seen directly (light, then one or more
+    /// delta bounces, then a non-delta, non-fluorescent surface the camera sees): camera
+    /// paths then leave those to them, so that each path is counted by one estimator.
+    pub light_caustics: bool,
 }
 
 /// The sample-stream dimensions: the wavelength and the film position first, then a fixed
@@ -33,21 +37,21 @@ const DIMENSIONS_PER_BOUNCE: u64 = 8;
 const ROULETTE_DEPTH: u32 = 3;
 
 /// An orthonormal frame whose z is a given unit normal.
-struct Frame {
+pub(crate) struct Frame {
     x: Vec3,
     y: Vec3,
-    z: Vec3,
+    pub(crate) z: Vec3,
 }
 
 impl Frame {
-    fn from_normal(z: Vec3) -> Self {
+    pub(crate) fn from_normal(z: Vec3) -> Self {
         let (x, y) = z.any_orthonormal_pair();
         Self { x, y, z }
     }
-    fn to_local(&self, v: Vec3) -> Vec3 {
+    pub(crate) fn to_local(&self, v: Vec3) -> Vec3 {
         Vec3::new(v.dot(self.x), v.dot(self.y), v.dot(self.z))
     }
-    fn to_world(&self, v: Vec3) -> Vec3 {
+    pub(crate) fn to_world(&self, v: Vec3) -> Vec3 {
         v.x * self.x + v.y * self.y + v.z * self.z
     }
 }
@@ -60,7 +64,27 @@ pub(crate) struct PathResult {
     pub rays: u64,
 }
 
-fn wavelengths<const N: usize>(package: &WavelengthPackage<N>) -> Option<SampledWavelengths<N>> {
+/// Beer-Lambert absorption of the segment `ray` just traced to `hit`, if it ran inside an
+/// absorbing volume (the ray meets the inside of its boundary).
+pub(crate) fn absorb<const N: usize>(
+    scene: &Scene,
+    ray: &Ray,
+    hit: &prism_scene::world::Hit,
+    transport: &SampledWavelengths<N>,
+    beta: &mut SampledSpectrum<N>,
+) {
+    if let Some(sigma) = scene.material(hit).absorption()
+        && ray.direction.dot(hit.normal) > 0.0
+    {
+        let distance = hit.t * ray.direction.length();
+        let sigma = sigma.at(transport);
+        *beta *= SampledSpectrum::from_fn(|i| (-sigma[i] * distance).exp());
+    }
+}
+
+pub(crate) fn wavelengths<const N: usize>(
+    package: &WavelengthPackage<N>,
+) -> Option<SampledWavelengths<N>> {
     SampledWavelengths::new(package.lambda, package.pdf).ok()
 }
 
@@ -105,6 +129,10 @@ impl Tracer<'_> {
         let mut previous: Option<(f32, Vec3)> = None;
         let mut rays = 0u64;
         let mut depth = 0u32;
+        // Whether the path so far is one that light paths carry: a first vertex that is
+        // neither a delta nor fluorescent, then only delta bounces (at least one).
+        let mut caustic_prefix = false;
+        let mut light_caustic = false;
         loop {
             rays += 1;
             let Some(hit) = self.scene.intersect(&ray) else {
@@ -117,17 +145,9 @@ impl Tracer<'_> {
                 break;
             };
             let wo_world = -ray.direction.normalize();
-            // Leaving an absorbing volume through its boundary (the ray meets the inside
-            // of the surface): the segment just traced ran inside it (Beer-Lambert).
-            if let Some(sigma) = self.scene.material(&hit).absorption()
-                && ray.direction.dot(hit.normal) > 0.0
-            {
-                let distance = hit.t * ray.direction.length();
-                let sigma = sigma.at(&transport);
-                beta *= SampledSpectrum::from_fn(|i| (-sigma[i] * distance).exp());
-            }
+            absorb(self.scene, &ray, &hit, &transport, &mut beta);
             let le = self.scene.emitted(&hit, wo_world, &transport);
-            if !le.is_black() {
+            if !le.is_black() && !light_caustic {
                 let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
                     power_heuristic(1, bsdf_pdf, 1, self.scene.light_pdf(from, &hit))
                 });
@@ -249,6 +269,12 @@ impl Tracer<'_> {
                 if !FLUORESCENCE {
                     transport = lambdas;
                 }
+            }
+            if depth == 0 {
+                caustic_prefix = self.light_caustics && !sample.delta && !material.fluorescent();
+            } else {
+                caustic_prefix &= sample.delta;
+                light_caustic = caustic_prefix;
             }
             previous = (!sample.delta).then_some((pdf, hit.p));
             let wi_world = frame.to_world(sample.wi);

@@ -12,9 +12,11 @@ use prism_scene::world::{Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
-use crate::filter::FilterSampler;
+use crate::filter::{FilterSampler, Splatter};
+use crate::light_path::light_seed;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
-use crate::{Film, RenderError, RenderSettings, SpectralBands};
+use crate::sample_value::{Outputs, SampleValue};
+use crate::{Film, RenderError, RenderSettings};
 
 /// Counts gathered during a render.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -81,6 +83,18 @@ impl<'a> Renderer<'a> {
         self.scene.features().fluorescence
     }
 
+    /// Whether light paths carry the caustics the camera sees directly: when the scene has
+    /// delta surfaces (smooth glass or metal), the settings allow it, and the camera is a
+    /// pinhole (an orthographic camera cannot be connected to).
+    pub fn light_caustics(&self) -> bool {
+        self.settings.light_paths
+            && self.scene.features().specular
+            && matches!(
+                self.scene.camera().projection,
+                prism_scene::camera::Projection::Perspective { .. }
+            )
+    }
+
     /// Renders sample indices `samples` of every pixel into `film` (which must have the
     /// settings' size). `cancel` is polled between rows: when set, the render stops and
     /// returns `Ok(None)` leaving `film` as it was, so a caller stopping at a sample
@@ -108,6 +122,7 @@ impl<'a> Renderer<'a> {
             observer: settings.observer,
             camera: settings.camera.as_deref(),
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
+            light_caustics: self.light_caustics(),
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
@@ -129,7 +144,10 @@ impl<'a> Renderer<'a> {
             seed: settings.seed,
             clamp: settings.clamp,
             samples: samples.clone(),
-            bands: settings.bands,
+            outputs: Outputs {
+                bands: settings.bands,
+                energy: settings.energy,
+            },
         };
         self.pool.install(|| {
             let width = settings.width as usize;
@@ -168,6 +186,39 @@ impl<'a> Renderer<'a> {
                     nonfinite.fetch_add(n, Ordering::Relaxed);
                 });
         });
+        if self.light_caustics() {
+            let light_row = match settings.wavelengths {
+                1 => light_row::<1>,
+                2 => light_row::<2>,
+                4 => light_row::<4>,
+                8 => light_row::<8>,
+                _ => light_row::<16>,
+            };
+            // Rows of light paths run in parallel in batches, and each batch's splats are
+            // added in row order: the sums do not depend on the threads, and the batch
+            // bounds the splats held at once.
+            const BATCH_ROWS: u32 = 16;
+            let mut splatter = Splatter::new(&mut pass, &self.filter);
+            for first in (0..settings.height).step_by(BATCH_ROWS as usize) {
+                if cancel.load(Ordering::Relaxed) {
+                    break;
+                }
+                let last = (first + BATCH_ROWS).min(settings.height);
+                let batch: Vec<RowSplats> = self.pool.install(|| {
+                    (first..last)
+                        .into_par_iter()
+                        .map(|y| light_row(&tracer, &rows, y))
+                        .collect()
+                });
+                for row in batch {
+                    rays.fetch_add(row.rays, Ordering::Relaxed);
+                    nonfinite.fetch_add(row.rejected, Ordering::Relaxed);
+                    for splat in &row.splats {
+                        splatter.add(splat.film, &splat.value, settings.clamp);
+                    }
+                }
+            }
+        }
         if cancel.load(Ordering::Relaxed) {
             return Ok(None);
         }
@@ -190,7 +241,7 @@ struct Rows {
     seed: u64,
     clamp: Option<f64>,
     samples: Range<u64>,
-    bands: Option<SpectralBands>,
+    outputs: Outputs,
 }
 
 /// Renders `settings.samples` of every pixel into `film`: a [`Renderer`] for one pass.
@@ -222,10 +273,6 @@ struct RowOutput<'a> {
     energy: &'a mut [[f64; 2]],
 }
 
-/// Photons per joule at 1 nm: a photon of wavelength l nm carries hc / (l 1e-9) J.
-const PHOTONS_PER_JOULE_NM: f64 =
-    1e-9 / (prism_spectrum::constants::PLANCK * prism_spectrum::constants::SPEED_OF_LIGHT);
-
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
 fn trace_row<const N: usize, const FLUORESCENCE: bool>(
     tracer: &Tracer,
@@ -239,14 +286,11 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
         spectral: spectral_row,
         energy: energy_row,
     } = out;
-    let record_energy = !energy_row.is_empty();
     let (w, h) = (settings.width, settings.height);
     let aspect = w as f32 / h as f32;
     let (mut rays, mut rejected) = (0u64, 0u64);
-    let band_count = settings.bands.map_or(0, |b| b.count());
-    // (band, spectral radiance estimate) pairs of the current sample, kept until the
-    // sample is known to be finite.
-    let mut binned: Vec<(usize, f64)> = Vec::new();
+    let band_count = settings.outputs.bands.map_or(0, |b| b.count());
+    let mut value = SampleValue::default();
     for (x, sum) in row.iter_mut().enumerate() {
         let pixel = u64::from(y) * u64::from(w) + x as u64;
         for s in settings.samples.clone() {
@@ -257,74 +301,70 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 (x as f32 + 0.5 + offset.x) / w as f32,
                 (y as f32 + 0.5 + offset.y) / h as f32,
             );
-            let mut xyz = [0.0f64; 3];
-            let mut energy = [0.0f64; 2];
-            binned.clear();
+            value.clear();
             let result = tracer.trace::<N, FLUORESCENCE>(
                 &mut stream,
                 FIRST_BOUNCE_DIMENSION,
                 u_lambda,
                 film,
                 aspect,
-                &mut |radiance, lambdas| {
-                    let c = match tracer.camera {
-                        Some(camera) => camera.channels(radiance, lambdas),
-                        None => radiance.to_xyz(lambdas, tracer.observer).to_array(),
-                    };
-                    xyz[0] += c[0];
-                    xyz[1] += c[1];
-                    xyz[2] += c[2];
-                    if record_energy {
-                        // (1/C) sum_j L_j / pdf_j estimates the radiance integral; each
-                        // lane's photons are its energy times lambda / hc.
-                        for j in 0..N {
-                            let pdf = f64::from(lambdas.pdf(j));
-                            if pdf > 0.0 {
-                                let e = f64::from(radiance[j]) / pdf / N as f64;
-                                energy[0] += e;
-                                energy[1] +=
-                                    e * f64::from(lambdas.lambda(j)) * PHOTONS_PER_JOULE_NM;
-                            }
-                        }
-                    }
-                    if let Some(bands) = settings.bands {
-                        // Each lane estimates (1/C) L / pdf of its band's integral; per nm,
-                        // divided by the band's width.
-                        let scale = 1.0 / (N as f64 * bands.width());
-                        for j in 0..N {
-                            let pdf = f64::from(lambdas.pdf(j));
-                            if let (true, Some(band)) =
-                                (pdf > 0.0, bands.band_of(lambdas.lambda(j)))
-                            {
-                                binned.push((band, f64::from(radiance[j]) / pdf * scale));
-                            }
-                        }
-                    }
-                },
+                &mut |radiance, lambdas| value.add(tracer, settings.outputs, radiance, lambdas),
             );
             rays += result.rays;
-            let finite = xyz.iter().all(|v| v.is_finite())
-                && binned.iter().all(|b| b.1.is_finite())
-                && energy.iter().all(|v| v.is_finite());
-            if result.valid && finite {
-                let scale = match settings.clamp {
-                    Some(c) if xyz[1] > c => c / xyz[1],
-                    _ => 1.0,
-                };
-                for (acc, v) in sum.iter_mut().zip(xyz) {
-                    *acc += v * scale;
-                }
-                for &(band, v) in &binned {
-                    spectral_row[x * band_count + band] += v * scale;
-                }
-                if record_energy {
-                    energy_row[x][0] += energy[0] * scale;
-                    energy_row[x][1] += energy[1] * scale;
-                }
+            if result.valid && value.finite() {
+                let spectral = spectral_row
+                    .get_mut(x * band_count..(x + 1) * band_count)
+                    .unwrap_or_default();
+                value.add_to(
+                    value.clamp_scale(settings.clamp),
+                    sum,
+                    spectral,
+                    energy_row.get_mut(x),
+                );
             } else {
                 rejected += 1;
             }
         }
     }
     (rays, rejected)
+}
+
+/// A light path's contribution to the film, at a film position.
+struct Splat {
+    film: Vec2,
+    value: SampleValue,
+}
+
+/// The splats of one row's light paths, in the order they were made.
+#[derive(Default)]
+struct RowSplats {
+    splats: Vec<Splat>,
+    rays: u64,
+    rejected: u64,
+}
+
+/// Traces the light paths of every sample of every pixel of row `y` (one per camera
+/// sample: the film's mean divides by the samples per pixel, and light paths' camera
+/// importance is per pixel).
+fn light_row<const N: usize>(tracer: &Tracer, settings: &Rows, y: u32) -> RowSplats {
+    let w = settings.width;
+    let aspect = w as f32 / settings.height as f32;
+    let mut out = RowSplats::default();
+    for x in 0..w {
+        let pixel = u64::from(y) * u64::from(w) + u64::from(x);
+        for s in settings.samples.clone() {
+            let mut stream = SobolStream::new(light_seed(settings.seed), pixel, s);
+            out.rays +=
+                tracer.trace_light::<N>(&mut stream, aspect, &mut |film, radiance, lambdas| {
+                    let mut value = SampleValue::default();
+                    value.add(tracer, settings.outputs, radiance, lambdas);
+                    if value.finite() {
+                        out.splats.push(Splat { film, value });
+                    } else {
+                        out.rejected += 1;
+                    }
+                });
+        }
+    }
+    out
 }

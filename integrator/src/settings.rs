@@ -84,6 +84,10 @@ pub struct RenderSettings {
     /// Energy output: the film also accumulates radiance integrated over `range` and the
     /// photon radiance (the same with each wavelength's radiance divided by hc / lambda).
     pub energy: bool,
+    /// Light paths for the caustics the camera sees directly, in scenes with delta
+    /// surfaces (smooth glass or metal). Off, camera paths alone find them (unbiased, but
+    /// a small light's caustic stays noise and a punctual light's is missing).
+    pub light_paths: bool,
 }
 
 impl Default for RenderSettings {
@@ -105,6 +109,7 @@ impl Default for RenderSettings {
             clamp: None,
             bands: None,
             energy: false,
+            light_paths: true,
         }
     }
 }

@@ -24,6 +24,21 @@ pub enum Projection {
     },
 }
 
+/// A point seen by the camera: where on the film, and how to connect to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmPoint {
+    /// Film position in [0, 1)^2 (x right, y down).
+    pub film: Vec2,
+    /// Unit direction from the camera to the point.
+    pub direction: Vec3,
+    /// Distance from the camera to the point.
+    pub distance: f32,
+    /// The camera's importance towards the point, per unit film area and solid angle:
+    /// radiance `L` arriving from it adds `L * importance * cos_at_point / distance^2` per
+    /// unit of the point's area to the film's mean.
+    pub importance: f32,
+}
+
 /// A camera: a projection and its placement (glTF convention: looking down -z, +y up).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
@@ -55,6 +70,47 @@ impl Camera {
             .transform_vector3(direction)
             .normalize_or(-Vec3::Z);
         Ray::new(origin, direction, f32::INFINITY)
+    }
+
+    /// Where a light path's vertex `point` is seen on the film of an output of aspect ratio
+    /// `aspect`, for connecting it to the camera (light tracing): None when the camera
+    /// cannot see it (behind it, off the film, or an orthographic camera, which no point
+    /// can be connected to since its rays are a delta in direction).
+    pub fn project(&self, point: Vec3, aspect: f32) -> Option<FilmPoint> {
+        let Projection::Perspective { yfov } = self.projection else {
+            return None;
+        };
+        let local = self.to_world.inverse().transform_point3(point);
+        if local.z.is_nan() || local.z >= 0.0 {
+            return None;
+        }
+        let h = (0.5 * yfov).tan();
+        let ndc = Vec2::new(local.x / (-local.z * h * aspect), local.y / (-local.z * h));
+        let film = Vec2::new(0.5 * (ndc.x + 1.0), 0.5 * (1.0 - ndc.y));
+        if !(film.x >= 0.0 && film.x < 1.0 && film.y >= 0.0 && film.y < 1.0) {
+            return None;
+        }
+        let origin = self.to_world.transform_point3(Vec3::ZERO);
+        let to = point - origin;
+        let distance = to.length();
+        let direction = to / distance;
+        let axis = self
+            .to_world
+            .transform_vector3(-Vec3::Z)
+            .normalize_or(-Vec3::Z);
+        let cos = direction.dot(axis);
+        // The importance of a pinhole per unit film area, normalized so that the film's
+        // unit square integrates to one: 1 / (A cos^3) per unit solid angle with the
+        // cosine at the camera already folded in (Veach 1997, §10.2; *PBR* 4th ed.
+        // §5.1.6), A = the image plane's area at distance 1.
+        let area = 4.0 * h * h * aspect;
+        let importance = 1.0 / (area * cos * cos * cos);
+        (distance > 0.0 && importance.is_finite()).then_some(FilmPoint {
+            film,
+            direction,
+            distance,
+            importance,
+        })
     }
 
     /// A perspective camera (45 degree vertical field of view) looking down -z at the box

@@ -105,6 +105,11 @@ pub struct RenderArgs {
     /// A constant environment radiance (relative units, as emissive colours).
     #[arg(long, allow_negative_numbers = true)]
     pub environment: Option<f64>,
+    /// Leave caustics to camera paths alone: no light paths, even in scenes with smooth
+    /// glass or metal (unbiased either way; without light paths a small light's caustic
+    /// is noise and a punctual light's is missing).
+    #[arg(long)]
+    pub no_light_paths: bool,
     /// Firefly clamp: scale samples whose luminance Y exceeds this down to it. Biased (it
     /// removes energy); off by default.
     #[arg(long)]
@@ -229,6 +234,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         clamp: args.clamp,
         bands: spectral_bands(args)?,
         energy: args.energy,
+        light_paths: !args.no_light_paths,
         range,
         camera: camera.map(Arc::new),
         ..RenderSettings::default()

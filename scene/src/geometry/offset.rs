@@ -2,7 +2,7 @@ use glam::Vec3;
 
 /// gamma(n) = n eps / (1 - n eps), the bound on the relative error of n floating-point
 /// operations (*PBR* 4th ed. §6.8.1), eps = f32::EPSILON / 2.
-fn gamma(n: i32) -> f32 {
+pub(crate) fn gamma(n: i32) -> f32 {
     let e = f32::EPSILON * 0.5 * n as f32;
     e / (1.0 - e)
 }

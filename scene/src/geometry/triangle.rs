@@ -1,6 +1,7 @@
 use glam::{DVec3, Vec3};
 
 use super::Ray;
+use super::offset::gamma;
 
 /// The area of a triangle.
 pub fn triangle_area(p: [Vec3; 3]) -> f32 {
@@ -102,6 +103,22 @@ impl WatertightRay {
         let inverse = 1.0 / det;
         let t = t_scaled * inverse;
         if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        // t must exceed its own rounding error (*PBR* 4th ed. §6.5.3): a ray spawned on a
+        // surface whose error bound is zero along its normal (a plane through the origin,
+        // where the offset is nothing) otherwise re-hits it at t ~ 1e-7.
+        let max_z = z0.abs().max(z1.abs()).max(z2.abs());
+        let max_x = p0.x.abs().max(p1.x.abs()).max(p2.x.abs());
+        let max_y = p0.y.abs().max(p1.y.abs()).max(p2.y.abs());
+        let delta_z = gamma(3) * max_z;
+        let delta_x = gamma(5) * (max_x + max_z);
+        let delta_y = gamma(5) * (max_y + max_z);
+        let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+        let max_e = e0.abs().max(e1.abs()).max(e2.abs());
+        let delta_t =
+            3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inverse.abs();
+        if t <= delta_t {
             return None;
         }
         Some(TriangleHit {

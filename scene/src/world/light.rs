@@ -5,11 +5,14 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 use prism_sampling::distribution::AliasTable;
-use prism_sampling::warp::{uniform_sphere, uniform_triangle};
+use prism_sampling::warp::{
+    cosine_hemisphere, uniform_cone, uniform_cone_pdf, uniform_disk_concentric, uniform_sphere,
+    uniform_triangle,
+};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::SceneSpectrum;
-use crate::geometry::triangle_area;
+use crate::geometry::{Ray, offset_ray_origin, triangle_area, triangle_point_error};
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -75,6 +78,17 @@ pub struct LightSample<const N: usize> {
     pub pdf: f32,
     /// Whether the light is a delta in direction (BSDF sampling can never hit it).
     pub delta: bool,
+}
+
+/// A light path's first ray, sampled from a light's emission.
+#[derive(Debug, Clone, Copy)]
+pub struct EmissionSample<const N: usize> {
+    /// The ray leaving the light (offset from an emitting surface).
+    pub ray: Ray,
+    /// Emitted radiance (or intensity, or irradiance) times the cosine at the light, over
+    /// the density of the ray (position and direction) and of choosing the light: the
+    /// light path's initial throughput.
+    pub beta: SampledSpectrum<N>,
 }
 
 /// The glTF spot light falloff (KHR_lights_punctual): a squared linear ramp in cos between
@@ -248,6 +262,103 @@ impl Lights {
             },
         };
         (sample.pdf.is_finite() && sample.pdf > 0.0 && sample.wi.is_finite()).then_some(sample)
+    }
+}
+
+impl Lights {
+    /// Chooses a light with `u_choice` and samples a ray leaving it: a position with `u_position`
+    /// and a direction with `u_direction` (light tracing). The scene's bounding sphere
+    /// (`centre`, `radius`) places the rays of a directional light. An environment gives
+    /// None: light paths from it would start at infinity, and camera paths find its
+    /// caustics instead.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn sample_emission<const N: usize>(
+        &self,
+        u_choice: f32,
+        u_position: Vec2,
+        u_direction: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        triangles: &[[Vec3; 3]],
+        emission: &[SceneSpectrum],
+        (centre, radius): (Vec3, f32),
+    ) -> Option<EmissionSample<N>> {
+        let (index, pmf) = self.choice.as_ref()?.sample(f64::from(u_choice));
+        let pmf = pmf as f32;
+        if pmf <= 0.0 {
+            return None;
+        }
+        let (ray, beta) = match &self.lights[index] {
+            Light::Triangle {
+                triangle,
+                emission: e,
+                two_sided,
+            } => {
+                // Uniform in area, cosine-weighted in direction on an emitting side:
+                // Le cos / (pdf_area pdf_dir) = Le pi area (times 2 for a side chosen at
+                // random).
+                let v = triangles[*triangle as usize];
+                let b = uniform_triangle(u_position);
+                let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+                let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+                let (u, side, sides) = if *two_sided {
+                    if u_direction.x < 0.5 {
+                        (Vec2::new(2.0 * u_direction.x, u_direction.y), n, 2.0)
+                    } else {
+                        (Vec2::new(2.0 * u_direction.x - 1.0, u_direction.y), -n, 2.0)
+                    }
+                } else {
+                    (u_direction, n, 1.0)
+                };
+                let local = cosine_hemisphere(u.min(Vec2::splat(0.999_999_9)));
+                let (x, y) = side.any_orthonormal_pair();
+                let direction = local.x * x + local.y * y + local.z * side;
+                let origin = offset_ray_origin(p, triangle_point_error(v, b), n, direction);
+                let scale = PI * triangle_area(v) * sides / pmf;
+                (
+                    Ray::new(origin, direction, f32::INFINITY),
+                    emission[*e as usize].at(wavelengths) * scale,
+                )
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => (
+                Ray::new(*position, uniform_sphere(u_direction), f32::INFINITY),
+                intensity.at(wavelengths) * (4.0 * PI / pmf),
+            ),
+            Light::Spot {
+                position,
+                direction,
+                cos_inner,
+                cos_outer,
+                intensity,
+            } => {
+                let local = uniform_cone(u_direction, *cos_outer);
+                let (x, y) = direction.any_orthonormal_pair();
+                let w = local.x * x + local.y * y + local.z * *direction;
+                let falloff = spot_falloff(local.z, *cos_inner, *cos_outer);
+                (
+                    Ray::new(*position, w, f32::INFINITY),
+                    intensity.at(wavelengths) * (falloff / (uniform_cone_pdf(*cos_outer) * pmf)),
+                )
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                // Parallel rays through a disk that covers the scene, facing the light.
+                let d = uniform_disk_concentric(u_position) * radius;
+                let (x, y) = direction.any_orthonormal_pair();
+                let origin = centre - *direction * (2.0 * radius) + d.x * x + d.y * y;
+                (
+                    Ray::new(origin, *direction, f32::INFINITY),
+                    irradiance.at(wavelengths) * (PI * radius * radius / pmf),
+                )
+            }
+            Light::Environment { .. } => return None,
+        };
+        (ray.direction.is_finite() && ray.origin.is_finite() && !beta.is_black())
+            .then_some(EmissionSample { ray, beta })
     }
 }
 

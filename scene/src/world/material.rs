@@ -78,6 +78,17 @@ impl Material {
         }
     }
 
+    /// Whether a sampled lobe can be a Dirac delta here (smooth glass or metal): paths
+    /// through it form caustics that only light paths find.
+    pub fn specular(&self) -> bool {
+        match self {
+            Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
+                Ggx::new(roughness * roughness, roughness * roughness).effectively_smooth()
+            }
+            _ => false,
+        }
+    }
+
     /// Whether light changes wavelength here.
     pub fn fluorescent(&self) -> bool {
         matches!(self, Material::Fluorescent { .. })
@@ -91,6 +102,17 @@ impl Material {
         &self,
         uv: Vec2,
         wavelengths: &SampledWavelengths<N>,
+    ) -> Bsdf<'_, N> {
+        self.bsdf_for(uv, wavelengths, TransportMode::Radiance)
+    }
+
+    /// [`Material::bsdf`] for paths carrying `mode`: light paths transport importance,
+    /// which refraction does not scale by 1 / eta^2.
+    pub fn bsdf_for<const N: usize>(
+        &self,
+        uv: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        mode: TransportMode,
     ) -> Bsdf<'_, N> {
         match self {
             Material::Diffuse { reflectance } => {
@@ -113,7 +135,7 @@ impl Material {
                 Bsdf::Dielectric(RoughDielectric {
                     distribution: Ggx::new(alpha, alpha),
                     eta,
-                    mode: TransportMode::Radiance,
+                    mode,
                 })
             }
             Material::Conductor { eta, k, roughness } => {

@@ -11,7 +11,7 @@ mod spectrum;
 mod texture;
 
 pub use from_gltf::SceneOptions;
-pub use light::{Light, LightSample, Lights};
+pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use material::{Bsdf, Material};
 pub use spectrum::SceneSpectrum;
 pub use texture::{RgbTexture, SpectralTexture, UvTransform, Wrap};
@@ -33,6 +33,9 @@ pub struct Features {
     pub fluorescence: bool,
     /// A transmissive material.
     pub transmission: bool,
+    /// A material with a delta lobe (smooth glass or metal): caustics, which the
+    /// integrator traces from the lights.
+    pub specular: bool,
 }
 
 /// Everything a [`Scene`] is made of, for building scenes in code (tests, procedural
@@ -117,6 +120,7 @@ pub struct Scene {
     lights: Lights,
     camera: Camera,
     features: Features,
+    centre: Vec3,
     radius: f32,
     light_wavelengths: Option<prism_sampling::distribution::PiecewiseConstant1D>,
 }
@@ -184,10 +188,10 @@ impl Scene {
             .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), v| {
                 (lo.min(*v), hi.max(*v))
             });
-        let radius = if lo.x <= hi.x {
-            (0.5 * (hi - lo)).length().max(1e-3)
+        let (centre, radius) = if lo.x <= hi.x {
+            (0.5 * (lo + hi), (0.5 * (hi - lo)).length().max(1e-3))
         } else {
-            1.0
+            (Vec3::ZERO, 1.0)
         };
         let power: Vec<f64> = lights
             .iter()
@@ -199,6 +203,7 @@ impl Scene {
             transmission: materials
                 .iter()
                 .any(|m| matches!(m, Material::Dielectric { .. })),
+            specular: materials.iter().any(Material::specular),
         };
         let light_wavelengths = features
             .fluorescence
@@ -215,6 +220,7 @@ impl Scene {
             lights,
             camera,
             features,
+            centre,
             radius,
             light_wavelengths,
         })
@@ -365,6 +371,26 @@ impl Scene {
             )),
             _ => None,
         }
+    }
+
+    /// Chooses a light with `u_choice` and samples a ray leaving it (the start of a light
+    /// path): see [`Lights::sample_emission`].
+    pub fn sample_emission<const N: usize>(
+        &self,
+        u_choice: f32,
+        u_position: Vec2,
+        u_direction: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> Option<EmissionSample<N>> {
+        self.lights.sample_emission(
+            u_choice,
+            u_position,
+            u_direction,
+            wavelengths,
+            &self.triangles,
+            &self.emission,
+            (self.centre, self.radius),
+        )
     }
 
     /// Chooses a light with `u_choice` and samples a direction to it from `hit` with `u`.

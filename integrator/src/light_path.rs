@@ -1,0 +1,160 @@
+//! Light paths for the caustics a camera sees directly: light leaving an emitter, bent by
+//! one or more delta bounces (smooth glass, smooth metal), landing on a surface that the
+//! camera sees. A camera path can only find such light by hitting the emitter through the
+//! delta chain with a BSDF-sampled direction, which is hopeless for small lights and
+//! impossible for punctual ones (a spot light through a prism casts no spectrum in a pure
+//! path tracer). A light path finds it by following the light and connecting the landing
+//! point to the pinhole (light tracing: Veach 1997, §10.2; *PBR* 4th ed. §13.4, whose
+//! camera importance this uses).
+//!
+//! The two estimators split path space between them rather than combine by MIS: light
+//! paths count exactly the paths light -> delta+ -> x -> camera with x neither a delta nor
+//! fluorescent, and camera paths skip emission found along such paths
+//! (`Tracer::light_caustics`). Everything else stays with the camera paths, so the sum is
+//! unbiased and each path is counted once.
+
+use glam::Vec2;
+use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_sampling::wavelength::WavelengthPackage;
+use prism_scene::bsdf::TransportMode;
+use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+use crate::path::{Frame, Tracer, absorb, wavelengths};
+
+/// Sample-stream dimensions of a light path: the wavelength (0), the light choice, its
+/// position and direction (1-5), then a fixed block per bounce.
+const FIRST_BOUNCE_DIMENSION: u64 = 6;
+const DIMENSIONS_PER_BOUNCE: u64 = 4;
+
+/// The first bounce at which Russian roulette may end a light path.
+const ROULETTE_DEPTH: u32 = 3;
+
+/// The seed of light paths' streams, apart from the camera paths' so that the two
+/// estimators are independent.
+pub(crate) fn light_seed(seed: u64) -> u64 {
+    seed ^ 0x6c69_6768_745f_7061
+}
+
+impl Tracer<'_> {
+    /// Traces one light path with `stream` (positioned at dimension 0) for an image of
+    /// aspect ratio `aspect`; every connection to the camera goes to `sink` with its film
+    /// position, its radiance (the contribution to the film's mean in that pixel, given
+    /// one light path per pixel and sample) and the wavelengths it was estimated with.
+    /// Returns the rays traced.
+    pub(crate) fn trace_light<const N: usize>(
+        &self,
+        stream: &mut SobolStream,
+        aspect: f32,
+        sink: &mut impl FnMut(Vec2, &SampledSpectrum<N>, &SampledWavelengths<N>),
+    ) -> u64 {
+        let u_lambda = stream.next_1d();
+        let mut package =
+            WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
+        let Some(mut lambdas) = wavelengths(&package) else {
+            return 0;
+        };
+        let u_choice = stream.next_1d();
+        let u_position = stream.next_2d();
+        let u_direction = stream.next_2d();
+        let Some(emitted) = self
+            .scene
+            .sample_emission(u_choice, u_position, u_direction, &lambdas)
+        else {
+            return 0;
+        };
+        let mut ray = emitted.ray;
+        let mut beta = emitted.beta;
+        let initial = beta.max_value();
+        let camera = self.scene.camera();
+        let mut rays = 0u64;
+        let mut depth = 0u32;
+        loop {
+            rays += 1;
+            let Some(hit) = self.scene.intersect(&ray) else {
+                break;
+            };
+            absorb(self.scene, &ray, &hit, &lambdas, &mut beta);
+            let material = self.scene.material(&hit);
+            if material.fluorescent() {
+                // Re-radiation changes wavelength: this light stays with camera paths.
+                break;
+            }
+            let bsdf = material.bsdf_for(hit.uv, &lambdas, TransportMode::Importance);
+            let frame = Frame::from_normal(hit.shading_normal);
+            let wo_world = -ray.direction.normalize();
+            let wo = frame.to_local(wo_world);
+            // Adjoint BSDFs with shading normals (Veach 1997, §5.3): light paths weigh a
+            // bounce by |wo.ns| |wi.ng| / |wo.ng| where camera paths use |wi.ns|.
+            let shading = |wi_world: glam::Vec3| {
+                let geometric_wo = wo_world.dot(hit.normal).abs();
+                if geometric_wo > 0.0 {
+                    wo.z.abs() * wi_world.dot(hit.normal).abs() / geometric_wo
+                } else {
+                    0.0
+                }
+            };
+
+            // This vertex would be the path's (depth + 1)-th bounce; camera paths keep at
+            // most max_depth.
+            if depth >= self.max_depth {
+                break;
+            }
+            // After at least one delta bounce, a surface the camera can see is where the
+            // caustic lands.
+            if depth > 0
+                && !bsdf.is_delta()
+                && let Some(seen) = camera.project(hit.p, aspect)
+            {
+                let wi_world = -seen.direction;
+                let f = bsdf.f(wo, frame.to_local(wi_world));
+                let weight = shading(wi_world) * seen.importance / (seen.distance * seen.distance);
+                if !f.is_black() && weight > 0.0 && weight.is_finite() {
+                    rays += 1;
+                    if !self.scene.occluded(&hit.spawn_to(wi_world, seen.distance)) {
+                        sink(seen.film, &(beta * f * weight), &lambdas);
+                    }
+                }
+            }
+            stream.set_dimension(FIRST_BOUNCE_DIMENSION + u64::from(depth) * DIMENSIONS_PER_BOUNCE);
+            let u_lobe = stream.next_1d();
+            let u_bsdf = stream.next_2d();
+            let u_roulette = stream.next_1d();
+            let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {
+                break;
+            };
+            // Past a non-delta bounce the path is no caustic seen directly: camera paths
+            // carry it.
+            if !sample.delta {
+                break;
+            }
+            let pdf = sample.pdf[0];
+            if !(pdf > 0.0 && pdf.is_finite()) {
+                break;
+            }
+            let wi_world = frame.to_world(sample.wi);
+            beta *= sample.f * (shading(wi_world) / pdf);
+            if sample.wavelength_dependent && !package.secondary_terminated() {
+                // A dispersive refraction sends only the hero on; the connections made so
+                // far went to the film with the whole package.
+                package.terminate_secondary();
+                lambdas = match wavelengths(&package) {
+                    Some(l) => l,
+                    None => break,
+                };
+            }
+            ray = hit.spawn(wi_world);
+            depth += 1;
+
+            // Russian roulette relative to the light's initial throughput (light paths
+            // carry power, not a fraction of one).
+            if depth >= ROULETTE_DEPTH {
+                let q = (beta.max_value() / initial).min(0.95);
+                if q.is_nan() || q <= 0.0 || u_roulette >= q {
+                    break;
+                }
+                beta *= 1.0 / q;
+            }
+        }
+        rays
+    }
+}

@@ -1,0 +1,309 @@
+//! Light paths for caustics seen directly: they must add exactly the light camera paths
+//! leave to them. Two checks with independent oracles:
+//! - a point light beside a perfect mirror lights a floor as the light and its mirror
+//!   image do (camera paths cannot find the image at all: a point light is never hit);
+//! - a small area light over a dispersive glass block: camera paths alone find the
+//!   caustic too (noisily), so rendering with and without light paths must agree within
+//!   Monte Carlo error, with the box filter and with a Gaussian one, and the image must
+//!   not depend on the thread count.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3};
+use prism_integrator::{Film, Filter, LambdaSampler, RenderSettings, render};
+use prism_scene::camera::{Camera, Projection};
+use prism_scene::geometry::BvhQuality;
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_spectrum::optics::named_glass;
+
+/// A quad as two triangles, wound so that its front faces along `(b - a) x (c - a)`.
+fn quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> [[Vec3; 3]; 2] {
+    [[a, b, c], [a, c, d]]
+}
+
+/// A pinhole looking straight down at the floor from height `h`.
+fn camera_above(h: f32, yfov_degrees: f32) -> Camera {
+    Camera {
+        name: "test".into(),
+        to_world: Mat4::from_translation(Vec3::new(0.0, h, 0.0))
+            * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2),
+        projection: Projection::Perspective {
+            yfov: yfov_degrees.to_radians(),
+        },
+    }
+}
+
+/// The floor y = 0, facing up, of half-size `half`.
+fn floor(half: f32) -> [[Vec3; 3]; 2] {
+    quad(
+        Vec3::new(-half, 0.0, -half),
+        Vec3::new(-half, 0.0, half),
+        Vec3::new(half, 0.0, half),
+        Vec3::new(half, 0.0, -half),
+    )
+}
+
+fn settings(size: u32, spp: u64, seed: u64) -> RenderSettings {
+    RenderSettings {
+        width: size,
+        height: size,
+        samples: 0..spp,
+        seed,
+        wavelengths: 4,
+        lambda_sampler: LambdaSampler::Visible,
+        ..RenderSettings::default()
+    }
+}
+
+/// Mean Y over the pixels of the block [x0, x1) x [y0, y1).
+fn block_mean(film: &Film, (x0, x1): (u32, u32), (y0, y1): (u32, u32)) -> f64 {
+    let mut sum = 0.0;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            sum += film.xyz(x, y).y;
+        }
+    }
+    sum / f64::from((x1 - x0) * (y1 - y0))
+}
+
+/// A floor (albedo 0.5) lit by a point light at height 1, with a perfect mirror standing
+/// at x = 1.2, or instead of the mirror a second point light where its image is.
+fn mirror_scene(with_mirror: bool) -> Scene {
+    mirror_scene_with(with_mirror, !with_mirror)
+}
+
+fn mirror_scene_with(with_mirror: bool, image: bool) -> Scene {
+    let light = Vec3::new(0.4, 1.0, 0.0);
+    let mut triangles: Vec<[Vec3; 3]> = floor(4.0).to_vec();
+    let mut lights = vec![Light::Point {
+        position: light,
+        intensity: SceneSpectrum::Constant(1.0),
+    }];
+    if with_mirror {
+        // Facing -x, tall and wide enough that every floor point the camera sees gets
+        // the image light through it.
+        triangles.extend(quad(
+            Vec3::new(1.2, -0.1, -6.0),
+            Vec3::new(1.2, -0.1, 6.0),
+            Vec3::new(1.2, 6.0, 6.0),
+            Vec3::new(1.2, 6.0, -6.0),
+        ));
+    }
+    if image {
+        lights.push(Light::Point {
+            position: Vec3::new(2.0 * 1.2 - light.x, light.y, light.z),
+            intensity: SceneSpectrum::Constant(1.0),
+        });
+    }
+    let triangle_material = (0..triangles.len())
+        .map(|i| u32::from(i >= 2))
+        .collect::<Vec<_>>();
+    Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangle_material,
+        triangles,
+        materials: vec![
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.5),
+            },
+            // eta 0, k huge: reflectance 1 at every angle.
+            Material::Conductor {
+                eta: SceneSpectrum::Constant(0.0),
+                k: SceneSpectrum::Constant(1e4),
+                roughness: 0.0,
+            },
+        ],
+        emission: vec![],
+        lights,
+        camera: camera_above(3.0, 30.0),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap()
+}
+
+/// The mirror's light reaches the floor only through light paths; with them, the floor
+/// is lit as by the light plus its mirror image (rendered with camera paths alone, its
+/// direct light, which the analytic tests of transport.rs pin down).
+#[test]
+fn a_point_light_in_a_mirror_lights_the_floor_as_its_image_does() {
+    // Two bounces: floor and mirror. The floor's light via the mirror and back to the
+    // floor would differ between the two scenes.
+    let settings = RenderSettings {
+        max_depth: Some(2),
+        ..settings(24, 256, 1)
+    };
+    let (mirrored, _) = render(&mirror_scene(true), &settings).unwrap();
+    let (two_lights, _) = render(&mirror_scene(false), &settings).unwrap();
+    let without = RenderSettings {
+        light_paths: false,
+        ..settings.clone()
+    };
+    let (camera_only, _) = render(&mirror_scene(true), &without).unwrap();
+    for (bx, by) in [
+        (0, 0),
+        (1, 0),
+        (2, 0),
+        (0, 1),
+        (1, 1),
+        (2, 1),
+        (0, 2),
+        (2, 2),
+        (1, 2),
+    ] {
+        let range = |b: u32| (b * 8, b * 8 + 8);
+        let got = block_mean(&mirrored, range(bx), range(by));
+        let want = block_mean(&two_lights, range(bx), range(by));
+        let direct = block_mean(&camera_only, range(bx), range(by));
+        assert!(
+            (got - want).abs() < 0.1 * (want - direct),
+            "block ({bx}, {by}): light paths give {got}, the image light {want}, direct {direct}"
+        );
+        // The image's light is a large share, so the check above sees it.
+        assert!(
+            want - direct > 0.1 * want,
+            "block ({bx}, {by}): {direct} vs {want}"
+        );
+    }
+}
+
+/// A box of SF11 glass (dispersive) over a white floor, lit by a small square light
+/// above and beside it; the camera looks down at the floor, the block, its shadow and
+/// the caustic its side casts.
+fn glass_block_scene() -> Scene {
+    let mut triangles: Vec<[Vec3; 3]> = floor(3.0).to_vec();
+    let (lo, hi) = (Vec3::new(-0.5, 0.4, -0.5), Vec3::new(0.5, 0.9, 0.5));
+    let corner =
+        |x: usize, y: usize, z: usize| Vec3::new([lo.x, hi.x][x], [lo.y, hi.y][y], [lo.z, hi.z][z]);
+    // Six outward-facing faces.
+    for [a, b, c, d] in [
+        [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)],
+        [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)],
+        [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)],
+        [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)],
+        [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)],
+        [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)],
+    ] {
+        let v = |(x, y, z)| corner(x, y, z);
+        triangles.extend(quad(v(a), v(b), v(c), v(d)));
+    }
+    let glass = triangles.len();
+    // The light, facing down, beside the camera's view and above the block's side.
+    let (x0, x1, y, s) = (0.8, 1.8, 1.6, 0.5);
+    triangles.extend(quad(
+        Vec3::new(x0, y, -s),
+        Vec3::new(x1, y, -s),
+        Vec3::new(x1, y, s),
+        Vec3::new(x0, y, s),
+    ));
+    let triangle_material = (0..triangles.len())
+        .map(|i| match i {
+            0..2 => 0,
+            i if i < glass => 1,
+            _ => 2,
+        })
+        .collect();
+    let lights = (glass..glass + 2)
+        .map(|t| Light::Triangle {
+            triangle: t as u32,
+            emission: 0,
+            two_sided: false,
+        })
+        .collect();
+    Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangle_material,
+        triangles,
+        materials: vec![
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.8),
+            },
+            Material::Dielectric {
+                ior: SceneSpectrum::Sellmeier(Arc::new(named_glass("sf11").unwrap().ior)),
+                roughness: 0.0,
+                absorption: None,
+            },
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.0),
+            },
+        ],
+        emission: vec![SceneSpectrum::Constant(20.0)],
+        lights,
+        camera: camera_above(3.5, 40.0),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap()
+}
+
+/// With and without light paths the glass block's caustic and the floor converge to the
+/// same image. Camera paths are the same in both renders of a seed (light paths draw from
+/// their own streams), so the per-seed difference is light paths' contribution minus the
+/// camera paths' share they replace: its mean over seeds must be zero within 4 standard
+/// errors (plus 2%: the camera paths' caustic is heavy-tailed, so its spread understates
+/// the error) in every block of pixels, for the box and the Gaussian filter. Camera paths
+/// that also counted the caustic change the caustic's blocks by 10-40 standard errors.
+#[test]
+fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
+    let scene = glass_block_scene();
+    const SIZE: u32 = 16;
+    const RUNS: u64 = 8;
+    for filter in [Filter::Box, Filter::from_name("gaussian").unwrap()] {
+        let mut differences = vec![Vec::new(); 16];
+        let mut level = [0.0; 16];
+        for seed in 0..RUNS {
+            let base = RenderSettings {
+                filter,
+                ..settings(SIZE, 128, seed)
+            };
+            let with = render(&scene, &base).unwrap().0;
+            let off = RenderSettings {
+                light_paths: false,
+                ..base
+            };
+            let without = render(&scene, &off).unwrap().0;
+            for b in 0..16u32 {
+                let (bx, by) = (b % 4 * 4, b / 4 * 4);
+                let a = block_mean(&with, (bx, bx + 4), (by, by + 4));
+                let c = block_mean(&without, (bx, bx + 4), (by, by + 4));
+                differences[b as usize].push(a - c);
+                level[b as usize] += a / RUNS as f64;
+            }
+        }
+        let mut caustic_blocks = 0;
+        for (b, d) in differences.iter().enumerate() {
+            let n = d.len() as f64;
+            let mean = d.iter().sum::<f64>() / n;
+            let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            let se = (var / n).sqrt();
+            assert!(
+                mean.abs() <= 4.0 * se + 0.02 * level[b],
+                "{filter:?} block {b}: light paths change its mean by {mean} (standard error {se}, level {})",
+                level[b]
+            );
+            // Blocks whose light paths carry a visible share are the caustic's.
+            if d.iter().any(|v| v.abs() > 0.01 * level[b]) {
+                caustic_blocks += 1;
+            }
+        }
+        assert!(
+            caustic_blocks >= 4,
+            "{filter:?}: caustic in {caustic_blocks} blocks"
+        );
+    }
+}
+
+/// Light paths splat anywhere on the film; the image still does not depend on threads.
+#[test]
+fn light_paths_do_not_depend_on_the_thread_count() {
+    let scene = glass_block_scene();
+    let one = RenderSettings {
+        threads: 1,
+        ..settings(20, 4, 7)
+    };
+    let two = RenderSettings {
+        threads: 2,
+        ..one.clone()
+    };
+    let (a, _) = render(&scene, &one).unwrap();
+    let (b, _) = render(&scene, &two).unwrap();
+    assert_eq!(a.sums(), b.sums());
+}
