@@ -93,9 +93,15 @@ pub struct EmissionSample<const N: usize> {
 
 /// The glTF spot light falloff (KHR_lights_punctual): a squared linear ramp in cos between
 /// the outer and inner cone.
+/// The ramp's width is not floored at 1e-3 as the extension's sample code does (that
+/// only guards a division by zero, and would dim every spot narrower than ~2.5 degrees
+/// to a fraction of its intensity).
 fn spot_falloff(cos: f32, cos_inner: f32, cos_outer: f32) -> f32 {
-    let scale = 1.0 / (cos_inner - cos_outer).max(1e-3);
-    let t = ((cos - cos_outer) * scale).clamp(0.0, 1.0);
+    let width = cos_inner - cos_outer;
+    if width <= 0.0 {
+        return f32::from(u8::from(cos >= cos_outer));
+    }
+    let t = ((cos - cos_outer) / width).clamp(0.0, 1.0);
     t * t
 }
 
