@@ -91,6 +91,12 @@ pub struct EmissionSample<const N: usize> {
     pub beta: SampledSpectrum<N>,
 }
 
+/// `local` (z up) turned so that its z is the unit `axis`.
+fn around(axis: Vec3, local: Vec3) -> Vec3 {
+    let (x, y) = axis.any_orthonormal_pair();
+    local.x * x + local.y * y + local.z * axis
+}
+
 /// The glTF spot light falloff (KHR_lights_punctual): a squared linear ramp in cos between
 /// the outer and inner cone.
 /// The ramp's width is not floored at 1e-3 as the extension's sample code does (that
@@ -170,6 +176,13 @@ impl Lights {
         self.environment
     }
 
+    /// A light chosen with `u_choice` in proportion to power, and its probability.
+    fn choose(&self, u_choice: f32) -> Option<(usize, f32)> {
+        let (index, pmf) = self.choice.as_ref()?.sample(f64::from(u_choice));
+        let pmf = pmf as f32;
+        (pmf > 0.0).then_some((index, pmf))
+    }
+
     /// Chooses a light with `u_choice` and samples it from `p` with `u`.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn sample<const N: usize>(
@@ -181,11 +194,7 @@ impl Lights {
         triangles: &[[Vec3; 3]],
         emission: &[SceneSpectrum],
     ) -> Option<LightSample<N>> {
-        let (index, pmf) = self.choice.as_ref()?.sample(f64::from(u_choice));
-        let pmf = pmf as f32;
-        if pmf <= 0.0 {
-            return None;
-        }
+        let (index, pmf) = self.choose(u_choice)?;
         let sample = match &self.lights[index] {
             Light::Triangle {
                 triangle,
@@ -288,11 +297,7 @@ impl Lights {
         emission: &[SceneSpectrum],
         (centre, radius): (Vec3, f32),
     ) -> Option<EmissionSample<N>> {
-        let (index, pmf) = self.choice.as_ref()?.sample(f64::from(u_choice));
-        let pmf = pmf as f32;
-        if pmf <= 0.0 {
-            return None;
-        }
+        let (index, pmf) = self.choose(u_choice)?;
         let (ray, beta) = match &self.lights[index] {
             Light::Triangle {
                 triangle,
@@ -315,9 +320,7 @@ impl Lights {
                 } else {
                     (u_direction, n, 1.0)
                 };
-                let local = cosine_hemisphere(u.min(Vec2::splat(0.999_999_9)));
-                let (x, y) = side.any_orthonormal_pair();
-                let direction = local.x * x + local.y * y + local.z * side;
+                let direction = around(side, cosine_hemisphere(u.min(Vec2::splat(0.999_999_9))));
                 let origin = offset_ray_origin(p, triangle_point_error(v, b), n, direction);
                 let scale = PI * triangle_area(v) * sides / pmf;
                 (
@@ -340,8 +343,7 @@ impl Lights {
                 intensity,
             } => {
                 let local = uniform_cone(u_direction, *cos_outer);
-                let (x, y) = direction.any_orthonormal_pair();
-                let w = local.x * x + local.y * y + local.z * *direction;
+                let w = around(*direction, local);
                 let falloff = spot_falloff(local.z, *cos_inner, *cos_outer);
                 (
                     Ray::new(*position, w, f32::INFINITY),
