@@ -31,7 +31,7 @@ enum Command {
     Color(commands::color::ColorArgs),
     /// Turn RGB colours into sigmoid-polynomial spectra (Jakob and Hanika 2019).
     Upsample(commands::upsample::UpsampleArgs),
-    /// Render a glTF scene (or the embedded Cornell box) to EXR and PNG images.
+    /// Render a glTF scene (or the embedded effects stage) to EXR and PNG images.
     Render(Box<commands::render::RenderArgs>),
     /// Merge accumulation files of sample ranges (prism render --sample-range) into an image.
     Merge(commands::merge::MergeArgs),

@@ -175,7 +175,7 @@ impl Tracer<'_> {
                     // heuristic (weight (R + F) / F * M / p_mix). The surface is
                     // Lambertian either way.
                     let u_wavelength = stream.next_1d();
-                    let guide = self.scene.light_wavelengths();
+                    let guide = self.scene.light_wavelengths(&hit);
                     let r = reflectance.at_uv(hit.uv, &transport);
                     let mut incident = *transport.lambdas();
                     for j in 0..N {

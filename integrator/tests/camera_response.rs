@@ -49,6 +49,7 @@ fn a_near_infrared_camera_integrates_its_curves() {
         camera: Camera {
             name: "front".into(),
             to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
+            aspect_ratio: None,
             projection: Projection::Orthographic {
                 xmag: 0.5,
                 ymag: 0.5,

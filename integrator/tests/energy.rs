@@ -52,6 +52,7 @@ fn energy_and_photons_of_a_known_emitter() {
         camera: Camera {
             name: "front".into(),
             to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
+            aspect_ratio: None,
             projection: Projection::Orthographic {
                 xmag: 0.5,
                 ymag: 0.5,

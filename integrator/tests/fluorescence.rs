@@ -63,6 +63,7 @@ fn floor_under_uv(material: Material, peak: f64, c: usize, sampler: LambdaSample
         camera: Camera {
             name: "down".into(),
             to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
+            aspect_ratio: None,
             projection: Projection::Orthographic {
                 xmag: 1.0,
                 ymag: 1.0,

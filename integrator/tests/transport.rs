@@ -23,6 +23,7 @@ fn ortho_camera(eye: Vec3, half: f32) -> Camera {
     Camera {
         name: "test".into(),
         to_world: Mat4::from_translation(eye),
+        aspect_ratio: None,
         projection: Projection::Orthographic {
             xmag: half,
             ymag: half,

@@ -9,8 +9,8 @@ use crate::geometry::Ray;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Projection {
     /// A pinhole with vertical field of view `yfov` (radians); the horizontal one follows
-    /// from the output's aspect ratio (glTF's `aspectRatio` is a hint prism ignores: the
-    /// output size decides).
+    /// from the output's aspect ratio (glTF's `aspectRatio` only suggests the output's
+    /// default size, [`Camera::aspect_ratio`]: the output size decides).
     Perspective {
         /// Vertical field of view, radians, in (0, pi).
         yfov: f32,
@@ -48,6 +48,9 @@ pub struct Camera {
     pub to_world: Mat4,
     /// The projection.
     pub projection: Projection,
+    /// The width / height the scene was framed for, if it says (glTF's `aspectRatio`, or
+    /// `xmag / ymag`): what an output whose size is not given takes.
+    pub aspect_ratio: Option<f32>,
 }
 
 impl Camera {
@@ -126,6 +129,7 @@ impl Camera {
             name: "default".into(),
             to_world: Mat4::from_translation(center + Vec3::new(0.0, 0.0, distance)),
             projection: Projection::Perspective { yfov },
+            aspect_ratio: None,
         }
     }
 }

@@ -19,16 +19,18 @@ use prism_spectrum::color::RgbSpaceId;
 use crate::output::{check_writable, write_atomically};
 use crate::session::{self, Ending, Outcome, SessionOptions};
 
-/// The scene `prism render` renders without a SCENE argument: the repository's Cornell box.
-const DEFAULT_GLTF: &[u8] = include_bytes!("../../../scenes/cornell-box.gltf");
-const DEFAULT_BIN: &[u8] = include_bytes!("../../../scenes/cornell-box.bin");
+/// The scene `prism render` renders without a SCENE argument: the repository's spectral
+/// effects stage (`scenes/effects.gltf`, one file with its buffer embedded): dispersion,
+/// fluorescence under UV, and a blackbody and a standard illuminant side by side.
+const DEFAULT_GLTF: &[u8] = include_bytes!("../../../scenes/effects.gltf");
 
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  prism render -o box.png\n  prism render scenes/cornell-bunny.gltf --spp 256 -o bunny.exr -o bunny.png --stats\n\nOutputs are chosen by extension: .exr (linear f32 RGB in --space, with chromaticities) or\n.png (tone mapped, 8-bit). The image depends only on the scene, the settings and --seed."
+    after_help = "Examples:\n  prism render -o effects.png\n  prism render scenes/cornell-bunny.gltf --spp 256 -o bunny.exr -o bunny.png --stats\n\nOutputs are chosen by extension: .exr (linear f32 RGB in --space, with chromaticities) or\n.png (tone mapped, 8-bit). The image depends only on the scene, the settings and --seed."
 )]
 pub struct RenderArgs {
-    /// A .gltf or .glb file (default: the embedded Cornell box).
+    /// A .gltf or .glb file, or a .toml overlay (default: the embedded effects stage,
+    /// scenes/effects.gltf).
     pub scene: Option<PathBuf>,
     /// Output file(s), .exr or .png; repeat for several.
     #[arg(short = 'o', long = "output", default_value = "prism.png")]
@@ -40,10 +42,10 @@ pub struct RenderArgs {
     /// (.exr only) for `prism merge` (farms: one range per machine).
     #[arg(long, value_name = "A..B")]
     pub sample_range: Option<String>,
-    /// Image width (default: 512, or the height times the camera's aspect).
+    /// Image width (default: the height times the camera's aspect ratio, or 512).
     #[arg(long)]
     pub width: Option<u32>,
-    /// Image height (default: 512).
+    /// Image height (default: 512, or the width over the camera's aspect ratio).
     #[arg(long)]
     pub height: Option<u32>,
     /// Seed of the random streams.
@@ -139,8 +141,23 @@ pub struct RenderArgs {
 fn load(path: Option<&Path>, scene: Option<usize>) -> Result<LoadedGeometry, String> {
     match path {
         Some(p) => crate::scene_file::load(p, scene),
-        None => load_geometry(DEFAULT_GLTF, &|_| Ok(DEFAULT_BIN.to_vec()), scene)
+        None => load_geometry(DEFAULT_GLTF, &|uri| Err(format!("no file '{uri}'")), scene)
             .map_err(|e| format!("embedded scene: {e}")),
+    }
+}
+
+/// The output size: what the command line gives, the rest from the camera's aspect ratio
+/// (square without one), 512 pixels high when neither is given.
+fn image_size(width: Option<u32>, height: Option<u32>, aspect: Option<f32>) -> (u32, u32) {
+    let aspect = f64::from(aspect.unwrap_or(1.0));
+    let scaled = |v: u32, by: f64| ((f64::from(v) * by).round() as u32).max(1);
+    match (width, height) {
+        (Some(w), Some(h)) => (w, h),
+        (Some(w), None) => (w, scaled(w, 1.0 / aspect)),
+        (None, h) => {
+            let h = h.unwrap_or(512);
+            (scaled(h, aspect), h)
+        }
     }
 }
 
@@ -194,8 +211,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         quality,
     };
     let scene = Scene::from_loaded(&loaded, &options).map_err(|e| e.to_string())?;
-    let height = args.height.unwrap_or(512);
-    let width = args.width.unwrap_or(height);
+    let (width, height) = image_size(args.width, args.height, scene.camera().aspect_ratio);
     let camera = args
         .camera_response
         .as_deref()

@@ -1,56 +1,83 @@
-use std::sync::LazyLock;
-
 use glam::Vec2;
 
-use super::hash::hash_words;
+use super::hash::{hash_words, mix64};
 use super::{SampleStream, bits_to_unit_f32};
 
 /// Generator matrices (as 32 direction numbers each) of the first two Sobol dimensions,
-/// which together form a (0, 2)-sequence in base 2. Derived in code from the primitive
-/// polynomials and initial direction numbers of Joe and Kuo ("Constructing Sobol sequences
-/// with better two-dimensional projections", SIAM J. Sci. Comput. 30(5), 2008): dimension
-/// 0 is the van der Corput sequence, dimension 1 has polynomial x + 1 (degree 1, a = 0)
-/// and m_1 = 1.
-static DIRECTIONS: LazyLock<[[u32; 32]; 2]> =
-    LazyLock::new(|| [van_der_corput(), directions(1, 0, &[1])]);
+/// which together form a (0, 2)-sequence in base 2. Derived at compile time from the
+/// primitive polynomials and initial direction numbers of Joe and Kuo ("Constructing Sobol
+/// sequences with better two-dimensional projections", SIAM J. Sci. Comput. 30(5), 2008):
+/// dimension 0 is the van der Corput sequence, dimension 1 has polynomial x + 1 (degree 1,
+/// a = 0) and m_1 = 1.
+const DIRECTIONS: [[u32; 32]; 2] = [van_der_corput(), directions(1, 0, &[1])];
 
-fn van_der_corput() -> [u32; 32] {
-    std::array::from_fn(|i| 1u32 << (31 - i))
+const fn van_der_corput() -> [u32; 32] {
+    let mut v = [0u32; 32];
+    let mut i = 0;
+    while i < 32 {
+        v[i] = 1u32 << (31 - i);
+        i += 1;
+    }
+    v
 }
 
 /// Bratley and Fox's recurrence (ACM TOMS 14(1), 1988) for a dimension with primitive
 /// polynomial of degree `s` and inner coefficients `a`, from initial values `m`.
-fn directions(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
+const fn directions(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
     let mut v = [0u32; 32];
-    for i in 0..32 {
+    let mut i = 0;
+    while i < 32 {
         v[i] = if i < s {
             m[i] << (31 - i)
         } else {
             let mut x = v[i - s] ^ (v[i - s] >> s);
-            for k in 1..s {
+            let mut k = 1;
+            while k < s {
                 if (a >> (s - 1 - k)) & 1 == 1 {
                     x ^= v[i - k];
                 }
+                k += 1;
             }
             x
         };
+        i += 1;
     }
     v
 }
 
 /// Dimension 1's generator matrix applied to each byte of the index: entry [k][b] is the
 /// XOR of the direction numbers of the set bits of byte value b at byte position k. Four
-/// lookups replace a 32-step loop (the scrambled index uses all 32 bits).
-static DIMENSION_1_BYTES: LazyLock<[[u32; 256]; 4]> = LazyLock::new(|| {
+/// lookups replace a 32-step loop (the scrambled index uses all 32 bits). Built at compile
+/// time, so a draw pays no lazy initialization check.
+static DIMENSION_1_BYTES: [[u32; 256]; 4] = dimension_1_bytes(false);
+
+/// The same with every entry bit-reversed: dimension 1 in the reversed-bit domain where
+/// the Owen scramble works, which saves two bit reversals per draw.
+static DIMENSION_1_BYTES_REVERSED: [[u32; 256]; 4] = dimension_1_bytes(true);
+
+const fn dimension_1_bytes(reversed: bool) -> [[u32; 256]; 4] {
     let v = &DIRECTIONS[1];
-    std::array::from_fn(|k| {
-        std::array::from_fn(|b| {
-            (0..8)
-                .filter(|bit| (b >> bit) & 1 == 1)
-                .fold(0, |acc, bit| acc ^ v[8 * k + bit])
-        })
-    })
-});
+    let mut t = [[0u32; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut b = 0;
+        while b < 256 {
+            let mut bit = 0;
+            while bit < 8 {
+                if (b >> bit) & 1 == 1 {
+                    t[k][b] ^= v[8 * k + bit];
+                }
+                bit += 1;
+            }
+            if reversed {
+                t[k][b] = t[k][b].reverse_bits();
+            }
+            b += 1;
+        }
+        k += 1;
+    }
+    t
+}
 
 /// The unscrambled Sobol point `index` in `dimension` (0 or 1), as 32 bits.
 pub fn sobol_sample(index: u32, dimension: usize) -> u32 {
@@ -58,7 +85,10 @@ pub fn sobol_sample(index: u32, dimension: usize) -> u32 {
         // Dimension 0's matrix is the bit reversal (van der Corput).
         return index.reverse_bits();
     }
-    let t = &*DIMENSION_1_BYTES;
+    by_bytes(&DIMENSION_1_BYTES, index)
+}
+
+fn by_bytes(t: &[[u32; 256]; 4], index: u32) -> u32 {
     t[0][(index & 0xff) as usize]
         ^ t[1][((index >> 8) & 0xff) as usize]
         ^ t[2][((index >> 16) & 0xff) as usize]
@@ -86,10 +116,6 @@ fn laine_karras_permutation(mut x: u32, seed: u32) -> u32 {
     x
 }
 
-fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
-    laine_karras_permutation(x.reverse_bits(), seed).reverse_bits()
-}
-
 /// Owen-scrambled Sobol points, padded across dimensions (Burley 2020): each pair of
 /// dimensions takes the first two Sobol dimensions at an index shuffled by its own hash,
 /// each coordinate Owen-scrambled by its own hash. Every pair is therefore a (0, 2)-sequence
@@ -99,7 +125,8 @@ fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
 #[derive(Debug, Clone)]
 pub struct SobolStream {
     key: u64,
-    sample_index: u32,
+    /// The sample index with its bits reversed, as the scramble wants it.
+    reversed_index: u32,
     dimension: u64,
 }
 
@@ -109,7 +136,7 @@ impl SobolStream {
     pub fn new(seed: u64, pixel: u64, sample_index: u64) -> Self {
         Self {
             key: hash_words(&[seed, pixel]),
-            sample_index: sample_index as u32,
+            reversed_index: (sample_index as u32).reverse_bits(),
             dimension: 0,
         }
     }
@@ -119,22 +146,31 @@ impl SobolStream {
         self.dimension = dimension;
     }
 
-    /// The scrambled sample index and the pair's hash for `dimension`.
-    fn scrambled_index(&self, dimension: u64) -> (u32, u64) {
-        let h = hash_words(&[self.key, dimension]);
-        (nested_uniform_scramble(self.sample_index, h as u32), h)
+    /// The pair's hash for `dimension` and its Owen-scrambled sample index. The key is
+    /// already a full-avalanche hash of (seed, pixel); one more mix with the dimension (an
+    /// odd multiple, so distinct dimensions give distinct inputs) decorrelates the pairs.
+    ///
+    /// A nested uniform scramble of x is `reverse(LK(reverse(x)))` (Laine-Karras on the
+    /// reversed bits); dimension 0 of the Sobol sequence is itself a bit reversal, so the
+    /// draws below keep values reversed where they can and reverse only at the end.
+    fn scrambled_index(&self, dimension: u64) -> (u64, u32) {
+        let h = mix64(self.key ^ dimension.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        let index = laine_karras_permutation(self.reversed_index, h as u32).reverse_bits();
+        (h, index)
     }
 
-    /// The first coordinate of the pair at `dimension` (all that a 1D draw needs).
+    /// The first coordinate of the pair at `dimension` (all that a 1D draw needs):
+    /// scramble(sobol_0(index)) = reverse(LK(index)).
     fn first(&self, dimension: u64) -> u32 {
-        let (index, h) = self.scrambled_index(dimension);
-        nested_uniform_scramble(sobol_sample(index, 0), (h >> 32) as u32)
+        let (h, index) = self.scrambled_index(dimension);
+        laine_karras_permutation(index, (h >> 32) as u32).reverse_bits()
     }
 
     fn point(&self, dimension: u64) -> (u32, u32) {
-        let (index, h) = self.scrambled_index(dimension);
-        let x = nested_uniform_scramble(sobol_sample(index, 0), (h >> 32) as u32);
-        let y = nested_uniform_scramble(sobol_sample(index, 1), hash_words(&[h]) as u32);
+        let (h, index) = self.scrambled_index(dimension);
+        let x = laine_karras_permutation(index, (h >> 32) as u32).reverse_bits();
+        let y_reversed = by_bytes(&DIMENSION_1_BYTES_REVERSED, index);
+        let y = laine_karras_permutation(y_reversed, mix64(h) as u32).reverse_bits();
         (x, y)
     }
 }
@@ -168,6 +204,28 @@ mod tests {
             for d in 0..2 {
                 assert_eq!(sobol_sample(x, d), sobol_sample_by_bits(x, d));
             }
+        }
+    }
+
+    /// The scrambled draws, as their definition states them: Owen-scramble the index,
+    /// take the Sobol point, Owen-scramble each coordinate (Burley 2020, listing 2).
+    #[test]
+    fn reversed_domain_draws_equal_the_definition() {
+        let scramble =
+            |x: u32, seed: u32| laine_karras_permutation(x.reverse_bits(), seed).reverse_bits();
+        for (pixel, sample, dimension) in [
+            (0, 0, 0u64),
+            (7, 3, 2),
+            (1 << 40, 12345, 9),
+            (3, u64::from(u32::MAX), 30),
+        ] {
+            let stream = SobolStream::new(11, pixel, sample);
+            let h = mix64(stream.key ^ dimension.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+            let index = scramble(sample as u32, h as u32);
+            let x = scramble(sobol_sample(index, 0), (h >> 32) as u32);
+            let y = scramble(sobol_sample(index, 1), mix64(h) as u32);
+            assert_eq!(stream.point(dimension), (x, y));
+            assert_eq!(stream.first(dimension), x);
         }
     }
 

@@ -97,6 +97,15 @@ impl ReradiationSampler {
             .map_or(0.0, PiecewiseConstant1D::integral)
     }
 
+    /// The integral over outgoing wavelengths of M(incident, .): the fraction of light
+    /// arriving at `lambda_incident` that is re-radiated (its absorption times quantum
+    /// yield, for a fluorescent dye).
+    pub fn outgoing_integral(&self, lambda_incident: f32) -> f64 {
+        self.bin(lambda_incident)
+            .and_then(|i| self.by_incident[i].as_ref())
+            .map_or(0.0, PiecewiseConstant1D::integral)
+    }
+
     /// Camera paths: an incident wavelength for outgoing `lambda_outgoing`, with density
     /// proportional to M(., outgoing). None if nothing re-radiates into that wavelength.
     pub fn sample_incident(&self, lambda_outgoing: f32, u: f64) -> Option<ReradiationSample> {

@@ -314,7 +314,7 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
     let name = node
         .name()
         .map_or_else(|| format!("camera {}", camera.index()), str::to_string);
-    let projection = match camera.projection() {
+    let (projection, aspect_ratio) = match camera.projection() {
         gltf::camera::Projection::Perspective(p) => {
             let yfov = p.yfov();
             if !(yfov > 0.0 && yfov < std::f32::consts::PI) {
@@ -322,7 +322,15 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
                     "camera {name}: yfov {yfov} is not in (0, pi)"
                 )));
             }
-            Projection::Perspective { yfov }
+            let aspect = p.aspect_ratio();
+            if let Some(a) = aspect
+                && !(a.is_finite() && (1.0 / 64.0..=64.0).contains(&a))
+            {
+                return Err(LoadError::Geometry(format!(
+                    "camera {name}: aspectRatio {a} is not in [1/64, 64]"
+                )));
+            }
+            (Projection::Perspective { yfov }, aspect)
         }
         gltf::camera::Projection::Orthographic(o) => {
             let (xmag, ymag) = (o.xmag(), o.ymag());
@@ -331,16 +339,22 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
                     "camera {name}: xmag {xmag}, ymag {ymag} must be finite and non-zero"
                 )));
             }
-            Projection::Orthographic {
+            let aspect = (xmag / ymag).abs();
+            let projection = Projection::Orthographic {
                 xmag: xmag.abs(),
                 ymag: ymag.abs(),
-            }
+            };
+            (
+                projection,
+                Some(aspect).filter(|a| (1.0 / 64.0..=64.0).contains(a)),
+            )
         }
     };
     Ok(Camera {
         name,
         to_world: world,
         projection,
+        aspect_ratio,
     })
 }
 

@@ -3,48 +3,54 @@
 use prism_sampling::distribution::PiecewiseConstant1D;
 use prism_spectrum::Spectrum;
 
+use super::light::{light_extent, light_spectrum};
 use super::{Light, Material, SceneSpectrum};
+use glam::Vec3;
 
-/// The lights' spectral power over the range of the scene's fluorescent materials, at
-/// 1 nm: each light's spectrum normalized to unit area over the range, weighted by its
-/// power. A camera path at a fluorescent vertex samples its incident wavelength from this
-/// and from the material's re-radiation column (one-sample MIS): the column alone rarely
-/// finds a narrow source, such as a UV LED, inside a broad absorption band. None without
-/// fluorescent materials or light in their range.
+/// Per material, for the fluorescent ones: the density, at 1 nm over the material's
+/// range, of the product of what the material re-radiates from each incident wavelength
+/// (its row integral: absorption times quantum yield) and the lights' summed spectral
+/// flux there. A camera path at a fluorescent vertex samples its incident wavelength from
+/// this and from the material's re-radiation column (one-sample MIS): the column alone
+/// rarely finds a narrow source, such as a UV LED, inside a broad absorption band, and
+/// the lights' spectra alone waste samples where the material absorbs nothing. Empty
+/// without fluorescent materials; None for a material no light excites.
 pub(crate) fn light_wavelengths(
     materials: &[Material],
     lights: &[Light],
-    power: &[f64],
+    triangles: &[[Vec3; 3]],
     emission: &[SceneSpectrum],
-) -> Option<PiecewiseConstant1D> {
-    let (lo, hi) = materials
-        .iter()
-        .filter_map(|m| match m {
-            Material::Fluorescent { reradiation, .. } => Some(reradiation.range_nm()),
-            _ => None,
-        })
-        .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))?;
-    let (lo, hi) = (f64::from(lo).floor(), f64::from(hi).ceil());
-    let bins = (hi - lo).max(1.0) as usize;
-    let centre = |k: usize| lo + k as f64 + 0.5;
-    let mut values = vec![0.0; bins];
-    for (light, &p) in lights.iter().zip(power) {
-        let spectrum = match light {
-            Light::Triangle { emission: e, .. } => &emission[*e as usize],
-            Light::Point { intensity: s, .. }
-            | Light::Spot { intensity: s, .. }
-            | Light::Directional { irradiance: s, .. }
-            | Light::Environment { radiance: s } => s,
-        };
-        let samples: Vec<f64> = (0..bins)
-            .map(|k| spectrum.evaluate(centre(k)).max(0.0))
-            .collect();
-        let area: f64 = samples.iter().sum();
-        if area > 0.0 && area.is_finite() && p > 0.0 && p.is_finite() {
-            for (v, s) in values.iter_mut().zip(samples) {
-                *v += p * s / area;
-            }
-        }
+    scene_radius: f32,
+) -> Vec<Option<PiecewiseConstant1D>> {
+    if !materials.iter().any(Material::fluorescent) {
+        return Vec::new();
     }
-    PiecewiseConstant1D::new(&values, lo, hi).ok()
+    let extents: Vec<f64> = lights
+        .iter()
+        .map(|l| light_extent(l, triangles, scene_radius))
+        .collect();
+    materials
+        .iter()
+        .map(|m| {
+            let Material::Fluorescent { reradiation, .. } = m else {
+                return None;
+            };
+            let (lo, hi) = reradiation.range_nm();
+            let (lo, hi) = (f64::from(lo).floor(), f64::from(hi).ceil());
+            let bins = (hi - lo).max(1.0) as usize;
+            let values: Vec<f64> = (0..bins)
+                .map(|k| {
+                    let nm = lo + k as f64 + 0.5;
+                    let flux: f64 = lights
+                        .iter()
+                        .zip(&extents)
+                        .map(|(l, &e)| e * light_spectrum(l, emission).evaluate(nm).max(0.0))
+                        .filter(|f| f.is_finite())
+                        .sum();
+                    flux * reradiation.outgoing_integral(nm as f32)
+                })
+                .collect();
+            PiecewiseConstant1D::new(&values, lo, hi).ok()
+        })
+        .collect()
 }

@@ -370,37 +370,56 @@ impl Lights {
     }
 }
 
-/// The power of each light, for choosing among them: emitted flux for the emitters, and
-/// for distant lights the flux through a disk of the scene's radius.
+/// A light's flux per unit of its spectrum: emitting area times pi for the emitters, the
+/// solid angle for punctual lights, a disk of the scene's radius for distant ones. Its
+/// flux at wavelength l is this times [`light_spectrum`] at l.
+pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius: f32) -> f64 {
+    use std::f64::consts::PI as PI64;
+    let disk = f64::from(PI * scene_radius * scene_radius);
+    match light {
+        Light::Triangle {
+            triangle,
+            two_sided,
+            ..
+        } => {
+            let area = f64::from(triangle_area(triangles[*triangle as usize]));
+            PI64 * area * if *two_sided { 2.0 } else { 1.0 }
+        }
+        Light::Point { .. } => 4.0 * PI64,
+        Light::Spot {
+            cos_inner,
+            cos_outer,
+            ..
+        } => 2.0 * PI64 * (1.0 - 0.5 * f64::from(cos_inner + cos_outer)),
+        Light::Directional { .. } => disk,
+        Light::Environment { .. } => PI64 * disk,
+    }
+}
+
+/// A light's spectrum (radiance, intensity or irradiance).
+pub(crate) fn light_spectrum<'a>(
+    light: &'a Light,
+    emission: &'a [SceneSpectrum],
+) -> &'a SceneSpectrum {
+    match light {
+        Light::Triangle { emission: e, .. } => &emission[*e as usize],
+        Light::Point { intensity: s, .. }
+        | Light::Spot { intensity: s, .. }
+        | Light::Directional { irradiance: s, .. }
+        | Light::Environment { radiance: s } => s,
+    }
+}
+
+/// The power of each light over `range` nm, for choosing among them: its extent times
+/// its spectrum's mean over the range (the visible range, or wider where fluorescent
+/// materials turn ultraviolet into visible light).
 pub(crate) fn light_power(
     light: &Light,
     triangles: &[[Vec3; 3]],
     emission: &[SceneSpectrum],
     scene_radius: f32,
+    range: (f64, f64),
 ) -> f64 {
-    let disk = f64::from(PI * scene_radius * scene_radius);
-    match light {
-        Light::Triangle {
-            triangle,
-            emission: e,
-            two_sided,
-        } => {
-            let v = triangles[*triangle as usize];
-            let area = f64::from(triangle_area(v));
-            let sides = if *two_sided { 2.0 } else { 1.0 };
-            std::f64::consts::PI * area * sides * emission[*e as usize].mean_visible()
-        }
-        Light::Point { intensity, .. } => 4.0 * std::f64::consts::PI * intensity.mean_visible(),
-        Light::Spot {
-            cos_inner,
-            cos_outer,
-            intensity,
-            ..
-        } => {
-            let cos_mid = 0.5 * f64::from(cos_inner + cos_outer);
-            2.0 * std::f64::consts::PI * (1.0 - cos_mid) * intensity.mean_visible()
-        }
-        Light::Directional { irradiance, .. } => disk * irradiance.mean_visible(),
-        Light::Environment { radiance } => std::f64::consts::PI * disk * radiance.mean_visible(),
-    }
+    light_extent(light, triangles, scene_radius)
+        * light_spectrum(light, emission).mean_over(range.0, range.1)
 }

@@ -122,7 +122,8 @@ pub struct Scene {
     features: Features,
     centre: Vec3,
     radius: f32,
-    light_wavelengths: Option<prism_sampling::distribution::PiecewiseConstant1D>,
+    /// Per material: where its re-radiated light comes from (fluorescent materials only).
+    light_wavelengths: Vec<Option<prism_sampling::distribution::PiecewiseConstant1D>>,
 }
 
 impl Scene {
@@ -193,10 +194,6 @@ impl Scene {
         } else {
             (Vec3::ZERO, 1.0)
         };
-        let power: Vec<f64> = lights
-            .iter()
-            .map(|l| light::light_power(l, &triangles, &emission, radius))
-            .collect();
         let features = Features {
             dispersion: materials.iter().any(Material::dispersive),
             fluorescence: materials.iter().any(Material::fluorescent),
@@ -205,10 +202,24 @@ impl Scene {
                 .any(|m| matches!(m, Material::Dielectric { .. })),
             specular: materials.iter().any(Material::specular),
         };
-        let light_wavelengths = features
-            .fluorescence
-            .then(|| guide::light_wavelengths(&materials, &lights, &power, &emission))
-            .flatten();
+        // Lights are chosen by their power where the scene can see it: the visible
+        // range, widened to the fluorescent materials' range (ultraviolet light shows
+        // only through them).
+        let power_range = materials
+            .iter()
+            .filter_map(|m| match m {
+                Material::Fluorescent { reradiation, .. } => Some(reradiation.range_nm()),
+                _ => None,
+            })
+            .fold((360.0f64, 830.0f64), |(lo, hi), (a, b)| {
+                (lo.min(f64::from(a)), hi.max(f64::from(b)))
+            });
+        let power: Vec<f64> = lights
+            .iter()
+            .map(|l| light::light_power(l, &triangles, &emission, radius, power_range))
+            .collect();
+        let light_wavelengths =
+            guide::light_wavelengths(&materials, &lights, &triangles, &emission, radius);
         let lights = Lights::new(lights, &power, triangles.len());
         Ok(Self {
             bvh,
@@ -231,10 +242,15 @@ impl Scene {
         self.features
     }
 
-    /// The lights' spectral power over the fluorescent materials' range, as a
-    /// distribution (None without fluorescence): see `guide.rs`.
-    pub fn light_wavelengths(&self) -> Option<&prism_sampling::distribution::PiecewiseConstant1D> {
-        self.light_wavelengths.as_ref()
+    /// For the fluorescent material of `hit`: the wavelengths its re-radiated light is
+    /// absorbed at, weighted by the lights' spectral flux there (None for other
+    /// materials, or where no light reaches the absorption band): see `guide.rs`.
+    pub fn light_wavelengths(
+        &self,
+        hit: &Hit,
+    ) -> Option<&prism_sampling::distribution::PiecewiseConstant1D> {
+        let m = self.triangle_material[hit.triangle as usize] as usize;
+        self.light_wavelengths.get(m)?.as_ref()
     }
 
     /// The materials, indexed as triangles refer to them.

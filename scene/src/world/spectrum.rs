@@ -123,10 +123,16 @@ impl SceneSpectrum {
     /// The mean over 360-830 nm at 5 nm steps: a cheap measure of power for choosing
     /// lights, not a colorimetric quantity.
     pub fn mean_visible(&self) -> f64 {
-        (0..=94)
-            .map(|i| self.evaluate(360.0 + 5.0 * f64::from(i)))
+        self.mean_over(360.0, 830.0)
+    }
+
+    /// The mean over `lo`-`hi` nm at (about) 5 nm steps.
+    pub fn mean_over(&self, lo: f64, hi: f64) -> f64 {
+        let steps = ((hi - lo) / 5.0).round().max(1.0) as u32;
+        (0..=steps)
+            .map(|i| self.evaluate(lo + (hi - lo) * f64::from(i) / f64::from(steps)))
             .sum::<f64>()
-            / 95.0
+            / f64::from(steps + 1)
     }
 }
 
