@@ -25,7 +25,7 @@ BEAM_Y = 1.3
 # Where the 550 nm ray meets the back wall, its angle from the wall's normal there, and
 # the distance it travels from the prism: a longer throw and a more grazing angle widen
 # the spectrum on the wall.
-LANDING_X = 2.6
+LANDING_X = 2.35
 GRAZING = math.radians(62.0)
 THROW = 4.2
 PRISM_HALF_HEIGHT = 0.3
