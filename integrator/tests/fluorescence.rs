@@ -215,3 +215,70 @@ fn zero_quantum_yield_renders_like_diffuse() {
     }
     assert!(worst < 1e-4, "worst relative difference {worst}");
 }
+
+/// A 340 nm LED among a much brighter visible light, over a fluorescent floor. The light
+/// choice weighs power over the fluorescent range, so NEE finds the LED (by visible power
+/// alone it has almost none), and the floor's incident-wavelength guide puts its mass
+/// where the LED's light is absorbed, not across the visible light's spectrum.
+#[test]
+fn an_ultraviolet_source_is_found_among_brighter_visible_light() {
+    let absorption = Gaussian::new(370.0, 60.0, 0.9).unwrap();
+    let reemission = Gaussian::new(515.0, 35.0, 1.0).unwrap();
+    let s = 10.0;
+    let scene = Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangles: vec![
+            [
+                Vec3::new(-s, -s, 0.0),
+                Vec3::new(s, -s, 0.0),
+                Vec3::new(s, s, 0.0),
+            ],
+            [
+                Vec3::new(-s, -s, 0.0),
+                Vec3::new(s, s, 0.0),
+                Vec3::new(-s, s, 0.0),
+            ],
+        ],
+        triangle_material: vec![0, 0],
+        materials: vec![fluorescent(0.05, &absorption, &reemission, 0.9)],
+        emission: vec![],
+        lights: vec![
+            Light::Point {
+                position: Vec3::new(0.0, 0.0, 1.0),
+                intensity: SceneSpectrum::Gaussian(Gaussian::new(340.0, 10.0, 1.0).unwrap()),
+            },
+            Light::Point {
+                position: Vec3::new(1.0, 0.0, 1.0),
+                intensity: SceneSpectrum::Constant(0.05),
+            },
+        ],
+        camera: Camera {
+            name: "down".into(),
+            to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
+            aspect_ratio: None,
+            projection: Projection::Orthographic {
+                xmag: 1.0,
+                ymag: 1.0,
+            },
+        },
+        quality: BvhQuality::Medium,
+    })
+    .unwrap();
+    // The LED's mean over 300-830 nm is about 10.6 / 530 = 0.02 against the lamp's 0.05:
+    // chosen about 2 times in 7. Over 360-830 it would be chosen about once in 10^4.
+    let pmf = scene.lights().pmf(0);
+    assert!(
+        (0.2..0.4).contains(&pmf),
+        "the LED's choice probability {pmf}"
+    );
+
+    let ray = prism_scene::geometry::Ray::new(Vec3::new(0.3, 0.2, 1.0), -Vec3::Z, f32::INFINITY);
+    let hit = scene.intersect(&ray).expect("the floor");
+    let guide = scene.light_wavelengths(&hit).expect("the floor fluoresces");
+    // The lamp's flux over 300-830 nm is 2.5 times the LED's, but the floor absorbs only
+    // below about 420 nm: absorbed, the LED's light is about 60% of the total and its band
+    // holds about 75% of the guide (a guide of the lights' spectra alone, or weighted by
+    // visible power, puts under 15% there).
+    let led_band: f64 = (315..365).map(|nm| guide.pdf(f64::from(nm) + 0.5)).sum();
+    assert!(led_band > 0.6, "guide mass in the LED's band: {led_band}");
+}
