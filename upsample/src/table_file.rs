@@ -33,7 +33,7 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 impl CoefficientTable {
     /// The table in the version-1 file format.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(64 + self.data.len() * 4);
+        let mut out = Vec::with_capacity(64 + self.nodes.len() * 12);
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
         out.push(OBSERVER_CIE1931);
@@ -51,7 +51,11 @@ impl CoefficientTable {
             out.extend_from_slice(&v.to_le_bytes());
         }
         out.extend_from_slice(&(self.resolution as u32).to_le_bytes());
-        for v in self.z_nodes.iter().chain(&self.data) {
+        for v in self
+            .z_nodes
+            .iter()
+            .chain(self.nodes.iter().flat_map(|n| &n[..3]))
+        {
             out.extend_from_slice(&v.to_le_bytes());
         }
         let checksum = fnv1a(&out);
@@ -121,6 +125,7 @@ impl CoefficientTable {
             return Err(invalid("a coefficient is not finite"));
         }
         Ok(CoefficientTable {
+            axes: crate::table::axis_inverses(),
             space: TableSpace {
                 name,
                 primaries: [
@@ -132,7 +137,10 @@ impl CoefficientTable {
             },
             resolution,
             z_nodes,
-            data,
+            nodes: data
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2], 0.0])
+                .collect(),
         })
     }
 }
