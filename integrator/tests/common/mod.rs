@@ -11,8 +11,16 @@ pub fn cornell() -> Scene {
 
 /// The Cornell box, its loaded description edited by `edit` first.
 pub fn cornell_with(edit: impl FnOnce(&mut prism_scene::load::LoadedGeometry)) -> Scene {
+    repository_scene("cornell-box.gltf", edit)
+}
+
+/// The repository's scene `scenes/<file>`, its loaded description edited by `edit` first.
+pub fn repository_scene(
+    file: &str,
+    edit: impl FnOnce(&mut prism_scene::load::LoadedGeometry),
+) -> Scene {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
-    let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
+    let bytes = std::fs::read(dir.join(file)).unwrap();
     let loaded = prism_scene::load::load_geometry(
         &bytes,
         &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
