@@ -185,3 +185,63 @@ fn stop_with(signal: &str) {
     assert!(spp < 100_000_000, "{spp}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn spectral_and_energy_checkpoints_resume_to_the_same_file() {
+    let dir = temp_dir("resume-spectral");
+    let p = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let spectral = [
+        "--spectral-bands",
+        "5",
+        "--spectral-range",
+        "400:700",
+        "--energy",
+    ];
+    let run = |extra: &[&str]| {
+        let mut args = spectral.to_vec();
+        args.extend(extra);
+        let out = render(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&["--spp", "5", "-o", &p("full.exr")]);
+    run(&["--spp", "2", "--checkpoint", "0", "-o", &p("part.exr")]);
+    let checkpoint = p("part.exr.checkpoint.exr");
+    run(&[
+        "--spp",
+        "5",
+        "--resume",
+        &checkpoint,
+        "-o",
+        &p("resumed.exr"),
+    ]);
+    assert_eq!(
+        std::fs::read(dir.join("full.exr")).unwrap(),
+        std::fs::read(dir.join("resumed.exr")).unwrap(),
+        "byte-identical, spectral and energy channels included"
+    );
+    // The checkpoint holds bands and energy: resuming it without them, or with other
+    // bands, is refused before rendering.
+    let elsewhere = p("x.exr");
+    for other in [
+        vec!["--spp", "5"],
+        vec!["--spp", "5", "--spectral-bands", "6", "--energy"],
+        vec![
+            "--spp",
+            "5",
+            "--spectral-bands",
+            "5",
+            "--spectral-range",
+            "400:700",
+        ],
+    ] {
+        let mut args = vec!["render", "-q", "--width", "24", "--height", "16"];
+        args.extend(other);
+        args.extend(["--resume", &checkpoint, "-o", &elsewhere]);
+        assert_one_line_errors(&[(&args, "other settings")]);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

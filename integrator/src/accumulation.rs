@@ -4,6 +4,10 @@
 //!
 //! EXR has no f64 channels, and f32 would lose the sums' low bits, so each sum is stored
 //! as its IEEE-754 bits split over two u32 channels (`X.hi`, `X.lo`, ...): lossless.
+//! Besides XYZ (or a camera's raw channels) a file holds whatever else the film
+//! accumulates: per-band spectral sums (`S0000.hi`, ...; the bands in the facts) and energy
+//! sums (`Energy.*` radiance, `Photons.*` photon radiance), so spectral and energy renders
+//! checkpoint, resume and merge like any other.
 
 use std::io::Cursor;
 use std::ops::Range;
@@ -15,10 +19,34 @@ use exr::prelude::{
 };
 
 use crate::compare::read_flat;
-use crate::{Film, RenderError};
+use crate::{Film, RenderError, SpectralBands};
 
-const CHANNELS: [&str; 6] = ["X.hi", "X.lo", "Y.hi", "Y.lo", "Z.hi", "Z.lo"];
+const XYZ: [&str; 3] = ["X", "Y", "Z"];
+const ENERGY: [&str; 2] = ["Energy", "Photons"];
 const FACTS: &str = "prismAccumulation";
+
+/// The name of band `i`'s spectral sum channels (zero-padded: EXR sorts channels by name).
+fn band_channel(i: usize) -> String {
+    format!("S{i:04}")
+}
+
+/// The two u32 channels `name.hi` and `name.lo` holding the bits of `values`.
+fn split_channels(
+    name: &str,
+    values: impl Iterator<Item = f64> + Clone,
+) -> [AnyChannel<FlatSamples>; 2] {
+    let half = |high: bool| {
+        let bits = values.clone().map(|v| {
+            let b = v.to_bits();
+            if high { (b >> 32) as u32 } else { b as u32 }
+        });
+        FlatSamples::U32(bits.collect())
+    };
+    [
+        AnyChannel::new(format!("{name}.hi").as_str(), half(true)),
+        AnyChannel::new(format!("{name}.lo").as_str(), half(false)),
+    ]
+}
 
 /// A film with the sample range it holds.
 #[derive(Debug, Clone, PartialEq)]
@@ -39,18 +67,33 @@ pub fn encode_accumulation(
     settings: &str,
 ) -> Result<Vec<u8>, RenderError> {
     let (w, h) = (film.width() as usize, film.height() as usize);
-    let channel = |name: &str, k: usize, high: bool| {
-        let bits = film.sums().iter().map(|s| {
-            let b = s[k].to_bits();
-            if high { (b >> 32) as u32 } else { b as u32 }
-        });
-        AnyChannel::new(name, FlatSamples::U32(bits.collect()))
-    };
-    let list: Vec<AnyChannel<FlatSamples>> = CHANNELS
-        .iter()
-        .enumerate()
-        .map(|(i, name)| channel(name, i / 2, i % 2 == 0))
-        .collect();
+    let mut list: Vec<AnyChannel<FlatSamples>> = Vec::new();
+    for (k, name) in XYZ.iter().enumerate() {
+        list.extend(split_channels(name, film.sums().iter().map(move |s| s[k])));
+    }
+    let mut extra = String::new();
+    if let Some(bands) = film.bands() {
+        let (n, sums) = (bands.count(), film.spectral_sums());
+        for b in 0..n {
+            let values = sums.iter().skip(b).step_by(n).copied();
+            list.extend(split_channels(&band_channel(b), values));
+        }
+        let (min, max) = bands.range();
+        // f32 Display round-trips exactly.
+        extra += &format!("bands={min}:{max}:{n};");
+    }
+    if film.has_energy() {
+        for (k, name) in ENERGY.iter().enumerate() {
+            list.extend(split_channels(
+                name,
+                film.energy_sums().iter().map(move |e| e[k]),
+            ));
+        }
+        extra += "energy=1;";
+    }
+    if film.is_raw() {
+        extra += "raw=1;";
+    }
     let layer = Layer::new(
         (w, h),
         LayerAttributes::default(),
@@ -61,7 +104,7 @@ pub fn encode_accumulation(
     // One attribute (the exr crate orders extra attributes by a HashMap); the settings come
     // last and run to its end, so they may contain any character.
     let facts = format!(
-        "samples={};nonfinite={};range={}..{};settings={settings}",
+        "samples={};nonfinite={};range={}..{};{extra}settings={settings}",
         film.samples(),
         film.nonfinite(),
         samples.start,
@@ -94,8 +137,15 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
     let key = Text::from(FACTS);
     let stored =
         (image.attributes.other.get(&key)).or_else(|| image.layer_data.attributes.other.get(&key));
-    let facts = match stored {
-        Some(AttributeValue::Text(t)) => t.to_string(),
+    let (facts, settings) = match stored {
+        Some(AttributeValue::Text(t)) => {
+            let text = t.to_string();
+            // The facts end where the settings (free text, last) begin.
+            match text.split_once(";settings=") {
+                Some((facts, settings)) => (facts.to_string(), settings.to_string()),
+                None => (text, String::new()),
+            }
+        }
         _ => return Err(bad(format!("no {FACTS} attribute"))),
     };
     let number = |key: &str| -> Result<u64, RenderError> {
@@ -104,9 +154,6 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             .ok_or_else(|| bad(format!("attribute {FACTS} lacks {key}")))
     };
     let (samples, nonfinite) = (number("samples")?, number("nonfinite")?);
-    let settings = facts
-        .split_once(";settings=")
-        .map_or_else(String::new, |(_, s)| s.to_string());
     let range = fact(&facts, "range")
         .and_then(|r| r.split_once(".."))
         .and_then(|(a, b)| Some(a.parse::<u64>().ok()?..b.parse::<u64>().ok()?))
@@ -125,25 +172,65 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             _ => Err(bad(format!("channel {name} is missing or not u32"))),
         }
     };
-    let halves = CHANNELS
+    // The f64 values whose bits channels `name.hi` and `name.lo` hold.
+    let values = |name: &str| -> Result<Vec<f64>, RenderError> {
+        let (hi, lo) = (
+            channel(&format!("{name}.hi"))?,
+            channel(&format!("{name}.lo"))?,
+        );
+        Ok(hi
+            .iter()
+            .zip(lo)
+            .map(|(&h, &l)| f64::from_bits((u64::from(h) << 32) | u64::from(l)))
+            .collect())
+    };
+    let xyz = XYZ
         .iter()
-        .map(|n| channel(n))
+        .map(|n| values(n))
         .collect::<Result<Vec<_>, _>>()?;
     let sums: Vec<[f64; 3]> = (0..size.area())
-        .map(|i| {
-            std::array::from_fn(|k| {
-                f64::from_bits(
-                    (u64::from(halves[2 * k][i]) << 32) | u64::from(halves[2 * k + 1][i]),
-                )
-            })
-        })
+        .map(|i| std::array::from_fn(|k| xyz[k][i]))
         .collect();
     let (w, h) = (
         u32::try_from(size.width()).map_err(|_| bad("width".into()))?,
         u32::try_from(size.height()).map_err(|_| bad("height".into()))?,
     );
-    let film = Film::from_parts(w, h, sums, samples, nonfinite)
+    let mut film = Film::from_parts(w, h, sums, samples, nonfinite)
         .ok_or_else(|| bad("non-finite sums".into()))?;
+    if let Some(text) = fact(&facts, "bands") {
+        let parse = || -> Option<SpectralBands> {
+            let mut parts = text.split(':');
+            let (min, max, n) = (parts.next()?, parts.next()?, parts.next()?);
+            let bands = SpectralBands::new(min.parse().ok()?, max.parse().ok()?, n.parse().ok()?);
+            parts.next().is_none().then_some(bands.ok()?)
+        };
+        let bands = parse().ok_or_else(|| bad(format!("bands '{text}' are not A:B:N")))?;
+        let n = bands.count();
+        let per_band = (0..n)
+            .map(|b| values(&band_channel(b)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let spectral = (0..size.area() * n)
+            .map(|i| per_band[i % n][i / n])
+            .collect();
+        film = film
+            .with_spectral_sums(bands, spectral)
+            .ok_or_else(|| bad("non-finite spectral sums".into()))?;
+    }
+    if fact(&facts, "energy") == Some("1") {
+        let [radiance, photons] = ENERGY.map(values);
+        let (radiance, photons) = (radiance?, photons?);
+        let sums = radiance
+            .into_iter()
+            .zip(photons)
+            .map(|(e, p)| [e, p])
+            .collect();
+        film = film
+            .with_energy_sums(sums)
+            .ok_or_else(|| bad("non-finite energy sums".into()))?;
+    }
+    if fact(&facts, "raw") == Some("1") {
+        film = film.with_raw_channels();
+    }
     Ok(Accumulation {
         film,
         samples: range,
@@ -177,7 +264,7 @@ pub fn merge_accumulations(parts: &[Accumulation]) -> Result<Accumulation, Rende
     // Add in sample order, whatever order the files were given in.
     let mut order: Vec<&Accumulation> = parts.iter().collect();
     order.sort_by_key(|p| p.samples.start);
-    let mut film = Film::new(first.film.width(), first.film.height());
+    let mut film = first.film.black_like();
     for part in order {
         film.merge(&part.film).map_err(RenderError::Setting)?;
     }

@@ -26,6 +26,11 @@ impl SpectralBands {
         Ok(Self { min, max, count })
     }
 
+    /// The range `(min, max)` the bands divide, nm.
+    pub fn range(&self) -> (f32, f32) {
+        (self.min, self.max)
+    }
+
     /// Number of bands.
     pub fn count(&self) -> usize {
         self.count

@@ -145,6 +145,49 @@ impl Film {
         })
     }
 
+    /// A black film with this one's size and channels (bands, energy, raw or XYZ).
+    pub(crate) fn black_like(&self) -> Self {
+        Self {
+            spectral: self
+                .spectral
+                .as_ref()
+                .map(|(bands, sums)| (*bands, vec![0.0; sums.len()])),
+            energy: self.energy.as_ref().map(|e| vec![[0.0; 2]; e.len()]),
+            raw: self.raw,
+            ..Self::new(self.width, self.height)
+        }
+    }
+
+    /// This film with spectral sums `sums` in `bands` (`bands.count()` per pixel), or None
+    /// when they do not fit its size or are not finite (decoding accumulation files).
+    pub(crate) fn with_spectral_sums(
+        mut self,
+        bands: SpectralBands,
+        sums: Vec<f64>,
+    ) -> Option<Self> {
+        let fits = sums.len() == self.sums.len() * bands.count();
+        (fits && sums.iter().all(|v| v.is_finite())).then(|| {
+            self.spectral = Some((bands, sums));
+            self
+        })
+    }
+
+    /// This film with energy sums `sums` (one pair per pixel), or None when they do not
+    /// fit its size or are not finite (decoding accumulation files).
+    pub(crate) fn with_energy_sums(mut self, sums: Vec<[f64; 2]>) -> Option<Self> {
+        let fits = sums.len() == self.sums.len();
+        (fits && sums.iter().flatten().all(|v| v.is_finite())).then(|| {
+            self.energy = Some(sums);
+            self
+        })
+    }
+
+    /// The energy sums, one (radiance, photon radiance) pair per pixel (empty without
+    /// energy).
+    pub(crate) fn energy_sums(&self) -> &[[f64; 2]] {
+        self.energy.as_deref().unwrap_or(&[])
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width

@@ -5,7 +5,8 @@ mod common;
 
 use common::cornell;
 use prism_integrator::{
-    RenderSettings, decode_accumulation, encode_accumulation, merge_accumulations, render,
+    RenderSettings, SpectralBands, decode_accumulation, encode_accumulation, merge_accumulations,
+    render,
 };
 
 fn part(range: std::ops::Range<u64>) -> prism_integrator::Accumulation {
@@ -92,6 +93,98 @@ fn anything_else_is_an_error_not_a_panic() {
     for i in (0..good.len()).step_by(7) {
         let mut bad = good.clone();
         bad[i] ^= 0x5A;
+        let _ = decode_accumulation(&bad);
+    }
+}
+
+/// A spectral render that records energy: what `--spectral-bands` and `--energy` make.
+fn spectral_settings(samples: std::ops::Range<u64>) -> RenderSettings {
+    RenderSettings {
+        width: 6,
+        height: 4,
+        samples,
+        bands: Some(SpectralBands::new(380.0, 780.5, 7).unwrap()),
+        energy: true,
+        ..RenderSettings::default()
+    }
+}
+
+#[test]
+fn spectral_energy_and_raw_films_round_trip_and_merge() {
+    let scene = cornell();
+    let render_part = |range: std::ops::Range<u64>| {
+        let (film, _) = render(&scene, &spectral_settings(range.clone())).unwrap();
+        let bytes = encode_accumulation(&film, range, "s").unwrap();
+        (film, decode_accumulation(&bytes).unwrap())
+    };
+    let (film, back) = render_part(0..3);
+    assert!(film.bands().is_some() && film.has_energy());
+    assert_eq!(
+        back.film, film,
+        "bands, spectral and energy sums survive bit for bit"
+    );
+
+    // Merged ranges equal the whole render in every band and in energy.
+    let (whole, _) = render_part(0..5);
+    let merged = merge_accumulations(&[render_part(3..5).1, back]).unwrap();
+    assert_eq!(merged.film.bands(), whole.bands());
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-30);
+    for y in 0..whole.height() {
+        for x in 0..whole.width() {
+            let (m, w) = (
+                merged.film.spectrum(x, y).unwrap(),
+                whole.spectrum(x, y).unwrap(),
+            );
+            assert!(m.iter().zip(&w).all(|(a, b)| close(*a, *b)), "{m:?} {w:?}");
+            let (m, w) = (
+                merged.film.energy(x, y).unwrap(),
+                whole.energy(x, y).unwrap(),
+            );
+            assert!(close(m[0], w[0]) && close(m[1], w[1]), "{m:?} {w:?}");
+        }
+    }
+
+    // A camera's raw channels stay raw, and do not merge with XYZ.
+    let raw = film.clone().with_raw_channels();
+    let raw_back = decode_accumulation(&encode_accumulation(&raw, 3..5, "s").unwrap()).unwrap();
+    assert!(raw_back.film.is_raw());
+    assert_eq!(raw_back.film, raw);
+    let (xyz, _) = render_part(5..6);
+    let e = merge_accumulations(&[
+        raw_back,
+        decode_accumulation(&encode_accumulation(&xyz, 5..6, "s").unwrap()).unwrap(),
+    ])
+    .unwrap_err();
+    assert!(e.to_string().contains("raw"), "{e}");
+
+    // Parts with other bands do not merge.
+    let other = RenderSettings {
+        bands: Some(SpectralBands::new(380.0, 780.5, 8).unwrap()),
+        ..spectral_settings(6..7)
+    };
+    let (film8, _) = render(&scene, &other).unwrap();
+    let e = merge_accumulations(&[
+        render_part(0..1).1,
+        decode_accumulation(&encode_accumulation(&film8, 6..7, "s").unwrap()).unwrap(),
+    ])
+    .unwrap_err();
+    assert!(e.to_string().contains("bands"), "{e}");
+}
+
+#[test]
+fn spectral_files_with_missing_or_broken_parts_are_errors() {
+    let (film, _) = render(&cornell(), &spectral_settings(0..1)).unwrap();
+    let good = encode_accumulation(&film, 0..1, "").unwrap();
+    assert!(decode_accumulation(&good).is_ok());
+    for cut in [good.len() / 3, good.len() - 9] {
+        assert!(
+            decode_accumulation(&good[..cut]).is_err(),
+            "truncated at {cut}"
+        );
+    }
+    for i in (0..good.len()).step_by(5) {
+        let mut bad = good.clone();
+        bad[i] ^= 0xA5;
         let _ = decode_accumulation(&bad);
     }
 }

@@ -282,14 +282,6 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let checkpoint_every = seconds_arg("checkpoint", args.checkpoint)?;
     let range = settings.samples.clone();
     let fingerprint = fingerprint(args, width, height);
-    if (settings.bands.is_some() || settings.energy || settings.camera.is_some())
-        && (args.resume.is_some() || args.checkpoint.is_some() || samples_only.is_some())
-    {
-        return Err(
-            "--spectral-bands, --energy and --camera-response cannot be combined with --checkpoint, --resume or --sample-range yet (accumulation files hold XYZ only)"
-                .into(),
-        );
-    }
     let film = match &args.resume {
         None => Film::for_settings(&settings),
         Some(path) => resume(path, &fingerprint, &range)?,
@@ -453,10 +445,14 @@ fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
         .map_err(|e| e.to_string())
 }
 
-/// What must match for a checkpoint to be resumed or parts merged.
+/// What must match for a checkpoint to be resumed or parts merged: everything that changes
+/// the estimate or what the film accumulates (bands, energy, a camera's channels).
 fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
+    let bands = args
+        .spectral_bands
+        .map_or("none".into(), |n| format!("{n}@{}", args.spectral_range));
     format!(
-        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?}",
+        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?};light_paths={};bands={bands};energy={};camera_response={:?}",
         args.scene
             .as_ref()
             .map_or("(default)".into(), |p| p.display().to_string()),
@@ -469,7 +465,10 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.clamp,
         args.environment,
         args.wavelength_range.as_deref().unwrap_or("360:830"),
-        args.scene_index
+        args.scene_index,
+        !args.no_light_paths,
+        args.energy,
+        args.camera_response
     )
 }
 
