@@ -67,19 +67,11 @@ fn block_mean(film: &Film, (x0, x1): (u32, u32), (y0, y1): (u32, u32)) -> f64 {
     sum / f64::from((x1 - x0) * (y1 - y0))
 }
 
-/// A floor (albedo 0.5) lit by a point light at height 1, with a perfect mirror standing
-/// at x = 1.2, or instead of the mirror a second point light where its image is.
-fn mirror_scene(with_mirror: bool) -> Scene {
-    mirror_scene_with(with_mirror, !with_mirror)
-}
-
-fn mirror_scene_with(with_mirror: bool, image: bool) -> Scene {
-    let light = Vec3::new(0.4, 1.0, 0.0);
+/// A floor (albedo 0.5) lit by `light(false)` (near (0.4, 1, 0)), with a perfect mirror
+/// standing at x = 1.2, or instead of the mirror `light(true)`, the light's mirror image.
+fn mirror_scene(with_mirror: bool, light: &dyn Fn(bool) -> Light) -> Scene {
     let mut triangles: Vec<[Vec3; 3]> = floor(4.0).to_vec();
-    let mut lights = vec![Light::Point {
-        position: light,
-        intensity: SceneSpectrum::Constant(1.0),
-    }];
+    let mut lights = vec![light(false)];
     if with_mirror {
         // Facing -x, tall and wide enough that every floor point the camera sees gets
         // the image light through it.
@@ -89,12 +81,8 @@ fn mirror_scene_with(with_mirror: bool, image: bool) -> Scene {
             Vec3::new(1.2, 6.0, 6.0),
             Vec3::new(1.2, 6.0, -6.0),
         ));
-    }
-    if image {
-        lights.push(Light::Point {
-            position: Vec3::new(2.0 * 1.2 - light.x, light.y, light.z),
-            intensity: SceneSpectrum::Constant(1.0),
-        });
+    } else {
+        lights.push(light(true));
     }
     let triangle_material = (0..triangles.len())
         .map(|i| u32::from(i >= 2))
@@ -122,11 +110,25 @@ fn mirror_scene_with(with_mirror: bool, image: bool) -> Scene {
     .unwrap()
 }
 
-/// The mirror's light reaches the floor only through light paths; with them, the floor
-/// is lit as by the light plus its mirror image (rendered with camera paths alone, its
-/// direct light, which the analytic tests of transport.rs pin down).
-#[test]
-fn a_point_light_in_a_mirror_lights_the_floor_as_its_image_does() {
+/// A point mirrored in the plane x = 1.2 when `image`.
+fn mirrored(p: Vec3, image: bool) -> Vec3 {
+    if image {
+        Vec3::new(2.4 - p.x, p.y, p.z)
+    } else {
+        p
+    }
+}
+
+/// A direction mirrored in the plane x = 1.2 when `image`.
+fn mirrored_direction(d: Vec3, image: bool) -> Vec3 {
+    if image { Vec3::new(-d.x, d.y, d.z) } else { d }
+}
+
+/// The mirror's light reaches the floor only through light paths, which start on
+/// `light` by its emission sampling; with them, the floor is lit as by the light plus its
+/// mirror image (rendered with camera paths alone, its direct light, which the analytic
+/// tests of transport.rs pin down).
+fn assert_the_mirror_lights_the_floor_as_the_image_does(light: &dyn Fn(bool) -> Light) {
     // 1024 spp: at 256 the worst block strays 12% of the image share for some seeds.
     // Two bounces: floor and mirror. The floor's light via the mirror and back to the
     // floor would differ between the two scenes.
@@ -134,38 +136,62 @@ fn a_point_light_in_a_mirror_lights_the_floor_as_its_image_does() {
         max_depth: Some(2),
         ..settings(24, 1024, 1)
     };
-    let (mirrored, _) = render(&mirror_scene(true), &settings).unwrap();
-    let (two_lights, _) = render(&mirror_scene(false), &settings).unwrap();
+    let (mirrored, _) = render(&mirror_scene(true, light), &settings).unwrap();
+    let (two_lights, _) = render(&mirror_scene(false, light), &settings).unwrap();
     let without = RenderSettings {
         light_paths: false,
         ..settings.clone()
     };
-    let (camera_only, _) = render(&mirror_scene(true), &without).unwrap();
-    for (bx, by) in [
-        (0, 0),
-        (1, 0),
-        (2, 0),
-        (0, 1),
-        (1, 1),
-        (2, 1),
-        (0, 2),
-        (2, 2),
-        (1, 2),
-    ] {
-        let range = |b: u32| (b * 8, b * 8 + 8);
-        let got = block_mean(&mirrored, range(bx), range(by));
-        let want = block_mean(&two_lights, range(bx), range(by));
-        let direct = block_mean(&camera_only, range(bx), range(by));
-        assert!(
-            (got - want).abs() < 0.1 * (want - direct),
-            "block ({bx}, {by}): light paths give {got}, the image light {want}, direct {direct}"
-        );
-        // The image's light is a large share, so the check above sees it.
-        assert!(
-            want - direct > 0.1 * want,
-            "block ({bx}, {by}): {direct} vs {want}"
-        );
+    let (camera_only, _) = render(&mirror_scene(true, light), &without).unwrap();
+    for by in 0..3 {
+        for bx in 0..3 {
+            let range = |b: u32| (b * 8, b * 8 + 8);
+            let got = block_mean(&mirrored, range(bx), range(by));
+            let want = block_mean(&two_lights, range(bx), range(by));
+            let direct = block_mean(&camera_only, range(bx), range(by));
+            assert!(
+                (got - want).abs() < 0.1 * (want - direct),
+                "block ({bx}, {by}): light paths give {got}, the image light {want}, direct {direct}"
+            );
+            // The image's light is a large share, so the check above sees it.
+            assert!(
+                want - direct > 0.1 * want,
+                "block ({bx}, {by}): {direct} vs {want}"
+            );
+        }
     }
+}
+
+#[test]
+fn a_point_light_in_a_mirror_lights_the_floor_as_its_image_does() {
+    assert_the_mirror_lights_the_floor_as_the_image_does(&|image| Light::Point {
+        position: mirrored(Vec3::new(0.4, 1.0, 0.0), image),
+        intensity: SceneSpectrum::Constant(1.0),
+    });
+}
+
+#[test]
+fn a_spot_light_in_a_mirror_lights_the_floor_as_its_image_does() {
+    // Aimed at the mirror so that its axis reflects onto the view's centre; the view's
+    // floor is 0 to ~0.25 rad off the axis, across the falloff's ramp (0.1 to 0.45 rad):
+    // light paths must leave it with its cone and falloff.
+    assert_the_mirror_lights_the_floor_as_the_image_does(&|image| Light::Spot {
+        position: mirrored(Vec3::new(0.4, 1.0, 0.0), image),
+        direction: mirrored_direction(Vec3::new(2.0, -1.0, 0.0).normalize(), image),
+        cos_inner: 0.1f32.cos(),
+        cos_outer: 0.45f32.cos(),
+        intensity: SceneSpectrum::Constant(2.0),
+    });
+}
+
+#[test]
+fn a_directional_light_in_a_mirror_lights_the_floor_as_its_image_does() {
+    // Parallel light falling towards the mirror: light paths start on a disk that covers
+    // the scene, and must carry the light's irradiance.
+    assert_the_mirror_lights_the_floor_as_the_image_does(&|image| Light::Directional {
+        direction: mirrored_direction(Vec3::new(0.5, -1.0, 0.0).normalize(), image),
+        irradiance: SceneSpectrum::Constant(0.3),
+    });
 }
 
 /// A box of SF11 glass (dispersive) over a white floor, lit by a small square light

@@ -263,6 +263,65 @@ fn point_light_direct_lighting_is_analytic() {
     }
 }
 
+/// Asserts that every XYZ channel of `film` is the floor's radiance `radiance` (of a
+/// constant spectrum) within Monte Carlo error.
+fn assert_floor_radiance(film: &Film, radiance: f64, what: &str) {
+    let expected = constant_xyz(radiance);
+    for k in 0..3 {
+        let (mean, error) = mean_and_error(film, k);
+        assert!(
+            (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k] + 1e-12,
+            "{what}, channel {k}: {mean} vs {}",
+            expected[k]
+        );
+    }
+}
+
+#[test]
+fn spot_light_direct_lighting_follows_its_cone() {
+    // A spot of intensity 2 at height 2 over the floor of albedo 0.5, its axis tilted so
+    // that the origin (the pixel) lies `off` radians from it: the floor's radiance is
+    // rho / pi * I * falloff / h^2, with KHR_lights_punctual's falloff, the square of a
+    // linear ramp in cos from the outer cone (0) to the inner one (1).
+    let (inner, outer) = (0.3f64, 0.5f64);
+    let falloff = |off: f64| {
+        let t = ((off.cos() - outer.cos()) / (inner.cos() - outer.cos())).clamp(0.0, 1.0);
+        t * t
+    };
+    let spot = |inner: f64, outer: f64, off: f64| Light::Spot {
+        position: Vec3::new(0.0, 0.0, 2.0),
+        direction: Vec3::new(off.sin() as f32, 0.0, -off.cos() as f32),
+        cos_inner: inner.cos() as f32,
+        cos_outer: outer.cos() as f32,
+        intensity: SceneSpectrum::Constant(2.0),
+    };
+    for off in [0.0, 0.2, 0.35, 0.42, 0.49, 0.6] {
+        let film = floor_render(vec![spot(inner, outer, off)], None, LambdaSampler::Visible);
+        let radiance = 0.5 / std::f64::consts::PI * 2.0 * falloff(off) / 4.0;
+        assert_floor_radiance(&film, radiance, &format!("{off} rad off the axis"));
+    }
+    // A pencil beam (cone 0.3 degrees): full intensity on its axis. The extension's sample
+    // code floors the ramp's width at 1e-3 in cos, which would leave 2.6e-4 of it here.
+    let film = floor_render(vec![spot(0.002, 0.006, 0.0)], None, LambdaSampler::Visible);
+    assert_floor_radiance(&film, 0.5 / std::f64::consts::PI * 2.0 / 4.0, "pencil beam");
+}
+
+#[test]
+fn directional_light_direct_lighting_is_analytic() {
+    // Irradiance 3 on a surface square to the light, arriving 35 degrees from the
+    // vertical: the floor's radiance is rho / pi * E cos(35 degrees).
+    let theta = 35f64.to_radians();
+    let sun = Light::Directional {
+        direction: Vec3::new(theta.sin() as f32, 0.0, -theta.cos() as f32),
+        irradiance: SceneSpectrum::Constant(3.0),
+    };
+    for sampler in [LambdaSampler::Uniform, LambdaSampler::Visible] {
+        let film = floor_render(vec![sun.clone()], None, sampler);
+        let radiance = 0.5 / std::f64::consts::PI * 3.0 * theta.cos();
+        assert_floor_radiance(&film, radiance, &format!("{sampler:?}"));
+    }
+}
+
 #[test]
 fn area_light_direct_lighting_is_analytic() {
     // A square emitter of radiance 3, side 1, centred 1 above the floor and offset in x so
