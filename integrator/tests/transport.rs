@@ -324,26 +324,26 @@ fn directional_light_direct_lighting_is_analytic() {
 
 #[test]
 fn area_light_direct_lighting_is_analytic() {
-    // A square emitter of radiance 3, side 1, centred 1 above the floor and offset in x so
-    // that the cosine varies over it: the floor's radiance at the origin is
-    // rho / pi * E with E from Lambert's polygon formula. MIS between light and BSDF
-    // sampling must reproduce it.
-    let q = [
-        Vec3::new(-0.2, -0.5, 1.0),
-        Vec3::new(0.8, -0.5, 1.0),
-        Vec3::new(0.8, 0.5, 1.0),
-        Vec3::new(-0.2, 0.5, 1.0),
-    ];
-    let e = polygon_irradiance(&q, 3.0);
-    let expected = constant_xyz(0.5 / std::f64::consts::PI * e);
-    let film = floor_render(vec![], Some(q), LambdaSampler::Visible);
-    // The emitter is black, so direct lighting is the whole answer.
-    for k in 0..3 {
-        let (mean, error) = mean_and_error(&film, k);
-        assert!(
-            (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
-            "channel {k}: {mean} vs {} (E = {e})",
-            expected[k]
+    // A square emitter of radiance 3 above the floor and offset in x so that the cosine
+    // varies over it: the floor's radiance at the origin is rho / pi * E with E from
+    // Lambert's polygon formula. MIS between light and BSDF sampling must reproduce it,
+    // both for a near emitter (side 1 at height 1, about 0.6 sr: sampled by solid angle)
+    // and for a far one (side 0.2 at height 1.2, about 0.025 sr: sampled by area).
+    for (side, height) in [(1.0, 1.0), (0.2, 1.2)] {
+        let (x0, h) = (-0.2 * side, 0.5 * side);
+        let q = [
+            Vec3::new(x0, -h, height),
+            Vec3::new(x0 + side, -h, height),
+            Vec3::new(x0 + side, h, height),
+            Vec3::new(x0, h, height),
+        ];
+        let e = polygon_irradiance(&q, 3.0);
+        let film = floor_render(vec![], Some(q), LambdaSampler::Visible);
+        // The emitter is black, so direct lighting is the whole answer.
+        assert_floor_radiance(
+            &film,
+            0.5 / std::f64::consts::PI * e,
+            &format!("side {side} at {height} (E = {e})"),
         );
     }
 }

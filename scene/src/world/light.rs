@@ -6,8 +6,8 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 use prism_sampling::distribution::AliasTable;
 use prism_sampling::warp::{
-    cosine_hemisphere, uniform_cone, uniform_cone_pdf, uniform_disk_concentric, uniform_sphere,
-    uniform_triangle,
+    cosine_hemisphere, spherical_triangle, spherical_triangle_solid_angle, uniform_cone,
+    uniform_cone_pdf, uniform_disk_concentric, uniform_sphere, uniform_triangle,
 };
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -95,6 +95,24 @@ pub struct EmissionSample<const N: usize> {
 fn around(axis: Vec3, local: Vec3) -> Vec3 {
     let (x, y) = axis.any_orthonormal_pair();
     local.x * x + local.y * y + local.z * axis
+}
+
+/// The subtended solid angles (sr) over which a triangle light is sampled uniformly in
+/// solid angle rather than by area. Area sampling's noise is the variation of
+/// cos / d^2 over the triangle, which grows with the angle it subtends; the spherical
+/// construction (Arvo 1995) removes it but costs inverse trigonometry per sample and a
+/// solid angle per emitter hit. Measured (128^2 at 64 spp, relMSE against 1024 spp):
+/// from 3e-4 sr, pbrt-v4's bound, the Cornell box ran 9% more instructions for 2-3% less
+/// error; from 0.05 sr it runs 0.5% more and keeps that gain, and the effects stage's
+/// booth panels, close to what they light, lose 11-15% of their error either way. Above
+/// 6.22 sr (nearly a hemisphere) the construction degenerates (*PBR* 4th ed. §6.5.4).
+const SOLID_ANGLE_SAMPLING: std::ops::RangeInclusive<f32> = 0.05..=6.22;
+
+/// The solid angle triangle `v` subtends from `p`, when light sampling from `p` samples
+/// it by solid angle (else None: by area). `Scene::light_pdf` decides the same way.
+pub(crate) fn solid_angle_sampled(p: Vec3, v: [Vec3; 3]) -> Option<f32> {
+    let omega = spherical_triangle_solid_angle(p, v);
+    SOLID_ANGLE_SAMPLING.contains(&omega).then_some(omega)
 }
 
 /// The glTF spot light falloff (KHR_lights_punctual): a squared linear ramp in cos between
@@ -202,24 +220,37 @@ impl Lights {
                 two_sided,
             } => {
                 let v = triangles[*triangle as usize];
-                let b = uniform_triangle(u);
-                let q = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-                let to = q - p;
-                let d2 = to.length_squared();
-                let distance = d2.sqrt();
-                let wi = to / distance;
-                let area = triangle_area(v);
                 let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+                let (wi, distance, pdf) = match solid_angle_sampled(p, v) {
+                    Some(omega) => {
+                        // Uniform in the subtended solid angle; the point is where the
+                        // direction meets the triangle's plane. A failure (a triangle
+                        // degenerate as seen from p) is no sample: switching strategy
+                        // here would break the density `Scene::light_pdf` reports.
+                        let wi = spherical_triangle(p, v, u)?.direction;
+                        (wi, n.dot(v[0] - p) / n.dot(wi), 1.0 / omega)
+                    }
+                    None => {
+                        let b = uniform_triangle(u);
+                        let to = b[0] * v[0] + b[1] * v[1] + b[2] * v[2] - p;
+                        let d2 = to.length_squared();
+                        let distance = d2.sqrt();
+                        let wi = to / distance;
+                        let cos = n.dot(wi).abs();
+                        (wi, distance, d2 / (cos * triangle_area(v)))
+                    }
+                };
                 let cos = -n.dot(wi);
                 let facing = cos > 0.0 || (*two_sided && cos < 0.0);
-                if !facing || distance.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                let valid = distance > 0.0 && distance.is_finite() && pdf.is_finite();
+                if !facing || !valid {
                     return None;
                 }
                 LightSample {
                     wi,
                     distance,
                     radiance: emission[*e as usize].at(wavelengths),
-                    pdf: pmf * d2 / (cos.abs() * area),
+                    pdf: pmf * pdf,
                     delta: false,
                 }
             }

@@ -365,11 +365,15 @@ impl Scene {
             return 0.0;
         };
         let v = self.triangles[hit.triangle as usize];
-        let area = triangle_area(v);
-        let to = hit.p - from;
-        let d2 = to.length_squared();
-        let cos = hit.normal.dot(to).abs() / d2.sqrt();
-        let pdf = self.lights.pmf(l) * d2 / (cos * area);
+        let pdf = match light::solid_angle_sampled(from, v) {
+            Some(omega) => self.lights.pmf(l) / omega,
+            None => {
+                let to = hit.p - from;
+                let d2 = to.length_squared();
+                let cos = hit.normal.dot(to).abs() / d2.sqrt();
+                self.lights.pmf(l) * d2 / (cos * triangle_area(v))
+            }
+        };
         if pdf.is_finite() { pdf } else { 0.0 }
     }
 
