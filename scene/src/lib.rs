@@ -24,6 +24,11 @@
 //!   integrator does not depend on `prism-upsample`.
 //! - **One traversal, prism's own intersection.** obvhs builds and traverses the BVH; the
 //!   triangle test is ours, so its guarantees hold for every query.
+//! - **Light sampling by what the receiver sees.** Lights are chosen by power (an alias
+//!   table); an emissive triangle is then sampled uniformly in the solid angle it
+//!   subtends when that angle is large enough for its cos / d^2 to vary (0.05 sr and up),
+//!   by area otherwise, and `Scene::light_pdf` reports the density of the same choice for
+//!   MIS (the trade is measured in `world/light.rs`).
 //!
 //! ## References
 //! - S. Woop, C. Benthin, I. Wald, "Watertight ray/triangle intersection", JCGT 2(1), 2013.
@@ -31,6 +36,8 @@
 //!   compressed wide BVHs", HPG 2017 (the CWBVH obvhs builds).
 //! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §6.5.3 (triangle test), §6.8
 //!   (floating-point error bounds and ray origins), §9 (BSDFs, Fresnel).
+//! - J. Arvo, "Stratified sampling of spherical triangles", SIGGRAPH 1995 (solid-angle
+//!   sampling of triangle lights; *PBR* 4th ed. §6.5.4 for the bounds of its use).
 //! - E. Heitz, "Sampling the GGX distribution of visible normals", JCGT 7(4), 2018.
 //! - B. Walter et al., "Microfacet models for refraction through rough surfaces", EGSR 2007.
 //! - A. Wilkie et al., "Fluorescence in bi-spectral rendering", EGSR 2006 (re-radiation
