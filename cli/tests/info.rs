@@ -2,17 +2,13 @@
 
 mod common;
 
-use common::{assert_one_line_errors, prism};
+use common::{assert_one_line_errors, assert_success, prism};
 
 #[test]
 fn describes_the_canonical_scenes() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
     let out = prism(&["info", &format!("{dir}/cornell-bunny.gltf")]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("triangles      69463"), "{text}");
     assert!(
@@ -40,11 +36,7 @@ fn bad_scenes_are_one_clear_line() {
 fn overlays_are_scenes_and_report_their_spectral_features() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
     let out = prism(&["info", &format!("{dir}/cornell-blacklight.toml")]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("fluorescence: yes"), "{text}");
     assert!(text.contains("Gaussian band at 365 nm"), "{text}");

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{assert_one_line_errors, prism, temp_dir};
+use common::{assert_one_line_errors, assert_success, prism, temp_dir};
 
 #[test]
 fn renders_the_default_scene_to_exr_and_png_with_stats() {
@@ -22,11 +22,7 @@ fn renders_the_default_scene_to_exr_and_png_with_stats() {
         png.to_str().unwrap(),
         "--stats",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let stats: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
     for key in [
         "spp",
@@ -77,11 +73,7 @@ fn output_size_follows_the_camera_aspect_ratio() {
         ];
         all.extend(args);
         let out = prism(&all);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&out);
         let stats: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(
             (stats["width"].as_u64(), stats["height"].as_u64()),
@@ -176,11 +168,7 @@ fn sample_ranges_merge_into_the_single_render() {
         args.extend(common);
         args.extend(extra);
         let out = prism(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&out);
     };
     run(&["--sample-range", "0..5", "-o", &path("whole.exr")]);
     run(&["--sample-range", "2..5", "-o", &path("b.exr")]);
@@ -190,11 +178,7 @@ fn sample_ranges_merge_into_the_single_render() {
         let mut args = vec!["merge", b.as_str(), a.as_str()];
         args.extend(extra);
         let out = prism(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&out);
     };
     merge(&["--accumulation", "-o", &path("merged.exr")]);
     merge(&["-o", &path("image.exr"), "-o", &path("image.png")]);
@@ -277,11 +261,7 @@ fn compare_measures_and_thresholds() {
     }
     let json = |a: &str, b: &str| -> serde_json::Value {
         let out = prism(&["compare", &path(a), &path(b), "--json"]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&out);
         serde_json::from_slice(&out.stdout).unwrap()
     };
     let same = json("a.exr", "a.exr");
@@ -387,11 +367,7 @@ fn spectral_and_energy_sample_ranges_merge_into_the_single_render() {
         args.extend(common);
         args.extend(extra);
         let out = prism(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&out);
     };
     run(&["--spp", "4", "-o", &path("single.exr")]);
     run(&["--sample-range", "1..4", "-o", &path("b.exr")]);
@@ -403,11 +379,7 @@ fn spectral_and_energy_sample_ranges_merge_into_the_single_render() {
         "-o",
         &path("merged.exr"),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let read =
         |name: &str| prism_integrator::decode_exr(&std::fs::read(dir.join(name)).unwrap()).unwrap();
     let (single, merged) = (read("single.exr"), read("merged.exr"));
@@ -448,11 +420,7 @@ fn spectral_output_has_the_layout_channels() {
         "-o",
         exr.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let bytes = std::fs::read(&exr).unwrap();
     let image = prism_integrator::decode_exr(&bytes).unwrap();
     let names: Vec<&str> = image.channels.iter().map(|c| c.0.as_str()).collect();
@@ -518,11 +486,7 @@ fn renders_a_fluorescent_overlay() {
         "-o",
         png.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     assert!(std::fs::metadata(&png).unwrap().len() > 0);
 }
 
@@ -651,11 +615,7 @@ fn camera_response_files_render_false_colour() {
         "--stats",
         "-q",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     assert!(std::fs::metadata(&png).unwrap().len() > 0);
     let bad = dir.join("bad.csv");
     std::fs::write(&bad, "700,1,1\n").unwrap();
@@ -703,11 +663,7 @@ fn trade_measures_every_sweep_and_redraws_reports() {
         "--height",
         "8",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let csv = std::fs::read_to_string(out_dir.join("runs.csv")).unwrap();
     // 5 package sizes + 4 samplers + 5 upsampling modes, at 2 sample counts.
     assert_eq!(csv.lines().count(), 1 + 14 * 2, "{csv}");
@@ -727,11 +683,7 @@ fn trade_measures_every_sweep_and_redraws_reports() {
     )
     .unwrap();
     let out = prism(&["trade", "--report", "-o", out_dir.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let summary = std::fs::read_to_string(out_dir.join("summary.md")).unwrap();
     assert!(
         summary.contains("mitsuba scalar_spectral") && summary.contains("Most efficient"),
@@ -768,11 +720,7 @@ fn the_complete_spectral_example_renders_and_scene_options_work() {
         "-o",
         png.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     // A scene that describes its own (near-infrared) camera renders through it.
     let overlay = dir.join("nir.toml");
     std::fs::write(
@@ -794,11 +742,7 @@ fn the_complete_spectral_example_renders_and_scene_options_work() {
         "--stats",
         "-q",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     assert_one_line_errors(&[
         (&["render", &scene, "--bvh", "fast", "-o", "x.png"], "--bvh"),
         (

@@ -4,7 +4,7 @@ mod common;
 
 use std::process::{Command, Stdio};
 
-use common::{assert_one_line_errors, prism, temp_dir};
+use common::{assert_one_line_errors, assert_success, prism, temp_dir};
 
 const SIZE: [&str; 4] = ["--width", "24", "--height", "16"];
 
@@ -52,11 +52,7 @@ fn checkpoint_and_resume_equal_the_uninterrupted_render() {
         "-o",
         &p("resumed.exr"),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     assert_eq!(
         std::fs::read(dir.join("full.exr")).unwrap(),
         std::fs::read(dir.join("resumed.exr")).unwrap(),
@@ -121,11 +117,7 @@ fn time_budget_stops_at_a_sample_boundary() {
         "-o",
         out_path.to_str().unwrap(),
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let stats: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(stats["ending"], "TimeBudget");
     let spp = stats["spp"].as_u64().unwrap();
@@ -201,11 +193,7 @@ fn spectral_and_energy_checkpoints_resume_to_the_same_file() {
         let mut args = spectral.to_vec();
         args.extend(extra);
         let out = render(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&out);
     };
     run(&["--spp", "5", "-o", &p("full.exr")]);
     run(&["--spp", "2", "--checkpoint", "0", "-o", &p("part.exr")]);

@@ -3,7 +3,7 @@
 use std::io::Write;
 mod common;
 
-use common::{assert_one_line_errors, prism};
+use common::{assert_one_line_errors, assert_success, prism};
 use std::process::{Command, Output, Stdio};
 
 fn prism_stdin(args: &[&str], input: &str) -> Output {
@@ -30,11 +30,7 @@ fn temp(name: &str) -> std::path::PathBuf {
 #[test]
 fn exact_upsampling_round_trips() {
     let out = prism(&["upsample", "0.8", "0.2", "0.1", "--json"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["delta_e_2000"].as_f64().unwrap() < 1e-3);
     assert_eq!(v["coefficients"].as_array().unwrap().len(), 3);
@@ -86,11 +82,7 @@ fn tables_fit_describe_and_look_up() {
     let path = temp("srgb-8.bin");
     let p = path.to_str().unwrap();
     let out = prism(&["table", "fit", "--space", "srgb", "--res", "8", "-o", p]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     assert!(String::from_utf8_lossy(&out.stdout).contains("reachable nodes: 100.0000%"));
     let info = prism(&["table", "info", p]);
     assert!(String::from_utf8_lossy(&info.stdout).contains("resolution    8"));

@@ -4,6 +4,10 @@
 //! where Snell's law with the glass's Sellmeier index puts it (computed here in 2D,
 //! independently of the renderer's refraction).
 
+mod common;
+
+use common::refract_2d;
+
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -18,14 +22,6 @@ use prism_spectrum::optics::named_glass;
 const WIDTH: u32 = 200;
 const HEIGHT: u32 = 8;
 const SLIT_DISTANCE: f64 = 50.0;
-
-/// Refraction of unit `d` at a surface with unit normal `n` facing against `d`, relative
-/// index `eta` = n_incident / n_transmitted (None: total internal reflection).
-fn refract(d: DVec2, n: DVec2, eta: f64) -> Option<DVec2> {
-    let cos_i = -n.dot(d);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
-}
 
 /// Where the ray (origin, direction) in the prism's plane crosses the line through `a`
 /// along `along`: the parameter t of the ray.
@@ -136,10 +132,10 @@ fn each_wavelength_leaves_the_prism_where_snell_puts_it() {
             let o = DVec2::new(f64::from(ray.origin.x), f64::from(ray.origin.z));
             let p1 = o + hit_line(o, d, b0, apex - b0) * d;
             let in_normal = DVec2::new(-(3f64.sqrt()) / 2.0, 0.5);
-            let inside = refract(d, in_normal, 1.0 / n).unwrap();
+            let inside = refract_2d(d, in_normal, 1.0 / n).unwrap();
             let p2 = p1 + hit_line(p1, inside, b1, apex - b1) * inside;
             let out_normal = DVec2::new(3f64.sqrt() / 2.0, 0.5);
-            let out = refract(inside, -out_normal, n).unwrap();
+            let out = refract_2d(inside, -out_normal, n).unwrap();
             // Signed distance of the slit's centre from the exit ray.
             let to_slit = slit - p2;
             out.x * to_slit.y - out.y * to_slit.x

@@ -9,6 +9,8 @@
 
 mod common;
 
+use common::refract_2d;
+
 use glam::{DVec2, Mat4, Vec3};
 use prism_integrator::{LambdaSampler, RenderSettings, SpectralBands, render};
 use prism_scene::camera::{Camera, Projection};
@@ -26,14 +28,6 @@ const AXIS_Y: f32 = 1.0;
 const SIZE: u32 = 160;
 /// tan(yfov / 2): the image spans 2.1 units either side of the axis on the screen.
 const HALF_VIEW: f64 = 2.1 / (SCREEN_Z - CAMERA_Z);
-
-/// Refraction of unit `d` at a surface with unit normal `n` facing against `d`, relative
-/// index `eta` = n_incident / n_transmitted (None: total internal reflection).
-fn refract(d: DVec2, n: DVec2, eta: f64) -> Option<DVec2> {
-    let cos_i = -n.dot(d);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
-}
 
 /// The far intersection of the ray (o, d) from inside the circle (centre c, radius r).
 fn exit_circle(o: DVec2, d: DVec2, c: DVec2, r: f64) -> DVec2 {
@@ -64,7 +58,7 @@ fn bow_edge(n: f64) -> f64 {
         }
         let p1 = light + (-half_b - disc.sqrt()) * d;
         let n1 = (p1 - DROP) / DROP_RADIUS;
-        let Some(inside) = refract(d, n1, 1.0 / n) else {
+        let Some(inside) = refract_2d(d, n1, 1.0 / n) else {
             continue;
         };
         let p2 = exit_circle(p1, inside, DROP, DROP_RADIUS);
@@ -72,7 +66,7 @@ fn bow_edge(n: f64) -> f64 {
         let reflected = inside - 2.0 * inside.dot(n2) * n2;
         let p3 = exit_circle(p2, reflected, DROP, DROP_RADIUS);
         let n3 = (p3 - DROP) / DROP_RADIUS;
-        let Some(out) = refract(reflected, -n3, n) else {
+        let Some(out) = refract_2d(reflected, -n3, n) else {
             continue;
         };
         if out.y <= 0.0 {

@@ -12,6 +12,15 @@ pub fn prism(args: &[&str]) -> Output {
         .expect("the prism binary runs")
 }
 
+/// Asserts that a run succeeded, showing its stderr when it did not.
+pub fn assert_success(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// Each case must fail with exactly one line on stderr that contains its needle, and
 /// never panic.
 pub fn assert_one_line_errors(cases: &[(&[&str], &str)]) {

@@ -31,3 +31,12 @@ pub fn repository_scene(
     edit(&mut loaded);
     Scene::from_loaded(&loaded, &Default::default()).unwrap()
 }
+
+/// Refraction of unit `d` at a surface with unit normal `n` facing against `d`, relative
+/// index `eta` = n_incident / n_transmitted (None: total internal reflection): Snell's law
+/// in 2D, for tests that predict where light goes independently of the renderer.
+pub fn refract_2d(d: glam::DVec2, n: glam::DVec2, eta: f64) -> Option<glam::DVec2> {
+    let cos_i = -n.dot(d);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
+}
