@@ -67,7 +67,9 @@ impl Spectrum for DenselySampled {
         if !(x >= 0.0 && x <= last) {
             return 0.0;
         }
-        let i = (x.floor() as usize).min(self.values.len() - 1);
+        // x >= 0, so truncation is the floor (f64::floor is a libm call on baseline
+        // x86-64: measured 3% of a Cornell box render's instructions).
+        let i = (x as usize).min(self.values.len() - 1);
         if i + 1 == self.values.len() {
             return self.values[i];
         }
