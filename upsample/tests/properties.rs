@@ -69,3 +69,31 @@ proptest! {
         prop_assert!(c.iter().all(|v| v.is_finite()) || c[2] == f64::NEG_INFINITY);
     }
 }
+
+static D65: LazyLock<std::sync::Arc<prism_spectrum::spectra::DenselySampled>> =
+    LazyLock::new(|| {
+        prism_upsample::normalized_illuminant(&RgbSpaceId::Srgb.illuminant()).unwrap()
+    });
+
+proptest! {
+    /// The f32 lane evaluation renderers use agrees with the f64 definition for every
+    /// kind, extreme inputs included, within 2e-5 relative (the coefficients rounded to
+    /// f32) and stays finite.
+    #[test]
+    fn lane_evaluation_matches_the_definition(r in component(), g in component(), b in component(), kind in 0..3usize, l0 in 300.0..900.0f32, step in 0.0..40.0f32) {
+        let kind = [RgbKind::Albedo, RgbKind::Unbounded, RgbKind::Illuminant][kind];
+        let Ok(s) = RgbSpectrum::fit(&CONTEXT, [r, g, b], kind, Some(D65.clone())) else {
+            return Ok(());
+        };
+        let lambda: [f32; 8] = std::array::from_fn(|i| l0 + step * i as f32);
+        let lanes = s.evaluate_lanes(&lambda);
+        for (l, v) in lambda.iter().zip(lanes) {
+            let want = s.evaluate(f64::from(*l));
+            prop_assert!(v.is_finite(), "{l} nm: {v}");
+            prop_assert!(
+                (f64::from(v) - want).abs() <= 2e-5 * want.abs().max(s.max_value().min(1.0)) + 1e-30,
+                "{kind:?} {:?} at {l} nm: lanes {v}, definition {want}", [r, g, b]
+            );
+        }
+    }
+}

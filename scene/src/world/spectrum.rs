@@ -42,6 +42,12 @@ impl SceneSpectrum {
     pub fn at<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> SampledSpectrum<N> {
         match self {
             SceneSpectrum::Constant(v) => SampledSpectrum::splat(*v as f32),
+            // Every lane at once (the sigmoid vectorizes): RGB colours are most of what
+            // paths sample.
+            SceneSpectrum::Rgb(rgb) => {
+                let values = rgb.evaluate_lanes(wavelengths.lambdas());
+                SampledSpectrum::from_fn(|i| values[i])
+            }
             _ => self.sample(wavelengths),
         }
     }
