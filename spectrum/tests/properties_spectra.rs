@@ -152,3 +152,29 @@ proptest! {
         prop_assert!(xyz.x.is_finite() && xyz.y.is_finite() && xyz.z.is_finite());
     }
 }
+
+proptest! {
+    /// The f32 lanes renderers sample agree with the f64 evaluation: inside the range to
+    /// f32 rounding of the values, 0 outside it and for NaN, at both ends exactly.
+    #[test]
+    fn dense_lanes_match_evaluate(
+        first in 200i32..500,
+        values in prop::collection::vec(0.0..1e3f64, 1..600),
+        lambdas in prop::array::uniform8(prop_oneof![150.0..1200.0f32, Just(f32::NAN), Just(f32::INFINITY), Just(-0.0f32)]),
+    ) {
+        let dense = DenselySampled::from_values(f64::from(first), values.clone()).unwrap();
+        let lanes = dense.evaluate_lanes(&lambdas);
+        for (l, v) in lambdas.iter().zip(lanes) {
+            let want = dense.evaluate(f64::from(*l));
+            prop_assert!(v.is_finite());
+            prop_assert!(
+                (f64::from(v) - want).abs() <= 1e-6 * dense.max_value() + 1e-30,
+                "{l} nm: lanes {v}, evaluate {want}"
+            );
+        }
+        let ends = [first as f32, (first as usize + values.len() - 1) as f32];
+        let at_ends = dense.evaluate_lanes(&ends);
+        prop_assert_eq!(at_ends[0], values[0] as f32);
+        prop_assert_eq!(at_ends[1], values[values.len() - 1] as f32);
+    }
+}

@@ -171,7 +171,8 @@ impl RgbSpectrum {
         let scale = self.scale as f32;
         match &self.illuminant {
             Some(i) => {
-                std::array::from_fn(|k| scale * s[k] * i.evaluate(f64::from(lambda[k])) as f32)
+                let white = i.evaluate_lanes(lambda);
+                std::array::from_fn(|k| scale * s[k] * white[k])
             }
             None => s.map(|v| scale * v),
         }

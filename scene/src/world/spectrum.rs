@@ -48,6 +48,10 @@ impl SceneSpectrum {
                 let values = rgb.evaluate_lanes(wavelengths.lambdas());
                 SampledSpectrum::from_fn(|i| values[i])
             }
+            SceneSpectrum::Dense(dense) => {
+                let values = dense.evaluate_lanes(wavelengths.lambdas());
+                SampledSpectrum::from_fn(|i| values[i])
+            }
             _ => self.sample(wavelengths),
         }
     }
