@@ -23,6 +23,21 @@ pub struct SampledWavelengths<const N: usize> {
 impl<const N: usize> SampledWavelengths<N> {
     /// Wavelengths (finite, > 0, nm) and their densities (finite, >= 0, per nm).
     pub fn new(lambda: [f32; N], pdf: [f32; N]) -> Result<Self, SpectrumError> {
+        // Every path makes packages: accept on the bits, all lanes without early exits,
+        // and search for the culprit (the definition below) only when that fails
+        // (measured: the searching form alone was 2.6% of the default scene's
+        // instructions). A finite l > 0 is 1..=0x7f7f_ffff; a finite p >= 0 is
+        // 0..=0x7f7f_ffff or -0.
+        let mut invalid = false;
+        for (l, p) in lambda.iter().zip(&pdf) {
+            let p = p.to_bits();
+            invalid |= l.to_bits().wrapping_sub(1) >= 0x7f7f_ffff;
+            invalid |= p >= 0x7f80_0000 && p != 0x8000_0000;
+        }
+        let valid = !invalid;
+        if valid {
+            return Ok(Self { lambda, pdf });
+        }
         if let Some(&l) = lambda.iter().find(|l| !(l.is_finite() && **l > 0.0)) {
             return Err(SpectrumError::InvalidValue {
                 what: "sampled wavelength (nm)",

@@ -178,3 +178,74 @@ proptest! {
         prop_assert_eq!(at_ends[1], values[values.len() - 1] as f32);
     }
 }
+
+/// Mostly ordinary values, else any f32 bit pattern or an edge value: packages with one
+/// bad lane among good ones are common.
+fn any_f32_bits() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        6 => 1e-3..2e3f32,
+        1 => any::<u32>().prop_map(f32::from_bits),
+        2 => prop::sample::select(vec![
+            0.0f32,
+            -0.0,
+            f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+            1.0,
+            -1.0,
+            550.0,
+        ]),
+    ]
+}
+
+proptest! {
+    // Cheap cases, and single bad lanes (-0 densities, say) are rare: many of them.
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    /// Packages are accepted exactly when every wavelength is finite and > 0 and every
+    /// density finite and >= 0 (the constructor checks on the bits).
+    #[test]
+    fn packages_accept_exactly_the_valid_lanes(
+        lambda in prop::array::uniform4(any_f32_bits()),
+        pdf in prop::array::uniform4(any_f32_bits()),
+    ) {
+        let valid = lambda.iter().all(|l| l.is_finite() && *l > 0.0)
+            && pdf.iter().all(|p| p.is_finite() && *p >= 0.0);
+        prop_assert_eq!(SampledWavelengths::new(lambda, pdf).is_ok(), valid, "{:?} {:?}", lambda, pdf);
+    }
+}
+
+#[test]
+fn packages_at_the_edges() {
+    let ok = |l: f32, p: f32| SampledWavelengths::new([550.0, l], [1.0, p]).is_ok();
+    assert!(ok(f32::from_bits(1), 0.0), "the smallest subnormal is > 0");
+    assert!(ok(f32::MAX, f32::MAX));
+    assert!(ok(550.0, -0.0), "-0 is >= 0");
+    assert!(ok(550.0, f32::from_bits(1)));
+    for bad in [
+        0.0,
+        -0.0,
+        -1.0,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        -f32::NAN,
+    ] {
+        assert!(!ok(bad, 1.0), "wavelength {bad}");
+    }
+    for bad in [
+        -f32::from_bits(1),
+        -1.0,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        -f32::NAN,
+    ] {
+        assert!(!ok(550.0, bad), "density {bad}");
+    }
+}
