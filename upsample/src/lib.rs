@@ -31,7 +31,7 @@
 //!
 //! Default tables are fitted on first use and cached by the command line (`--table auto`;
 //! this crate touches no files). Not yet here (see the issue tracker): a lookup within
-//! 25 ns (it is 55-63 ns by criterion, from 80 before its axis inverses were tabulated on
+//! 25 ns (it is 50-56 ns by criterion, from 80 before its axis inverses were tabulated on
 //! the float's exponent bits; docs/upsample-accuracy.md says what was tried).
 //!
 //! ## References
