@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{assert_one_line_errors, assert_success, prism, temp_dir};
+use common::{assert_one_line_errors, assert_success, prism, prism_ok, temp_dir};
 
 #[test]
 fn renders_the_default_scene_to_exr_and_png_with_stats() {
@@ -163,23 +163,12 @@ fn sample_ranges_merge_into_the_single_render() {
     let dir = temp_dir("merge");
     let path = |n: &str| dir.join(n).to_str().unwrap().to_string();
     let common = ["--width", "12", "--height", "8", "--seed", "3"];
-    let run = |extra: &[&str]| {
-        let mut args = vec!["render"];
-        args.extend(common);
-        args.extend(extra);
-        let out = prism(&args);
-        assert_success(&out);
-    };
+    let run = |extra: &[&str]| prism_ok(&[&["render"], &common, extra]);
     run(&["--sample-range", "0..5", "-o", &path("whole.exr")]);
     run(&["--sample-range", "2..5", "-o", &path("b.exr")]);
     run(&["--sample-range", "0..2", "-o", &path("a.exr")]);
     let (a, b) = (path("a.exr"), path("b.exr"));
-    let merge = |extra: &[&str]| {
-        let mut args = vec!["merge", b.as_str(), a.as_str()];
-        args.extend(extra);
-        let out = prism(&args);
-        assert_success(&out);
-    };
+    let merge = |extra: &[&str]| prism_ok(&[&["merge", b.as_str(), a.as_str()], extra]);
     merge(&["--accumulation", "-o", &path("merged.exr")]);
     merge(&["-o", &path("image.exr"), "-o", &path("image.png")]);
     let decode = |name: &str| {
@@ -362,13 +351,7 @@ fn spectral_and_energy_sample_ranges_merge_into_the_single_render() {
         "6",
         "--energy",
     ];
-    let run = |extra: &[&str]| {
-        let mut args = vec!["render", "-q"];
-        args.extend(common);
-        args.extend(extra);
-        let out = prism(&args);
-        assert_success(&out);
-    };
+    let run = |extra: &[&str]| prism_ok(&[&["render", "-q"], &common, extra]);
     run(&["--spp", "4", "-o", &path("single.exr")]);
     run(&["--sample-range", "1..4", "-o", &path("b.exr")]);
     run(&["--sample-range", "0..1", "-o", &path("a.exr")]);

@@ -36,18 +36,7 @@ fn floor_under_uv(material: Material, peak: f64, c: usize, sampler: LambdaSample
     let s = 100.0;
     let scene = Scene::new(SceneParts {
         attributes: Default::default(),
-        triangles: vec![
-            [
-                Vec3::new(-s, -s, 0.0),
-                Vec3::new(s, -s, 0.0),
-                Vec3::new(s, s, 0.0),
-            ],
-            [
-                Vec3::new(-s, -s, 0.0),
-                Vec3::new(s, s, 0.0),
-                Vec3::new(-s, s, 0.0),
-            ],
-        ],
+        triangles: common::square_z0(s),
         triangle_material: vec![0, 0],
         materials: vec![material],
         emission: vec![],
@@ -227,18 +216,7 @@ fn an_ultraviolet_source_is_found_among_brighter_visible_light() {
     let s = 10.0;
     let scene = Scene::new(SceneParts {
         attributes: Default::default(),
-        triangles: vec![
-            [
-                Vec3::new(-s, -s, 0.0),
-                Vec3::new(s, -s, 0.0),
-                Vec3::new(s, s, 0.0),
-            ],
-            [
-                Vec3::new(-s, -s, 0.0),
-                Vec3::new(s, s, 0.0),
-                Vec3::new(-s, s, 0.0),
-            ],
-        ],
+        triangles: common::square_z0(s),
         triangle_material: vec![0, 0],
         materials: vec![fluorescent(0.05, &absorption, &reemission, 0.9)],
         emission: vec![],

@@ -190,18 +190,7 @@ fn polygon_irradiance(corners: &[Vec3], l: f64) -> f64 {
 /// downwards.
 fn floor_render(lights: Vec<Light>, emitter: Option<[Vec3; 4]>, sampler: LambdaSampler) -> Film {
     let s = 100.0;
-    let mut triangles = vec![
-        [
-            Vec3::new(-s, -s, 0.0),
-            Vec3::new(s, -s, 0.0),
-            Vec3::new(s, s, 0.0),
-        ],
-        [
-            Vec3::new(-s, -s, 0.0),
-            Vec3::new(s, s, 0.0),
-            Vec3::new(-s, s, 0.0),
-        ],
-    ];
+    let mut triangles = common::square_z0(s);
     let mut triangle_material = vec![0, 0];
     let mut lights = lights;
     if let Some(q) = emitter {

@@ -21,6 +21,13 @@ pub fn assert_success(out: &Output) {
     );
 }
 
+/// Runs `prism` with the argument lists `parts` joined, and asserts that it succeeded.
+pub fn prism_ok(parts: &[&[&str]]) -> Output {
+    let out = prism(&parts.concat());
+    assert_success(&out);
+    out
+}
+
 /// Each case must fail with exactly one line on stderr that contains its needle, and
 /// never panic.
 pub fn assert_one_line_errors(cases: &[(&[&str], &str)]) {

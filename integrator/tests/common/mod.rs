@@ -40,3 +40,20 @@ pub fn refract_2d(d: glam::DVec2, n: glam::DVec2, eta: f64) -> Option<glam::DVec
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     (k >= 0.0).then(|| eta * d + (eta * cos_i - k.sqrt()) * n)
 }
+
+/// A square of half-width `half` in the plane z = 0, facing +z, as two triangles.
+pub fn square_z0(half: f32) -> Vec<[glam::Vec3; 3]> {
+    use glam::Vec3;
+    vec![
+        [
+            Vec3::new(-half, -half, 0.0),
+            Vec3::new(half, -half, 0.0),
+            Vec3::new(half, half, 0.0),
+        ],
+        [
+            Vec3::new(-half, -half, 0.0),
+            Vec3::new(half, half, 0.0),
+            Vec3::new(-half, half, 0.0),
+        ],
+    ]
+}

@@ -8,4 +8,4 @@ mod triangle;
 pub use bvh::{Bvh, BvhQuality, SurfaceHit};
 pub use offset::{offset_ray_origin, triangle_point_error};
 pub use ray::Ray;
-pub use triangle::{TriangleHit, intersect_triangle, triangle_area};
+pub use triangle::{TriangleHit, intersect_triangle, triangle_area, triangle_normal};

@@ -8,6 +8,12 @@ pub fn triangle_area(p: [Vec3; 3]) -> f32 {
     0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
 }
 
+/// The unit normal of a triangle, on the side its counter-clockwise winding faces (zero
+/// for a degenerate triangle).
+pub fn triangle_normal(p: [Vec3; 3]) -> Vec3 {
+    (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
+}
+
 /// Where a ray meets a triangle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TriangleHit {

@@ -3,6 +3,7 @@ use glam::{Mat3, Mat4, Vec2, Vec3};
 use super::lights::{LightDesc, punctual};
 use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
+use crate::geometry::triangle_normal;
 
 use super::{LoadError, base64};
 use crate::spectral::{self, Overlay, SpectralScene};
@@ -448,7 +449,7 @@ fn add_primitive(
     for tri in indices.chunks_exact(3) {
         let t = order([tri[0] as usize, tri[1] as usize, tri[2] as usize]);
         let v = t.map(|i| world.transform_point3(positions[i]));
-        let geometric = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        let geometric = triangle_normal(v);
         let shading = match &normals {
             // Unusable normals (zero, non-finite) fall back to the face's own.
             Some(n) => t.map(|i| {

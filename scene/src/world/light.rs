@@ -12,7 +12,9 @@ use prism_sampling::warp::{
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::SceneSpectrum;
-use crate::geometry::{Ray, offset_ray_origin, triangle_area, triangle_point_error};
+use crate::geometry::{
+    Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
+};
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -99,15 +101,15 @@ fn around(axis: Vec3, local: Vec3) -> Vec3 {
 
 /// The subtended solid angles (sr) over which a triangle light is sampled uniformly in
 /// solid angle rather than by area (the start also bounds a cheap screening estimate, see
-/// [`solid_angle_sampled`]). Area sampling's noise is the variation of
-/// cos / d^2 over the triangle, which grows with the angle it subtends; the spherical
-/// construction (Arvo 1995) removes it but costs inverse trigonometry per sample and a
-/// solid angle per emitter hit. Measured on the Cornell box (instructions per path under
-/// callgrind at C = 4; relMSE at 128^2 x 64 spp against 1024 spp): from 3e-4 sr,
-/// pbrt-v4's bound, 14% more instructions for 2-3% less error; from 0.05 sr, 0.7% more
-/// and the same gain. The effects stage's booth panels, close to what they light, lose
-/// 11-15% of their error either way. Above
-/// 6.22 sr (nearly a hemisphere) the construction degenerates (*PBR* 4th ed. §6.5.4).
+/// [`solid_angle_sampled`]). Area sampling's noise is the variation of cos / d^2 over the
+/// triangle, which grows with the angle it subtends; the spherical construction (Arvo
+/// 1995) removes it but costs inverse trigonometry per sample and a solid angle per
+/// emitter hit. Measured on the Cornell box (instructions per path under callgrind at
+/// C = 4; relMSE at 128^2 x 64 spp against 1024 spp): from 3e-4 sr, pbrt-v4's bound, 14%
+/// more instructions for 2-3% less error; from 0.05 sr, 0.7% more and the same gain. The
+/// effects stage's booth panels, close to what they light, lose 11-15% of their error
+/// either way. Above 6.22 sr (nearly a hemisphere) the construction degenerates (*PBR*
+/// 4th ed. §6.5.4).
 const SOLID_ANGLE_SAMPLING: std::ops::RangeInclusive<f32> = 0.05..=6.22;
 
 /// The solid angle triangle `v` subtends from `p`, when light sampling from `p` samples
@@ -233,7 +235,7 @@ impl Lights {
                 two_sided,
             } => {
                 let v = triangles[*triangle as usize];
-                let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+                let n = triangle_normal(v);
                 let (wi, distance, pdf) = match solid_angle_sampled(p, v) {
                     Some(omega) => {
                         // Uniform in the subtended solid angle; the point is where the
@@ -354,7 +356,7 @@ impl Lights {
                 let v = triangles[*triangle as usize];
                 let b = uniform_triangle(u_position);
                 let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-                let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+                let n = triangle_normal(v);
                 let (u, side, sides) = if *two_sided {
                     if u_direction.x < 0.5 {
                         (Vec2::new(2.0 * u_direction.x, u_direction.y), n, 2.0)

@@ -21,7 +21,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::camera::Camera;
 use crate::geometry::{
-    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_area, triangle_point_error,
+    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
 };
 
 /// What a scene uses, so that the integrator pays only for what is there.
@@ -291,7 +291,7 @@ impl Scene {
         let v = self.triangles[hit.triangle];
         let b = hit.hit.barycentric;
         let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-        let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        let normal = triangle_normal(v);
         let shading_normal = match self.attributes.normals.get(hit.triangle) {
             Some(n) => {
                 let s = (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]).normalize_or_zero();
