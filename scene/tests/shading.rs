@@ -113,3 +113,34 @@ fn attribute_counts_must_match_the_vertices() {
     let err = err.to_string();
     assert!(err.contains("NORMAL has 2 entries for 3 vertices"), "{err}");
 }
+
+#[test]
+fn only_meshes_without_a_material_get_the_default() {
+    use prism_scene::world::Material;
+    // The triangle names no material: glTF's default (white, metallic 1, roughness 1).
+    let loaded = load(json!({"mesh": 0}));
+    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let hit = scene
+        .intersect(&Ray::new(
+            Vec3::new(0.25, 0.25, 1.0),
+            -Vec3::Z,
+            f32::INFINITY,
+        ))
+        .unwrap();
+    assert!(matches!(
+        scene.material(&hit),
+        Material::MetallicRoughness { metallic, roughness, .. } if *metallic == 1.0 && *roughness == 1.0
+    ));
+    // With a material named, the default (and its coating table) is not built.
+    let (mut doc, bin) = doc(json!({"mesh": 0}));
+    doc["meshes"][0]["primitives"][0]["material"] = json!(0);
+    doc["materials"] = json!([{"pbrMetallicRoughness": {"metallicFactor": 0.0}}]);
+    let named = load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &move |_| Ok(bin.clone()),
+        None,
+    )
+    .unwrap();
+    let scene = Scene::from_loaded(&named, &SceneOptions::default()).unwrap();
+    assert_eq!(scene.materials().len(), 1);
+}

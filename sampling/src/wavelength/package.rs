@@ -68,7 +68,14 @@ impl<const N: usize> WavelengthPackage<N> {
                     if j == 0 {
                         return hero;
                     }
-                    lo + (hero - lo + j as f64 / N as f64 * width).rem_euclid(width)
+                    // hero - lo + offset lies in [0, 2 width): one subtraction wraps it, and
+                    // exactly (Sterbenz), as rem_euclid would, without a libm fmod per lane.
+                    let shifted = hero - lo + j as f64 / N as f64 * width;
+                    lo + if shifted >= width {
+                        shifted - width
+                    } else {
+                        shifted
+                    }
                 })
             }
             PackageScheme::Stratified => {

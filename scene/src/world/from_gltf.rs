@@ -83,14 +83,17 @@ impl Scene {
             .iter()
             .map(|m| material(m, &mut coatings))
             .collect();
-        // glTF's default material: white, fully metallic, fully rough.
+        // glTF's default material: white, fully metallic, fully rough. Only scenes with a
+        // mesh that names no material get it (and pay for its coating table, ~40 ms).
         let default_material = materials.len() as u32;
-        materials.push(Material::MetallicRoughness {
-            base: SceneSpectrum::Constant(1.0),
-            metallic: 1.0,
-            roughness: 1.0,
-            coating: coating_for(1.5, &mut coatings),
-        });
+        if loaded.instances.iter().any(|i| i.material.is_none()) {
+            materials.push(Material::MetallicRoughness {
+                base: SceneSpectrum::Constant(1.0),
+                metallic: 1.0,
+                roughness: 1.0,
+                coating: coating_for(1.5, &mut coatings),
+            });
+        }
         let mut triangle_material = vec![default_material; loaded.triangles.len()];
         for instance in &loaded.instances {
             let m = instance.material.map_or(default_material, |m| m as u32);
