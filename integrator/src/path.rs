@@ -8,7 +8,7 @@ use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
 use prism_scene::bsdf::Diffuse;
 use prism_scene::geometry::Ray;
-use prism_scene::world::{Bsdf, Material, Scene};
+use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -121,6 +121,7 @@ impl Tracer<'_> {
         // each lane carries the incident wavelength it sampled, while its radiance still
         // counts at the film wavelength it started with.
         let mut transport = lambdas;
+        let mut emission = EmissionCache::new();
         let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
         let mut radiance = SampledSpectrum::<N>::splat(0.0);
         let mut beta = SampledSpectrum::<N>::splat(1.0);
@@ -146,7 +147,9 @@ impl Tracer<'_> {
             };
             let wo_world = -ray.direction.normalize();
             absorb(self.scene, &ray, &hit, &transport, &mut beta);
-            let le = self.scene.emitted(&hit, wo_world, &transport);
+            let le = self
+                .scene
+                .emitted(&hit, wo_world, &transport, &mut emission);
             if !le.is_black() && !light_caustic {
                 let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
                     power_heuristic(1, bsdf_pdf, 1, self.scene.light_pdf(from, &hit))
@@ -228,9 +231,9 @@ impl Tracer<'_> {
 
             // Next-event estimation.
             if !bsdf.is_delta()
-                && let Some(light) = self
-                    .scene
-                    .sample_light(&hit, u_light, u_light_2d, &transport)
+                && let Some(light) =
+                    self.scene
+                        .sample_light(&hit, u_light, u_light_2d, &transport, &mut emission)
             {
                 let wi = frame.to_local(light.wi);
                 let f = bsdf.f(wo, wi) * wi.z.abs();

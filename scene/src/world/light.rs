@@ -11,7 +11,7 @@ use prism_sampling::warp::{
 };
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::SceneSpectrum;
+use super::{EmissionCache, SceneSpectrum};
 use crate::geometry::{
     Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
 };
@@ -226,6 +226,7 @@ impl Lights {
         wavelengths: &SampledWavelengths<N>,
         triangles: &[[Vec3; 3]],
         emission: &[SceneSpectrum],
+        cache: &mut EmissionCache<N>,
     ) -> Option<LightSample<N>> {
         let (index, pmf) = self.choose(u_choice)?;
         let sample = match &self.lights[index] {
@@ -264,7 +265,7 @@ impl Lights {
                 LightSample {
                     wi,
                     distance,
-                    radiance: emission[*e as usize].at(wavelengths),
+                    radiance: cache.get(*e, &emission[*e as usize], wavelengths),
                     pdf: pmf * pdf,
                     delta: false,
                 }

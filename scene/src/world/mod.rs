@@ -3,6 +3,7 @@
 //! is what the integrator sees: spectra to sample at its wavelengths and BSDFs to
 //! evaluate, never RGB.
 
+mod emission_cache;
 mod from_gltf;
 mod guide;
 mod light;
@@ -10,6 +11,7 @@ mod material;
 mod spectrum;
 mod texture;
 
+pub use emission_cache::EmissionCache;
 pub use from_gltf::SceneOptions;
 pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use material::{Bsdf, Material};
@@ -342,6 +344,7 @@ impl Scene {
         hit: &Hit,
         wo: Vec3,
         wavelengths: &SampledWavelengths<N>,
+        cache: &mut EmissionCache<N>,
     ) -> SampledSpectrum<N> {
         let Some(l) = self.lights.of_triangle(hit.triangle) else {
             return SampledSpectrum::splat(0.0);
@@ -352,7 +355,7 @@ impl Scene {
                 two_sided,
                 ..
             } if *two_sided || hit.normal.dot(wo) > 0.0 => {
-                self.emission[*emission as usize].at(wavelengths)
+                cache.get(*emission, &self.emission[*emission as usize], wavelengths)
             }
             _ => SampledSpectrum::splat(0.0),
         }
@@ -420,6 +423,7 @@ impl Scene {
         u_choice: f32,
         u: Vec2,
         wavelengths: &SampledWavelengths<N>,
+        cache: &mut EmissionCache<N>,
     ) -> Option<LightSample<N>> {
         self.lights.sample(
             hit.p,
@@ -428,6 +432,7 @@ impl Scene {
             wavelengths,
             &self.triangles,
             &self.emission,
+            cache,
         )
     }
 }
