@@ -48,7 +48,6 @@ fn renders_the_default_scene_to_exr_and_png_with_stats() {
         "chromaticities attribute"
     );
     assert!(header.contains("spp=2;seed=0"), "prism attribute");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The camera's aspect ratio (the default stage's is 4:3) fills in whichever of width and
@@ -91,7 +90,6 @@ fn output_size_follows_the_camera_aspect_ratio() {
         text.contains("dispersion: yes") && text.contains("fluorescence: yes"),
         "{text}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -119,7 +117,6 @@ fn thread_count_does_not_change_the_file() {
         })
         .collect();
     assert_eq!(files[0], files[1]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -155,7 +152,6 @@ fn bad_input_is_one_clear_line() {
         (&["render", "--camera", "nobody", "-o", out], "nobody"),
         (&["render", "--spp", "many"], "--spp"),
     ]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -219,7 +215,6 @@ fn sample_ranges_merge_into_the_single_render() {
             "accumulation",
         ),
     ]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -333,7 +328,6 @@ fn compare_measures_and_thresholds() {
             "max-relmse",
         ),
     ]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -381,7 +375,6 @@ fn spectral_and_energy_sample_ranges_merge_into_the_single_render() {
             );
         }
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -446,7 +439,6 @@ fn spectral_output_has_the_layout_channels() {
             "A:B",
         ),
     ]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

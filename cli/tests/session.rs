@@ -101,7 +101,6 @@ fn checkpoint_and_resume_equal_the_uninterrupted_render() {
             "--checkpoint",
         ),
     ]);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -132,7 +131,6 @@ fn time_budget_stops_at_a_sample_boundary() {
         spp * 24 * 16,
         "whole samples only"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[cfg(unix)]
@@ -175,7 +173,6 @@ fn stop_with(signal: &str) {
     assert!(stderr.contains("interrupted"), "{stderr}");
     let spp = spp_in_header(&out_path);
     assert!(spp < 100_000_000, "{spp}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
@@ -231,5 +228,4 @@ fn spectral_and_energy_checkpoints_resume_to_the_same_file() {
         args.extend(["--resume", &checkpoint, "-o", &elsewhere]);
         assert_one_line_errors(&[(&args, "other settings")]);
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
