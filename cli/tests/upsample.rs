@@ -174,7 +174,7 @@ fn default_tables_are_cached() {
     );
     let file = cache
         .join("tables")
-        .join(format!("srgb-64-v{}.bin", prism_format_version()));
+        .join(format!("srgb-64-v{}.bin", prism_upsample::FORMAT_VERSION));
     let written = std::fs::metadata(&file)
         .expect("the table was cached")
         .modified()
@@ -195,8 +195,4 @@ fn default_tables_are_cached() {
     assert!(String::from_utf8_lossy(&third.stderr).contains("refitting"));
     assert_eq!(first.stdout, third.stdout);
     let _ = std::fs::remove_dir_all(&cache);
-}
-
-fn prism_format_version() -> u32 {
-    1
 }

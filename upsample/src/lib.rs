@@ -40,13 +40,14 @@
 
 pub mod error;
 mod fit;
+mod lanes;
 mod model;
 mod rgb;
 pub mod sigmoid;
 mod table;
 
 pub use error::UpsampleError;
-pub use fit::{Fit, FitContext, denormalize};
+pub use fit::{Fit, FitContext, denormalize, normalize};
 pub use model::{SigmoidPolynomial, inverse_sigmoid};
 pub use rgb::{RgbKind, RgbSpectrum, normalized_illuminant};
 pub use table::{CoefficientTable, FitStatistics};

@@ -11,7 +11,8 @@
 
 use rayon::prelude::*;
 
-use crate::fit::{FitContext, denormalize};
+use crate::fit::{FitContext, normalize};
+use crate::lanes::F32x4;
 use crate::model::SigmoidPolynomial;
 
 /// Lab tolerance of table nodes: at 64^3 fifty times below the largest interpolation
@@ -28,9 +29,11 @@ pub struct CoefficientTable {
     pub(crate) resolution: usize,
     /// Brightness nodes, increasing from 0 to 1.
     pub(crate) z_nodes: Vec<f32>,
-    /// Normalized coefficients (t = (l - 360) / 470) premultiplied by sqrt(z), indexed
-    /// [largest channel][z][y][x], each padded to four lanes (the fourth is 0) so that
-    /// interpolation runs on whole 16-byte nodes.
+    /// Coefficients for l in nm premultiplied by sqrt(z), indexed [largest channel][z][y]
+    /// [x], each padded to four lanes (the fourth is 0) so that interpolation runs on
+    /// whole 16-byte nodes. In nm rather than in the fitter's normalized t, because the
+    /// conversion is linear and so commutes with interpolation: done once per node here,
+    /// it is not on every lookup's critical path (measured: 41.7 -> 36.8 ns per lookup).
     pub(crate) nodes: Vec<[f32; 4]>,
 }
 
@@ -251,11 +254,10 @@ impl CoefficientTable {
                         stats.iterations += u64::from(fit.iterations);
                         stats.max_residual = stats.max_residual.max(fit.residual);
                         stats.unreachable += usize::from(fit.residual > 1e-3);
-                        // Stored premultiplied by sqrt(z) (see `lookup_normalized`).
+                        // Stored in nm, premultiplied by sqrt(z) (see `lookup`).
                         let at = (zi * res + xi) * 3;
-                        for k in 0..3 {
-                            out[at + k] = (fit.normalized[k] * z.sqrt()) as f32;
-                        }
+                        let stored = fit.spectrum.coefficients.map(|c| (c * z.sqrt()) as f32);
+                        out[at..at + 3].copy_from_slice(&stored);
                         fit.normalized
                     };
                     // Along the column each start extrapolates linearly from the two previous
@@ -330,9 +332,10 @@ impl CoefficientTable {
         &self.space
     }
 
-    /// Trilinearly interpolated normalized coefficients for `rgb` (components in [0, 1],
-    /// not all zero; others are clamped). Black has no sigmoid: callers handle it first.
-    pub fn lookup_normalized(&self, rgb: [f64; 3]) -> [f64; 3] {
+    /// The interpolated spectrum for `rgb` (components in [0, 1], not all zero; others are
+    /// clamped). Black has no sigmoid: callers handle it first (here it is the limit, a
+    /// sigmoid at -inf).
+    pub fn lookup(&self, rgb: [f64; 3]) -> SigmoidPolynomial {
         // The hot path runs in f32 (the table is f32; interpolation weights need no more)
         // and is a chain of dependent steps (channel, ratios, axis inverses, cells, loads,
         // weights): each step is written for latency. f64::max and min return the other
@@ -350,7 +353,9 @@ impl CoefficientTable {
             (2, b, r, g)
         };
         if z == 0.0 {
-            return [0.0, 0.0, f64::NEG_INFINITY];
+            return SigmoidPolynomial {
+                coefficients: [0.0, 0.0, f64::NEG_INFINITY],
+            };
         }
         let res = self.resolution;
         let last = res - 2;
@@ -371,32 +376,33 @@ impl CoefficientTable {
         // tail is ~1 / (4 x^2), so its coefficients grow like z^(-1/2) and the product is
         // nearly constant in z, which linear interpolation follows (it halved the largest
         // error of dark saturated colours). Below the first node the premultiplied values
-        // stay constant, so colours keep darkening towards black.
+        // stay constant, so colours keep darkening towards black. The division by sqrt(z)
+        // is folded into the y-z weights, off the chain that waits for the loads.
         let unmultiply = 1.0 / z.sqrt();
-        // Weighted sums rather than nested lerps: a shorter dependency chain after the
-        // loads (the lookup is latency-bound).
         let (sy, sz) = (res, res * res);
         let base = channel * sz * res + zi * sz + yi * sy + xi;
         let corners = &self.nodes[base..=base + sz + sy + 1];
-        let along_x = |at: usize| -> [f32; 4] {
-            let (a, b) = (corners[at], corners[at + 1]);
-            std::array::from_fn(|k| a[k] * (1.0 - tx) + b[k] * tx)
+        // Lerps along x (whole nodes as SIMD lanes), then one weighted sum over y and z:
+        // a shorter dependency chain after the loads than nested lerps.
+        let tx = F32x4::splat(tx);
+        let along_x = |at: usize| {
+            let low = F32x4::load(&corners[at]);
+            low.add(F32x4::load(&corners[at + 1]).sub(low).mul(tx))
         };
-        let (low, high) = (1.0 - tz, tz);
-        let w = [low * (1.0 - ty), low * ty, high * (1.0 - ty), high * ty];
-        let rows = [along_x(0), along_x(sy), along_x(sz), along_x(sz + sy)];
-        std::array::from_fn(|k| {
-            let c =
-                (rows[0][k] * w[0] + rows[1][k] * w[1]) + (rows[2][k] * w[2] + rows[3][k] * w[3]);
-            f64::from(c * unmultiply)
-        })
+        let (low, high) = ((1.0 - tz) * unmultiply, tz * unmultiply);
+        let w = [low * (1.0 - ty), low * ty, high * (1.0 - ty), high * ty].map(F32x4::splat);
+        let near = along_x(0).mul(w[0]).add(along_x(sy).mul(w[1]));
+        let far = along_x(sz).mul(w[2]).add(along_x(sz + sy).mul(w[3]));
+        let c = near.add(far).to_array();
+        SigmoidPolynomial {
+            coefficients: [c[0], c[1], c[2]].map(f64::from),
+        }
     }
 
-    /// The interpolated spectrum for `rgb` (l in nm).
-    pub fn lookup(&self, rgb: [f64; 3]) -> SigmoidPolynomial {
-        SigmoidPolynomial {
-            coefficients: denormalize(self.lookup_normalized(rgb)),
-        }
+    /// [`CoefficientTable::lookup`]'s coefficients in the fitter's normalized wavelength
+    /// t = (l - 360) / 470: the start of a refined lookup.
+    pub fn lookup_normalized(&self, rgb: [f64; 3]) -> [f64; 3] {
+        normalize(self.lookup(rgb).coefficients)
     }
 
     /// The refined lookup: the interpolated coefficients improved by `steps`

@@ -1,16 +1,20 @@
-//! The binary file format of coefficient tables, version 1 (all little-endian):
+//! The binary file format of coefficient tables, version 2 (all little-endian):
 //!
 //! | field | bytes |
 //! | --- | --- |
 //! | magic `PRISMSPC` | 8 |
-//! | format version (1) | u32 |
+//! | format version (2) | u32 |
 //! | observer (1 = CIE 1931 2 degree) | u8 |
 //! | space name length n, then UTF-8 name | u16 + n |
 //! | primaries r, g, b (x, y) and white (x, y) | 8 x f64 |
 //! | resolution r | u32 |
 //! | brightness nodes | r x f32 |
-//! | normalized coefficients [channel][z][y][x][3], ratio axes smoothstep-remapped | 9 r^3 x f32 |
+//! | coefficients for l in nm times sqrt(z), [channel][z][y][x][3], ratio axes smoothstep-remapped | 9 r^3 x f32 |
 //! | FNV-1a 64 checksum of everything above | u64 |
+//!
+//! Version 1 held the coefficients in the fitter's normalized wavelength; version 2 holds
+//! them as lookups use them, so loading is a copy. A version-1 file is refused by its
+//! version field (the command line's cache names files by version and refits).
 //!
 //! Reading checks every field, the exact length and the checksum, so a truncated,
 //! corrupted or foreign file is an error naming what is wrong, never garbage coefficients.
@@ -20,7 +24,7 @@ use crate::table::{CoefficientTable, TableSpace};
 
 const MAGIC: &[u8; 8] = b"PRISMSPC";
 /// The format version this build reads and writes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 const OBSERVER_CIE1931: u8 = 1;
 
 /// FNV-1a, 64-bit (Fowler, Noll, Vo): a checksum against accidental corruption.
@@ -31,7 +35,7 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 impl CoefficientTable {
-    /// The table in the version-1 file format.
+    /// The table in the file format of [`FORMAT_VERSION`].
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(64 + self.nodes.len() * 12);
         out.extend_from_slice(MAGIC);

@@ -62,6 +62,26 @@ proptest! {
         prop_assert!((0.0..=1.0).contains(&a));
     }
 
+    /// Normalizing and denormalizing coefficients are inverse maps, both ways, to rounding
+    /// relative to the polynomial's terms (the table stores nm, the fitter works in t).
+    #[test]
+    fn wavelength_normalization_round_trips(c in prop::array::uniform3(-1e3..1e3f64)) {
+        use prism_upsample::{denormalize, normalize};
+        let close = |a: [f64; 3], b: [f64; 3], scale: f64| {
+            a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-12 * scale)
+        };
+        let back = normalize(denormalize(c));
+        let terms = c.iter().map(|v| v.abs()).sum::<f64>();
+        prop_assert!(close(back, c, terms), "{c:?} -> {back:?}");
+        // As polynomials: the same value at every wavelength.
+        let nm = denormalize(c);
+        for lambda in [360.0, 555.0, 830.0] {
+            let t = (lambda - 360.0) / 470.0;
+            let (a, b) = ((c[0] * t + c[1]) * t + c[2], (nm[0] * lambda + nm[1]) * lambda + nm[2]);
+            prop_assert!((a - b).abs() <= 1e-9 * terms, "{c:?} at {lambda}: {a} vs {b}");
+        }
+    }
+
     #[test]
     fn lookups_are_total(rgb in prop::array::uniform3(component())) {
         let c = TABLE.lookup_normalized(rgb);
