@@ -131,21 +131,21 @@ fn upsample(
     method: &Method,
     rgb: [f64; 3],
 ) -> Result<(Option<SigmoidPolynomial>, bool), String> {
-    let exact = RgbSpectrum::fit(context, rgb, RgbKind::Albedo, None).map_err(|e| e.to_string())?;
-    let Method::Table { table, refine } = method else {
-        return Ok((exact.shape(), exact.clamped()));
-    };
-    // Black and greys stay exact; everything else comes from the table.
-    let clean = rgb.map(|c| c.clamp(0.0, 1.0));
-    if exact.shape().is_none() || (clean[0] == clean[1] && clean[1] == clean[2]) {
-        return Ok((exact.shape(), exact.clamped()));
+    // The policies (black, greys, clamping) are RgbSpectrum's; only the shape of other
+    // colours comes from the fitter or the table.
+    let spectrum = match method {
+        Method::Exact => RgbSpectrum::fit(context, rgb, RgbKind::Albedo, None),
+        Method::Table { table, refine } => RgbSpectrum::from_table(
+            table,
+            context,
+            rgb,
+            RgbKind::Albedo,
+            None,
+            u32::from(*refine),
+        ),
     }
-    let s = if *refine {
-        table.lookup_refined(context, clean, 1)
-    } else {
-        table.lookup(clean)
-    };
-    Ok((Some(s), exact.clamped()))
+    .map_err(|e| e.to_string())?;
+    Ok((spectrum.shape(), spectrum.clamped()))
 }
 
 fn round_trip(
