@@ -56,6 +56,11 @@ fn upsample(c: &mut Criterion) {
                 }
             })
         });
+        // The same colours as one batch (the same spectra, four colours' front ends at
+        // once in SIMD lanes).
+        group.bench_function(BenchmarkId::new("trilinear many", res), |b| {
+            b.iter(|| black_box(table.lookup_many(black_box(&rgb))))
+        });
         group.throughput(Throughput::Elements(1));
         group.bench_function(BenchmarkId::new("refined 1 step", res), |b| {
             b.iter(|| {

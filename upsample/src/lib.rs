@@ -45,6 +45,7 @@ mod model;
 mod rgb;
 pub mod sigmoid;
 mod table;
+mod table_batch;
 
 pub use error::UpsampleError;
 pub use fit::{Fit, FitContext, denormalize, normalize};

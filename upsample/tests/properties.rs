@@ -82,6 +82,31 @@ proptest! {
         }
     }
 
+    /// Batch lookups are the single lookups, bit for bit and in order, for any colours
+    /// (extremes, ties between channels, black and greys included) and any count.
+    #[test]
+    fn batch_lookups_are_single_lookups(
+        colours in prop::collection::vec(
+            prop_oneof![
+                prop::array::uniform3(component()),
+                prop::array::uniform3(0.0..1.0f64),
+                (0.0..1.0f64, 0usize..3).prop_map(|(v, tie)| {
+                    let mut c = [v, v, v];
+                    c[tie] = v * 0.5;
+                    c
+                }),
+            ],
+            0..40,
+        )
+    ) {
+        let batch = TABLE.lookup_many(&colours);
+        prop_assert_eq!(batch.len(), colours.len());
+        for (colour, spectrum) in colours.iter().zip(&batch) {
+            let single = TABLE.lookup(*colour).coefficients.map(f64::to_bits);
+            prop_assert_eq!(spectrum.coefficients.map(f64::to_bits), single, "{:?}", colour);
+        }
+    }
+
     #[test]
     fn lookups_are_total(rgb in prop::array::uniform3(component())) {
         let c = TABLE.lookup_normalized(rgb);
