@@ -49,15 +49,7 @@ fn floor_under_uv(material: Material, peak: f64, c: usize, sampler: LambdaSample
                 peak,
             ),
         }],
-        camera: Camera {
-            name: "down".into(),
-            to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
-            aspect_ratio: None,
-            projection: Projection::Orthographic {
-                xmag: 1.0,
-                ymag: 1.0,
-            },
-        },
+        camera: looking_down(),
         quality: BvhQuality::Medium,
     })
     .unwrap();
@@ -230,15 +222,7 @@ fn an_ultraviolet_source_is_found_among_brighter_visible_light() {
                 intensity: SceneSpectrum::Constant(0.05),
             },
         ],
-        camera: Camera {
-            name: "down".into(),
-            to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
-            aspect_ratio: None,
-            projection: Projection::Orthographic {
-                xmag: 1.0,
-                ymag: 1.0,
-            },
-        },
+        camera: looking_down(),
         quality: BvhQuality::Medium,
     })
     .unwrap();
@@ -259,4 +243,17 @@ fn an_ultraviolet_source_is_found_among_brighter_visible_light() {
     // visible power, puts under 15% there).
     let led_band: f64 = (315..365).map(|nm| guide.pdf(f64::from(nm) + 0.5)).sum();
     assert!(led_band > 0.6, "guide mass in the LED's band: {led_band}");
+}
+
+/// An orthographic camera one unit above the origin looking down at the unit square.
+fn looking_down() -> Camera {
+    Camera {
+        name: "down".into(),
+        to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
+        aspect_ratio: None,
+        projection: Projection::Orthographic {
+            xmag: 1.0,
+            ymag: 1.0,
+        },
+    }
 }

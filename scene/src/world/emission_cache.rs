@@ -36,14 +36,15 @@ impl<const N: usize> EmissionCache<N> {
         Self::default()
     }
 
-    /// `spectrum` (the scene's emission spectrum number `index`) at `wavelengths`.
+    /// Emission spectrum number `index` of the scene's `spectra`, at `wavelengths`.
     pub(crate) fn get(
         &mut self,
+        spectra: &[SceneSpectrum],
         index: u32,
-        spectrum: &SceneSpectrum,
         wavelengths: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         let slot = index as usize;
+        let spectrum = &spectra[slot];
         if slot >= SLOTS {
             return spectrum.at(wavelengths);
         }
@@ -80,7 +81,7 @@ mod tests {
         for _ in 0..2 {
             for wavelengths in [&a, &b, &a] {
                 for (k, s) in spectra.iter().enumerate() {
-                    let cached = cache.get(k as u32, s, wavelengths);
+                    let cached = cache.get(&spectra, k as u32, wavelengths);
                     assert_eq!(cached, s.at(wavelengths), "spectrum {k}");
                 }
             }

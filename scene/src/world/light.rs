@@ -265,7 +265,7 @@ impl Lights {
                 LightSample {
                     wi,
                     distance,
-                    radiance: cache.get(*e, &emission[*e as usize], wavelengths),
+                    radiance: cache.get(emission, *e, wavelengths),
                     pdf: pmf * pdf,
                     delta: false,
                 }

@@ -339,6 +339,8 @@ impl Scene {
     }
 
     /// Radiance emitted by the hit surface towards `wo` (unit, pointing away from it).
+    /// Emission spectra come from `cache`, which holds them at the path's current
+    /// wavelengths (one cache per path; see [`EmissionCache`]).
     pub fn emitted<const N: usize>(
         &self,
         hit: &Hit,
@@ -355,7 +357,7 @@ impl Scene {
                 two_sided,
                 ..
             } if *two_sided || hit.normal.dot(wo) > 0.0 => {
-                cache.get(*emission, &self.emission[*emission as usize], wavelengths)
+                cache.get(&self.emission, *emission, wavelengths)
             }
             _ => SampledSpectrum::splat(0.0),
         }
@@ -417,6 +419,7 @@ impl Scene {
     }
 
     /// Chooses a light with `u_choice` and samples a direction to it from `hit` with `u`.
+    /// The light's emission comes from `cache`, as in [`Scene::emitted`].
     pub fn sample_light<const N: usize>(
         &self,
         hit: &Hit,
