@@ -2,13 +2,12 @@
 //! infrared as the integral of the spectrum against each curve, sampled over the curves'
 //! band; malformed response files are errors.
 
+mod common;
+
 use std::sync::Arc;
 
-use glam::{Mat4, Vec3};
 use prism_integrator::{CameraResponse, LambdaSampler, RenderSettings, render};
-use prism_scene::camera::{Camera, Projection};
-use prism_scene::geometry::BvhQuality;
-use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_scene::world::SceneSpectrum;
 use prism_spectrum::Spectrum;
 use prism_spectrum::spectra::Blackbody;
 
@@ -25,39 +24,7 @@ fn a_near_infrared_camera_integrates_its_curves() {
     let camera = Arc::new(nir_camera());
     assert_eq!(camera.range(), (700.0, 1000.0));
     let blackbody = Blackbody::normalized(3000.0).unwrap();
-    let q = [
-        Vec3::new(-2.0, -2.0, 0.0),
-        Vec3::new(2.0, -2.0, 0.0),
-        Vec3::new(2.0, 2.0, 0.0),
-        Vec3::new(-2.0, 2.0, 0.0),
-    ];
-    let scene = Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangles: vec![[q[0], q[1], q[2]], [q[0], q[2], q[3]]],
-        triangle_material: vec![0, 0],
-        materials: vec![Material::Diffuse {
-            reflectance: SceneSpectrum::Constant(0.0),
-        }],
-        emission: vec![SceneSpectrum::Blackbody(blackbody)],
-        lights: (0..2)
-            .map(|t| Light::Triangle {
-                triangle: t,
-                emission: 0,
-                two_sided: false,
-            })
-            .collect(),
-        camera: Camera {
-            name: "front".into(),
-            to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
-            aspect_ratio: None,
-            projection: Projection::Orthographic {
-                xmag: 0.5,
-                ymag: 0.5,
-            },
-        },
-        quality: BvhQuality::Medium,
-    })
-    .unwrap();
+    let scene = common::emitter_filling_the_view(SceneSpectrum::Blackbody(blackbody));
     // Expected channels by fine quadrature over the curves' band.
     let expected: [f64; 3] = std::array::from_fn(|k| {
         let n = 30_000;

@@ -1,15 +1,14 @@
 //! Energy output: a panel of known spectral radiance seen directly gives its radiance
 //! integral and its photon radiance (E = hc / lambda) per pixel and in the EXR.
 
+mod common;
+
 use std::sync::Arc;
 
-use glam::{Mat4, Vec3};
 use prism_integrator::{
     ExrMetadata, LambdaSampler, RenderSettings, decode_exr, encode_exr, render,
 };
-use prism_scene::camera::{Camera, Projection};
-use prism_scene::geometry::BvhQuality;
-use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_scene::world::SceneSpectrum;
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::constants::{ELEMENTARY_CHARGE, PLANCK, SPEED_OF_LIGHT};
 use prism_spectrum::spectra::Gaussian;
@@ -23,44 +22,12 @@ fn energy_and_photons_of_a_known_emitter() {
     let sigma = fwhm / (2.0 * (2.0 * std::f64::consts::LN_2).sqrt());
     let radiance = peak * sigma * (2.0 * std::f64::consts::PI).sqrt();
     let photons = radiance * centre * 1e-9 / (PLANCK * SPEED_OF_LIGHT);
-    let q = [
-        Vec3::new(-2.0, -2.0, 0.0),
-        Vec3::new(2.0, -2.0, 0.0),
-        Vec3::new(2.0, 2.0, 0.0),
-        Vec3::new(-2.0, 2.0, 0.0),
-    ];
-    let scene = Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangles: vec![[q[0], q[1], q[2]], [q[0], q[2], q[3]]],
-        triangle_material: vec![0, 0],
-        materials: vec![Material::Diffuse {
-            reflectance: SceneSpectrum::Constant(0.0),
-        }],
-        emission: vec![SceneSpectrum::Scaled(
-            Arc::new(SceneSpectrum::Gaussian(
-                Gaussian::new(centre, fwhm, 1.0).unwrap(),
-            )),
-            peak,
-        )],
-        lights: (0..2)
-            .map(|t| Light::Triangle {
-                triangle: t,
-                emission: 0,
-                two_sided: false,
-            })
-            .collect(),
-        camera: Camera {
-            name: "front".into(),
-            to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
-            aspect_ratio: None,
-            projection: Projection::Orthographic {
-                xmag: 0.5,
-                ymag: 0.5,
-            },
-        },
-        quality: BvhQuality::Medium,
-    })
-    .unwrap();
+    let scene = common::emitter_filling_the_view(SceneSpectrum::Scaled(
+        Arc::new(SceneSpectrum::Gaussian(
+            Gaussian::new(centre, fwhm, 1.0).unwrap(),
+        )),
+        peak,
+    ));
     for (c, sampler) in [(4, LambdaSampler::Visible), (1, LambdaSampler::Uniform)] {
         let settings = RenderSettings {
             width: 8,

@@ -6,11 +6,10 @@ mod common;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use prism_integrator::{Film, LambdaSampler, RenderSettings, Renderer, SpectralBands, render};
 use prism_sampling::wavelength::{ReradiationSampler, WavelengthRange};
 use prism_scene::bsdf::fluorescence_matrix;
-use prism_scene::camera::{Camera, Projection};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::spectral::SpectralMaterial;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
@@ -49,7 +48,7 @@ fn floor_under_uv(material: Material, peak: f64, c: usize, sampler: LambdaSample
                 peak,
             ),
         }],
-        camera: looking_down(),
+        camera: common::ortho_camera(Vec3::new(0.0, 0.0, 1.0), 1.0),
         quality: BvhQuality::Medium,
     })
     .unwrap();
@@ -222,7 +221,7 @@ fn an_ultraviolet_source_is_found_among_brighter_visible_light() {
                 intensity: SceneSpectrum::Constant(0.05),
             },
         ],
-        camera: looking_down(),
+        camera: common::ortho_camera(Vec3::new(0.0, 0.0, 1.0), 1.0),
         quality: BvhQuality::Medium,
     })
     .unwrap();
@@ -243,17 +242,4 @@ fn an_ultraviolet_source_is_found_among_brighter_visible_light() {
     // visible power, puts under 15% there).
     let led_band: f64 = (315..365).map(|nm| guide.pdf(f64::from(nm) + 0.5)).sum();
     assert!(led_band > 0.6, "guide mass in the LED's band: {led_band}");
-}
-
-/// An orthographic camera one unit above the origin looking down at the unit square.
-fn looking_down() -> Camera {
-    Camera {
-        name: "down".into(),
-        to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)),
-        aspect_ratio: None,
-        projection: Projection::Orthographic {
-            xmag: 1.0,
-            ymag: 1.0,
-        },
-    }
 }

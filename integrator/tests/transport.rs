@@ -7,29 +7,15 @@
 
 mod common;
 
-use common::cornell;
-use glam::{Mat4, Vec3};
+use common::{cornell, emitter_filling_the_view, ortho_camera};
+use glam::Vec3;
 use prism_integrator::{ExrMetadata, Film, LambdaSampler, RenderSettings, encode_exr, render};
 use prism_sampling::wavelength::PackageScheme;
-use prism_scene::camera::{Camera, Projection};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::Constant;
-
-/// An orthographic camera at `eye` looking down -z, seeing a square of half-size `half`.
-fn ortho_camera(eye: Vec3, half: f32) -> Camera {
-    Camera {
-        name: "test".into(),
-        to_world: Mat4::from_translation(eye),
-        aspect_ratio: None,
-        projection: Projection::Orthographic {
-            xmag: half,
-            ymag: half,
-        },
-    }
-}
 
 /// A unit icosphere subdivided `levels` times, outward winding.
 fn icosphere(levels: u32) -> Vec<[Vec3; 3]> {
@@ -558,32 +544,7 @@ fn spectral_film_recovers_a_blackbody_per_band() {
     use prism_spectrum::Spectrum;
     use prism_spectrum::spectra::Blackbody;
     let blackbody = Blackbody::normalized(3000.0).unwrap();
-    // A square facing the camera (+z), larger than the view.
-    let q = [
-        Vec3::new(-2.0, -2.0, 0.0),
-        Vec3::new(2.0, -2.0, 0.0),
-        Vec3::new(2.0, 2.0, 0.0),
-        Vec3::new(-2.0, 2.0, 0.0),
-    ];
-    let scene = Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangles: vec![[q[0], q[1], q[2]], [q[0], q[2], q[3]]],
-        triangle_material: vec![0, 0],
-        materials: vec![Material::Diffuse {
-            reflectance: SceneSpectrum::Constant(0.0),
-        }],
-        emission: vec![SceneSpectrum::Blackbody(blackbody)],
-        lights: (0..2)
-            .map(|t| Light::Triangle {
-                triangle: t,
-                emission: 0,
-                two_sided: false,
-            })
-            .collect(),
-        camera: ortho_camera(Vec3::new(0.0, 0.0, 1.0), 0.5),
-        quality: BvhQuality::Medium,
-    })
-    .unwrap();
+    let scene = emitter_filling_the_view(SceneSpectrum::Blackbody(blackbody));
     let bands = SpectralBands::new(380.0, 780.0, 16).unwrap();
     // The band means of the blackbody, by fine quadrature.
     let expected: Vec<f64> = (0..bands.count())

@@ -57,3 +57,41 @@ pub fn square_z0(half: f32) -> Vec<[glam::Vec3; 3]> {
         ],
     ]
 }
+
+/// An orthographic camera at `eye` looking down -z, seeing a square of half-size `half`.
+pub fn ortho_camera(eye: glam::Vec3, half: f32) -> prism_scene::camera::Camera {
+    prism_scene::camera::Camera {
+        name: "test".into(),
+        to_world: glam::Mat4::from_translation(eye),
+        aspect_ratio: None,
+        projection: prism_scene::camera::Projection::Orthographic {
+            xmag: half,
+            ymag: half,
+        },
+    }
+}
+
+/// A black square emitting `emission` from its front (+z), larger than the view of an
+/// orthographic camera one unit in front of it: every pixel sees the emitter.
+pub fn emitter_filling_the_view(emission: prism_scene::world::SceneSpectrum) -> Scene {
+    use prism_scene::world::{Light, Material, SceneParts, SceneSpectrum};
+    Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangles: square_z0(2.0),
+        triangle_material: vec![0, 0],
+        materials: vec![Material::Diffuse {
+            reflectance: SceneSpectrum::Constant(0.0),
+        }],
+        emission: vec![emission],
+        lights: (0..2)
+            .map(|t| Light::Triangle {
+                triangle: t,
+                emission: 0,
+                two_sided: false,
+            })
+            .collect(),
+        camera: ortho_camera(glam::Vec3::new(0.0, 0.0, 1.0), 0.5),
+        quality: prism_scene::geometry::BvhQuality::Medium,
+    })
+    .unwrap()
+}
