@@ -9,6 +9,7 @@ mod memory;
 mod output;
 mod scene_file;
 mod session;
+mod space_arg;
 mod spectrum_spec;
 mod svg_plot;
 mod table_cache;

@@ -149,8 +149,84 @@ fn bad_input_is_one_clear_line() {
             "cannot write",
         ),
         (&["table", "info", "/no/such/file"], "cannot read"),
+        (
+            &["upsample", "--space", "0.7,0.3,0.2", "0.5", "0.5", "0.5"],
+            "six numbers",
+        ),
+        (
+            &[
+                "upsample",
+                "--space",
+                "0.7,0.3,0.7,0.3,0.1,0.05",
+                "0.5",
+                "0.5",
+                "0.5",
+            ],
+            "collinear",
+        ),
+        (
+            &[
+                "upsample",
+                "--space",
+                "0.7,0.3,0.2,0.75,0.12,0.05@sunlight",
+                "0.5",
+                "0.5",
+                "0.5",
+            ],
+            "illuminant",
+        ),
+        (
+            &[
+                "upsample",
+                "--space",
+                "0.7,0.3,0.2,0.75,0.12,0.05",
+                "--table",
+                "auto",
+                "0.5",
+                "0.5",
+                "0.5",
+            ],
+            "named spaces only",
+        ),
     ];
     assert_one_line_errors(cases);
+}
+
+/// A space given by its primaries and illuminant: sRGB's own primaries under D65 fit
+/// exactly as `--space srgb` does, and a space of other primaries under D50 fits, makes
+/// a table that records its primaries, and only accepts that table for itself.
+#[test]
+fn user_defined_spaces_fit_and_make_tables() {
+    let coefficients = |space: &str| -> serde_json::Value {
+        let out = prism(&["upsample", "--space", space, "0.8", "0.2", "0.1", "--json"]);
+        assert_success(&out);
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert!(v["delta_e_2000"].as_f64().unwrap() < 1e-3, "{space}: {v}");
+        v["coefficients"].clone()
+    };
+    assert_eq!(
+        coefficients("0.64,0.33,0.30,0.60,0.15,0.06@illuminant:D65"),
+        coefficients("srgb")
+    );
+    let wide = "0.7,0.3,0.2,0.75,0.12,0.05@illuminant:D50";
+    let dir = common::temp_dir("custom-space");
+    let file = dir.join("wide.bin");
+    let file = file.to_str().unwrap();
+    assert_success(&prism(&[
+        "table", "fit", "--space", wide, "--res", "8", "-o", file,
+    ]));
+    let info = prism(&["table", "info", file]);
+    assert_success(&info);
+    assert!(String::from_utf8_lossy(&info.stdout).contains("r (0.7, 0.3)"));
+    let looked_up = prism(&[
+        "upsample", "--space", wide, "--table", file, "0.5", "0.3", "0.2", "--json",
+    ]);
+    assert_success(&looked_up);
+    let other = prism(&[
+        "upsample", "--space", "srgb", "--table", file, "0.5", "0.3", "0.2",
+    ]);
+    assert!(!other.status.success());
+    assert!(String::from_utf8_lossy(&other.stderr).contains("is a table for"));
 }
 
 /// `--table auto` fits the default table on first use, caches it, reuses it, and replaces

@@ -140,3 +140,51 @@ fn table_accuracy_report() {
         stats.max_residual
     );
 }
+
+/// Any RGB space can be fitted: primaries of one's own under CIE D50. Exact fits of
+/// in-gamut colours round-trip under that illuminant, a table fitted for the space
+/// records it (and is told apart from sRGB's), and its lookups stay close.
+#[test]
+fn user_defined_spaces_fit() {
+    use prism_spectrum::color::{RgbColorSpace, TransferFunction};
+    use prism_spectrum::colorimetry::{Chromaticity, WhitePoint, emission_xyz};
+    let d50 = StandardIlluminant::D50.spectrum();
+    let white = WhitePoint::from_xyz(emission_xyz(&d50, Observer::Cie1931)).unwrap();
+    let space = RgbColorSpace::new(
+        "mine",
+        [(0.66, 0.32), (0.24, 0.68), (0.15, 0.07)].map(|(x, y)| Chromaticity::new(x, y)),
+        white.xy(),
+        TransferFunction::Linear,
+    )
+    .unwrap();
+    let context = FitContext::new(&space, &d50).unwrap();
+    let error = |rgb: [f64; 3], spectrum: &prism_upsample::SigmoidPolynomial| {
+        let xyz = reflectance_xyz(spectrum, &d50, Observer::Cie1931).unwrap();
+        let w = context.white();
+        ciede2000(
+            Lab::from_xyz(xyz, w),
+            Lab::from_xyz(context.rgb_xyz(rgb), w),
+        )
+    };
+    for rgb in [
+        [0.8, 0.2, 0.1],
+        [0.2, 0.5, 0.3],
+        [0.1, 0.2, 0.6],
+        [0.9, 0.9, 0.85],
+    ] {
+        let de = error(rgb, &context.fit(rgb, [0.0; 3]).spectrum);
+        assert!(de < 1e-3, "{rgb:?}: dE2000 {de}");
+    }
+    let (table, stats) = CoefficientTable::fit(&context, 12, &|_| {}).unwrap();
+    assert_eq!(table.space().name, "mine");
+    assert!(table.space().matches(&context));
+    assert!(!table.space().matches(&srgb()));
+    assert!(stats.unreachable < stats.nodes / 10, "{stats:?}");
+    let colours = random_colours(300, 7);
+    let mean = colours
+        .iter()
+        .map(|&rgb| error(rgb, &table.lookup(rgb)))
+        .sum::<f64>()
+        / colours.len() as f64;
+    assert!(mean < 0.5, "mean dE2000 {mean} at 12^3");
+}

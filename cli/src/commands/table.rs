@@ -5,16 +5,20 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Subcommand;
-use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Lab, Observer, ciede2000, reflectance_xyz};
 use prism_upsample::{CoefficientTable, FitContext};
 
 #[derive(Debug, Subcommand)]
 pub enum TableCommand {
     /// Fit a table for a colour space and write it to a file.
-    #[command(after_help = "Example:\n  prism table fit --space srgb --res 64 -o srgb-64.bin")]
+    #[command(
+        after_help = "Examples:\n  prism table fit --space srgb --res 64 -o srgb-64.bin\n  \
+prism table fit --space '0.7,0.3,0.2,0.75,0.12,0.05@illuminant:D50' --res 32 -o mine.bin"
+    )]
     Fit {
-        /// The colour space.
+        /// The colour space: a name (srgb, display-p3, rec2020, acescg, aces2065-1,
+        /// prophoto, adobe-rgb, dci-p3, rec709) or primaries 'XR,YR,XG,YG,XB,YB@ILLUMINANT'
+        /// (ILLUMINANT a named spectrum such as illuminant:D50; default illuminant:D65).
         #[arg(long, default_value = "srgb")]
         space: String,
         /// Nodes per axis (2-256; 64 is the usual trade).
@@ -42,8 +46,9 @@ pub fn run(command: &TableCommand) -> Result<(), String> {
 }
 
 fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> {
-    let id = RgbSpaceId::from_name(space).map_err(|e| e.to_string())?;
-    let context = FitContext::new(id.space(), &id.illuminant()).map_err(|e| e.to_string())?;
+    let choice = crate::space_arg::parse_space(space)?;
+    let context =
+        FitContext::new(&choice.space, choice.illuminant.as_ref()).map_err(|e| e.to_string())?;
     crate::output::check_writable(output)?;
     let rows = 3 * res;
     let start = Instant::now();
@@ -54,7 +59,7 @@ fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> 
         if terminal && (step(done) != step(done - 1) || done == rows) {
             eprint!(
                 "\rfitting {} {res}^3: {:3}%",
-                id.name(),
+                choice.name,
                 done * 100 / rows.max(1)
             );
         }
@@ -67,7 +72,7 @@ fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> 
     }
     let bytes = table.to_bytes();
     crate::output::write_atomically(output, &bytes)?;
-    let (mean, p99, max) = accuracy(&context, id, &table);
+    let (mean, p99, max) = accuracy(&context, choice.illuminant.as_ref(), &table);
     println!("wrote {} ({} bytes)", output.display(), bytes.len());
     println!(
         "fit: {seconds:.2} s wall, {} nodes, {:.2} iterations per node",
@@ -88,8 +93,11 @@ fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> 
 }
 
 /// dE2000 statistics of trilinear lookups of 2000 pseudo-random colours of the cube.
-fn accuracy(context: &FitContext, id: RgbSpaceId, table: &CoefficientTable) -> (f64, f64, f64) {
-    let illuminant = id.illuminant();
+fn accuracy(
+    context: &FitContext,
+    illuminant: &dyn prism_spectrum::Spectrum,
+    table: &CoefficientTable,
+) -> (f64, f64, f64) {
     let white = context.white();
     let mut x = 0x853c_49e6_748f_ea9bu64;
     let mut errors: Vec<f64> = (0..2000)
@@ -100,7 +108,7 @@ fn accuracy(context: &FitContext, id: RgbSpaceId, table: &CoefficientTable) -> (
                 x ^= x << 17;
                 (x >> 11) as f64 / (1u64 << 53) as f64
             });
-            let xyz = reflectance_xyz(&table.lookup(rgb), &illuminant, Observer::Cie1931).ok()?;
+            let xyz = reflectance_xyz(&table.lookup(rgb), illuminant, Observer::Cie1931).ok()?;
             Some(ciede2000(
                 Lab::from_xyz(xyz, white),
                 Lab::from_xyz(context.rgb_xyz(rgb), white),

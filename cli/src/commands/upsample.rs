@@ -3,7 +3,6 @@
 use std::io::{BufRead, Write};
 
 use clap::Args;
-use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Lab, Observer, ciede2000, reflectance_xyz};
 use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum, SigmoidPolynomial};
 use serde_json::json;
@@ -17,7 +16,9 @@ pub struct UpsampleArgs {
     /// Linear RGB components in [0, 1] (omit with --stdin).
     #[arg(num_args = 0..=3, allow_negative_numbers = true)]
     pub rgb: Vec<f64>,
-    /// The RGB colour space.
+    /// The RGB colour space: a name (srgb, display-p3, rec2020, acescg, aces2065-1,
+    /// prophoto, adobe-rgb, dci-p3, rec709) or primaries 'XR,YR,XG,YG,XB,YB@ILLUMINANT'
+    /// (ILLUMINANT a named spectrum such as illuminant:D50; default illuminant:D65).
     #[arg(long, default_value = "srgb")]
     pub space: String,
     /// Fit each colour exactly (the default without --table).
@@ -48,12 +49,22 @@ enum Method {
 }
 
 pub fn run(args: &UpsampleArgs) -> Result<(), String> {
-    let id = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
-    let context = FitContext::new(id.space(), &id.illuminant()).map_err(|e| e.to_string())?;
+    let choice = crate::space_arg::parse_space(&args.space)?;
+    let context =
+        FitContext::new(&choice.space, choice.illuminant.as_ref()).map_err(|e| e.to_string())?;
     let method = match &args.table {
         None => Method::Exact,
         Some(path) if path.as_os_str() == "auto" => Method::Table {
-            table: crate::table_cache::default_table(id, &context)?,
+            table: match choice.id {
+                Some(id) => crate::table_cache::default_table(id, &context)?,
+                None => {
+                    return Err(
+                        "--table auto: default tables exist for named spaces only; fit one \
+                         for these primaries with `prism table fit --space ...`"
+                            .into(),
+                    );
+                }
+            },
             refine: args.refine,
         },
         Some(path) => {
@@ -62,11 +73,12 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
             let table = CoefficientTable::from_bytes(&bytes)
                 .map_err(|e| format!("'{}': {e}", path.display()))?;
             if !table.space().matches(&context) {
+                let [r, g, b] = table.space().primaries;
                 return Err(format!(
-                    "'{}' is a table for '{}', not for --space {}",
+                    "'{}' is a table for '{}' (primaries {r:?} {g:?} {b:?}), not for --space {}",
                     path.display(),
                     table.space().name,
-                    id.name()
+                    args.space
                 ));
             }
             Method::Table {
@@ -88,13 +100,13 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
         .map_err(|_| format!("expected three components R G B, got {}", args.rgb.len()))?;
     let (spectrum, clamped) = upsample(&context, &method, rgb)?;
     let c = spectrum.map_or([0.0, 0.0, f64::NEG_INFINITY], |s| s.coefficients);
-    let (round_trip, de) = round_trip(&context, id, rgb, spectrum)?;
+    let (round_trip, de) = round_trip(&context, choice.illuminant.as_ref(), rgb, spectrum)?;
     if args.json {
         let finite = |v: f64| if v.is_finite() { json!(v) } else { json!(null) };
         println!(
             "{}",
             json!({
-                "space": id.name(),
+                "space": choice.name,
                 "rgb": rgb,
                 "coefficients": c.map(finite),
                 "black": spectrum.is_none(),
@@ -104,7 +116,7 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
             })
         );
     } else {
-        println!("space         {}", id.name());
+        println!("space         {}", choice.name);
         if spectrum.is_none() {
             println!("spectrum      black (exactly zero)");
         } else {
@@ -150,15 +162,12 @@ fn upsample(
 
 fn round_trip(
     context: &FitContext,
-    id: RgbSpaceId,
+    illuminant: &dyn prism_spectrum::Spectrum,
     rgb: [f64; 3],
     spectrum: Option<SigmoidPolynomial>,
 ) -> Result<([f64; 3], f64), String> {
-    let illuminant = id.illuminant();
     let xyz = match spectrum {
-        Some(s) => {
-            reflectance_xyz(&s, &illuminant, Observer::Cie1931).map_err(|e| e.to_string())?
-        }
+        Some(s) => reflectance_xyz(&s, illuminant, Observer::Cie1931).map_err(|e| e.to_string())?,
         None => prism_spectrum::colorimetry::Xyz::default(),
     };
     let back = context.space().xyz_to_rgb(xyz);
