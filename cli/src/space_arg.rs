@@ -5,10 +5,14 @@ use prism_spectrum::color::{RgbColorSpace, RgbSpaceId, TransferFunction};
 use prism_spectrum::colorimetry::{Chromaticity, Observer, WhitePoint, emission_xyz};
 use prism_spectrum::spectra::{NAMED_SPECTRUM_FORMS, NamedSpectrum};
 
-/// The forms `--space` accepts, for help and errors.
-pub const SPACE_FORMS: &str = "a name (srgb, display-p3, rec2020, acescg, aces2065-1, \
-prophoto, adobe-rgb, dci-p3, rec709) or primaries 'XR,YR,XG,YG,XB,YB@ILLUMINANT' \
-(chromaticities of red, green and blue; ILLUMINANT a named spectrum, default illuminant:D65)";
+/// The forms `--space` accepts, for errors (the names from [`RgbSpaceId::ALL`]).
+fn space_forms() -> String {
+    format!(
+        "a name ({}) or primaries 'XR,YR,XG,YG,XB,YB@ILLUMINANT' (chromaticities of red, \
+         green and blue; ILLUMINANT a named spectrum, default illuminant:D65)",
+        RgbSpaceId::ALL.map(RgbSpaceId::name).join(", ")
+    )
+}
 
 /// The colour space colours are fitted for, and the illuminant they are seen under.
 pub struct SpaceChoice {
@@ -20,7 +24,7 @@ pub struct SpaceChoice {
     pub illuminant: Box<dyn prism_spectrum::Spectrum>,
 }
 
-/// Parses one of [`SPACE_FORMS`].
+/// Parses a named space or `XR,YR,XG,YG,XB,YB[@ILLUMINANT]`.
 pub fn parse_space(text: &str) -> Result<SpaceChoice, String> {
     if !text.contains(',') {
         let id = RgbSpaceId::from_name(text).map_err(|e| e.to_string())?;
@@ -31,7 +35,7 @@ pub fn parse_space(text: &str) -> Result<SpaceChoice, String> {
             illuminant: Box::new(id.illuminant()),
         });
     }
-    let malformed = |why: &str| format!("--space '{text}': {why} (expected {SPACE_FORMS})");
+    let malformed = |why: &str| format!("--space '{text}': {why} (expected {})", space_forms());
     let (primaries, illuminant) = text.split_once('@').unwrap_or((text, "illuminant:D65"));
     let numbers = primaries
         .split(',')

@@ -580,6 +580,7 @@ mod tests {
             assert!(table.eval(first / 2.0) <= table.eval(first * 2.0));
         }
     }
+
     /// The SIMD lanes give the scalar path's bits for every input: on a grid of values
     /// with the extremes (0, subnormals, 2^-40, the fold at 1/2, 1), on both axes, at
     /// every resolution, in every lane.
