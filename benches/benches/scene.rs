@@ -1,7 +1,8 @@
-//! prism-scene: BVH build time and ray throughput (closest hit) on the bunny box
-//! (scenes/cornell-bunny.gltf, 69 451 bunny triangles plus walls), with coherent rays (a
-//! 256 x 256 pinhole camera) and incoherent ones (random points and directions inside the
-//! box).
+//! prism-scene: BVH build time and ray throughput on the bunny box
+//! (scenes/cornell-bunny.gltf, 69 451 bunny triangles plus walls) and the Cornell box (36
+//! triangles): closest hits of coherent rays (a 256 x 256 pinhole camera) and incoherent
+//! ones (random points and directions inside the box), and shadow rays (random segments
+//! inside the box).
 
 use std::hint::black_box;
 
@@ -10,19 +11,20 @@ use glam::Vec3;
 use prism_scene::geometry::{Bvh, BvhQuality, Ray};
 use prism_scene::load::load_geometry;
 
-fn bunny() -> Vec<[Vec3; 3]> {
+fn triangles(scene: &str) -> Vec<[Vec3; 3]> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
-    let bytes = std::fs::read(dir.join("cornell-bunny.gltf")).expect("scenes/cornell-bunny.gltf");
+    let bytes = std::fs::read(dir.join(scene)).expect("the scene is in scenes/");
     load_geometry(
         &bytes,
         &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
         None,
     )
-    .expect("the bunny box loads")
+    .expect("the scene loads")
     .triangles
 }
 
-fn rays() -> (Vec<Ray>, Vec<Ray>) {
+/// Camera rays, random rays and random segments (shadow rays).
+fn rays() -> (Vec<Ray>, Vec<Ray>, Vec<Ray>) {
     let n = 256;
     let eye = Vec3::new(0.0, 0.0, 3.9);
     let coherent = (0..n * n)
@@ -47,39 +49,45 @@ fn rays() -> (Vec<Ray>, Vec<Ray>) {
             Ray::new(origin, Vec3::new(next(), next(), next()), f32::INFINITY)
         })
         .collect();
-    (coherent, incoherent)
+    let segments = (0..n * n)
+        .map(|_| {
+            let from = Vec3::new(next(), next(), next()) * 0.95;
+            let to = Vec3::new(next(), next(), next()) * 0.95;
+            Ray::new(from, to - from, 1.0)
+        })
+        .collect();
+    (coherent, incoherent, segments)
 }
 
 fn scene(c: &mut Criterion) {
-    let triangles = bunny();
+    let bunny = triangles("cornell-bunny.gltf");
     let mut group = c.benchmark_group("bvh build (bunny box)");
     group.sample_size(10);
     group.bench_function("medium", |b| {
-        b.iter(|| black_box(Bvh::build(black_box(&triangles), BvhQuality::Medium)))
+        b.iter(|| black_box(Bvh::build(black_box(&bunny), BvhQuality::Medium)))
     });
     group.finish();
-    let bvh = Bvh::build(&triangles, BvhQuality::Medium);
-    let (coherent, incoherent) = rays();
-    let mut group = c.benchmark_group("closest hit (bunny box)");
-    group.throughput(Throughput::Elements(coherent.len() as u64));
-    group.sample_size(10);
-    group.bench_function("coherent 256x256", |b| {
-        b.iter(|| {
-            coherent
-                .iter()
-                .filter(|r| bvh.intersect(r).is_some())
-                .count()
-        })
-    });
-    group.bench_function("incoherent 65536", |b| {
-        b.iter(|| {
-            incoherent
-                .iter()
-                .filter(|r| bvh.intersect(r).is_some())
-                .count()
-        })
-    });
-    group.finish();
+    let (coherent, incoherent, segments) = rays();
+    for (name, scene) in [
+        ("bunny box", bunny),
+        ("Cornell box", triangles("cornell-box.gltf")),
+    ] {
+        let bvh = Bvh::build(&scene, BvhQuality::Medium);
+        let mut group = c.benchmark_group(format!("rays ({name})"));
+        group.throughput(Throughput::Elements(coherent.len() as u64));
+        group.sample_size(10);
+        let closest = |rays: &[Ray]| rays.iter().filter(|r| bvh.intersect(r).is_some()).count();
+        group.bench_function("closest, coherent 256x256", |b| {
+            b.iter(|| closest(&coherent))
+        });
+        group.bench_function("closest, incoherent 65536", |b| {
+            b.iter(|| closest(&incoherent))
+        });
+        group.bench_function("occluded, segments 65536", |b| {
+            b.iter(|| segments.iter().filter(|r| bvh.occluded(r)).count())
+        });
+        group.finish();
+    }
 }
 
 criterion_group!(benches, scene);

@@ -39,10 +39,10 @@ pub fn intersect_triangle(ray: &Ray, p: [Vec3; 3]) -> Option<TriangleHit> {
 /// computing it per triangle, so the same results bit for bit.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct WatertightRay {
-    origin: Vec3,
+    pub(crate) origin: Vec3,
     /// The axis of the largest |direction| component, which becomes z.
-    kz: u8,
-    shear: Vec3,
+    pub(crate) kz: u8,
+    pub(crate) shear: Vec3,
 }
 
 /// The permutation (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3 as fixed swizzles: indexing a

@@ -1,14 +1,21 @@
+//! The BVH: obvhs builds a binary tree (PLOC with reinsertion), prism collapses it into a
+//! four-wide tree with triangle packets for leaves and traverses it with SSE.
+
+mod packet;
+mod traverse;
+mod wide;
+
 use std::time::Duration;
 
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::builder::build_cwbvh;
-use obvhs::ray::{Ray as ObvhsRay, RayHit};
+use obvhs::bvh2::builder::build_bvh2;
 
 use super::Ray;
 use super::triangle::{TriangleHit, WatertightRay};
+use traverse::{INLINE_STACK, Pending, stack_size};
+use wide::{Source, WideBvh};
 
 /// How much effort the BVH build spends for faster traversal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -20,9 +27,9 @@ pub enum BvhQuality {
     Slow,
 }
 
-/// A triangle's bounds, padded outward by a relative margin. obvhs's slab test has no
-/// floating-point margin, so a ray through a vertex (a corner of its leaf box) could be
-/// culled by rounding: measured, 6 of 8192 rays aimed at the vertices of a closed mesh
+/// A triangle's bounds, padded outward by a relative margin. A slab test rounds, so a ray
+/// through a vertex (a corner of its leaf box) could be culled by rounding: measured with
+/// obvhs's unpadded traversal, 6 of 8192 rays aimed at the vertices of a closed mesh
 /// leaked. The margin (1e-6 of the coordinates' magnitude, far above the slab test's
 /// few-ulp error, far below any triangle) keeps such rays inside the box; the exact test
 /// still decides every hit.
@@ -41,14 +48,12 @@ pub struct SurfaceHit {
     pub hit: TriangleHit,
 }
 
-/// A compressed wide BVH (Ylitie, Karras and Laine, "Efficient incoherent ray traversal on
-/// GPUs through compressed wide BVHs", HPG 2017) over triangles, built by obvhs, traversed
-/// with prism's watertight triangle test.
+/// A four-wide BVH over triangles with packets of four triangles for leaves, traversed
+/// one ray at a time with SSE (Wald, Benthin and Boulos, "Getting rid of packets", RT
+/// 2008), every hit decided by prism's watertight triangle test.
 pub struct Bvh {
-    bvh: Option<CwBvh>,
-    /// The non-degenerate triangles, in input order, and their input indices.
-    triangles: Vec<[Vec3; 3]>,
-    original: Vec<usize>,
+    tree: Option<WideBvh>,
+    triangles: usize,
     skipped: usize,
 }
 
@@ -65,30 +70,37 @@ impl Bvh {
             }
         }
         let skipped = triangles.len() - kept.len();
-        let bvh = (!kept.is_empty()).then(|| {
+        let tree = (!kept.is_empty()).then(|| {
             let bounds: Vec<Aabb> = kept.iter().map(padded_bounds).collect();
-            let params = match quality {
+            let preset = match quality {
                 BvhQuality::Medium => BvhBuildParams::medium_build(),
                 BvhQuality::Slow => BvhBuildParams::slow_build(),
             };
-            build_cwbvh(&bounds, params, &mut Duration::default())
+            // One triangle per binary leaf: the collapse makes the packets.
+            let params = BvhBuildParams {
+                max_prims_per_leaf: 1,
+                ..preset
+            };
+            let binary = build_bvh2(&bounds, params, &mut Duration::default());
+            WideBvh::collapse(&Source {
+                binary: &binary,
+                bounds: &bounds,
+                vertices: &kept,
+                original: &original,
+            })
         });
         Self {
-            bvh,
-            triangles: kept,
-            original,
+            tree,
+            triangles: kept.len(),
             skipped,
         }
     }
 
-    /// Bytes held: BVH nodes and indices, triangles, index map.
+    /// Bytes held: nodes and leaf packets.
     pub fn memory_bytes(&self) -> usize {
-        let tree = self.bvh.as_ref().map_or(0, |b| {
-            std::mem::size_of_val(b.nodes.as_slice())
-                + std::mem::size_of_val(b.primitive_indices.as_slice())
-        });
-        tree + std::mem::size_of_val(self.triangles.as_slice())
-            + std::mem::size_of_val(self.original.as_slice())
+        self.tree.as_ref().map_or(0, |t| {
+            std::mem::size_of_val(t.nodes.as_slice()) + std::mem::size_of_val(t.packets.as_slice())
+        })
     }
 
     /// Triangles left out as degenerate.
@@ -98,56 +110,47 @@ impl Bvh {
 
     /// Triangles in the BVH.
     pub fn len(&self) -> usize {
-        self.triangles.len()
+        self.triangles
     }
 
     /// Whether the BVH holds no triangle.
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.triangles == 0
     }
 
     /// The closest hit along `ray` with 0 < t < `ray.t_max`.
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
-        let bvh = self.bvh.as_ref()?;
+        let tree = self.tree.as_ref()?;
         let watertight = WatertightRay::new(ray)?;
-        let mut best: Option<SurfaceHit> = None;
-        let mut hit = RayHit::none();
-        bvh.ray_traverse(Self::traversal_ray(ray), &mut hit, |r, id| {
-            let index = bvh.primitive_indices[id] as usize;
-            match watertight.intersect(self.triangles[index], r.tmax) {
-                Some(h) => {
-                    best = Some(SurfaceHit {
-                        triangle: self.original[index],
-                        hit: h,
-                    });
-                    h.t
-                }
-                None => f32::INFINITY,
-            }
-        });
-        best
+        let found = with_stack(tree, |stack| tree.closest(ray, &watertight, stack));
+        found.map(|(triangle, hit)| SurfaceHit {
+            triangle: triangle as usize,
+            hit,
+        })
     }
 
     /// Whether anything lies along `ray` with 0 < t < `ray.t_max` (shadow rays): traversal
     /// stops at the first hit found, whichever it is.
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let (Some(bvh), Some(watertight)) = (self.bvh.as_ref(), WatertightRay::new(ray)) else {
+        let (Some(tree), Some(watertight)) = (self.tree.as_ref(), WatertightRay::new(ray)) else {
             return false;
         };
-        !bvh.ray_traverse_miss(Self::traversal_ray(ray), |r, id| {
-            let index = bvh.primitive_indices[id] as usize;
-            watertight
-                .intersect(self.triangles[index], r.tmax)
-                .map_or(f32::INFINITY, |h| h.t)
-        })
+        with_stack(tree, |stack| tree.any(ray, &watertight, stack))
     }
+}
 
-    fn traversal_ray(ray: &Ray) -> ObvhsRay {
-        ObvhsRay::new(
-            Vec3A::from(ray.origin),
-            Vec3A::from(ray.direction),
-            0.0,
-            ray.t_max,
-        )
+/// Runs a traversal with a stack deep enough for `tree`: on the machine stack, no larger
+/// than needed (clearing it is a measurable part of a short traversal), for every tree of
+/// sensible depth; on the heap for the rest.
+fn with_stack<R>(tree: &WideBvh, traverse: impl FnOnce(&mut [Pending]) -> R) -> R {
+    let needed = stack_size(tree.depth);
+    if needed <= 16 {
+        traverse(&mut [Pending::default(); 16])
+    } else if needed <= 32 {
+        traverse(&mut [Pending::default(); 32])
+    } else if needed <= INLINE_STACK {
+        traverse(&mut [Pending::default(); INLINE_STACK])
+    } else {
+        traverse(&mut vec![Pending::default(); needed])
     }
 }

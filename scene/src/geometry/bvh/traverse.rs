@@ -1,0 +1,195 @@
+//! Single-ray traversal of the four-wide BVH: one SSE slab test per node for all four
+//! children, children visited nearest first for closest hits (Wald, Benthin and Boulos,
+//! RT 2008, §4), and leaves tested four triangles at a time.
+
+use glam::Vec4;
+
+use super::packet::RayLanes;
+use super::wide::{ChildRef, LEAF, Node, WideBvh};
+use crate::geometry::Ray;
+use crate::geometry::offset::gamma;
+use crate::geometry::triangle::{TriangleHit, WatertightRay};
+
+/// A node waiting on the stack, with the distance at which the ray enters its bounds.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Pending {
+    child: ChildRef,
+    t_enter: f32,
+}
+
+/// Stack entries a traversal keeps on the machine stack; deeper trees use the heap.
+pub(super) const INLINE_STACK: usize = 64;
+
+/// Entries a traversal of a tree `depth` nodes deep can hold at once: each level leaves at
+/// most three siblings behind.
+pub(super) fn stack_size(depth: usize) -> usize {
+    3 * depth + 1
+}
+
+/// The ray's slab-test set-up.
+struct BoxRay {
+    origin: [Vec4; 3],
+    inverse: [Vec4; 3],
+    /// Per axis, the index in `Node::bounds` of the plane the ray meets first.
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl BoxRay {
+    fn new(ray: &Ray) -> Self {
+        // A zero direction component becomes a tiny one of the same sign, so 1/d is finite
+        // and (bound - origin) / d is never 0 * inf: the ray is then treated as parallel
+        // to within 1e-30, far inside the padding of every box.
+        let inverse = ray.direction.to_array().map(|d| {
+            let d = if d.abs() < 1e-30 {
+                1e-30f32.copysign(d)
+            } else {
+                d
+            };
+            1.0 / d
+        });
+        let near = [0, 1, 2].map(|a| if inverse[a] >= 0.0 { a } else { a + 3 });
+        Self {
+            origin: ray.origin.to_array().map(Vec4::splat),
+            inverse: inverse.map(Vec4::splat),
+            near,
+            far: near.map(|i| (i + 3) % 6),
+        }
+    }
+
+    /// Which children the ray enters before `t_max`, as a bit mask, and where it enters
+    /// each. The exit distance is widened by 1 + 2 gamma(3), the bound on the slab test's
+    /// rounding (*PBR* 4th ed. §6.8.2), so rounding never culls a box the ray touches.
+    #[inline(always)]
+    fn enter(&self, node: &Node, t_max: f32) -> (u32, Vec4) {
+        let slab = |plane: usize, axis: usize| {
+            (node.bounds[plane] - self.origin[axis]) * self.inverse[axis]
+        };
+        let t_enter = slab(self.near[0], 0)
+            .max(slab(self.near[1], 1))
+            .max(slab(self.near[2], 2).max(Vec4::ZERO));
+        let t_exit = slab(self.far[0], 0)
+            .min(slab(self.far[1], 1))
+            .min(slab(self.far[2], 2).min(Vec4::splat(t_max)));
+        let widened = t_exit * Vec4::splat(1.0 + 2.0 * gamma(3));
+        (t_enter.cmple(widened).bitmask(), t_enter)
+    }
+}
+
+impl WideBvh {
+    /// The closest hit along `ray` with 0 < t < `ray.t_max`: the input index of its
+    /// triangle and the scalar watertight test's hit. `stack` holds at least
+    /// [`stack_size`] entries.
+    pub(super) fn closest(
+        &self,
+        ray: &Ray,
+        watertight: &WatertightRay,
+        stack: &mut [Pending],
+    ) -> Option<(u32, TriangleHit)> {
+        let boxes = BoxRay::new(ray);
+        let lanes = RayLanes::new(watertight);
+        let mut best: Option<(u32, TriangleHit)> = None;
+        let mut t_max = ray.t_max;
+        let mut top = 0;
+        let mut current: ChildRef = 0;
+        loop {
+            if current & LEAF != 0 {
+                let packet = &self.packets[(current & !LEAF) as usize];
+                let lanes = lanes.test(packet, t_max);
+                if let Some(lane) = lanes.nearest() {
+                    let hit = lanes.hit(lane);
+                    t_max = hit.t;
+                    best = Some((packet.triangles[lane], hit));
+                }
+                let mut exact = lanes.exact;
+                while exact != 0 {
+                    let lane = exact.trailing_zeros() as usize;
+                    exact &= exact - 1;
+                    if let Some(hit) = watertight.intersect(packet.triangle(lane), t_max) {
+                        t_max = hit.t;
+                        best = Some((packet.triangles[lane], hit));
+                    }
+                }
+            } else {
+                let node = &self.nodes[current as usize];
+                let (mut mask, t_enter) = boxes.enter(node, t_max);
+                if mask != 0 {
+                    if mask & (mask - 1) == 0 {
+                        current = node.children[mask.trailing_zeros() as usize];
+                        continue;
+                    }
+                    // Push the children hit, keeping the pushed run sorted nearest on top.
+                    let t_enter = t_enter.to_array();
+                    let base = top;
+                    while mask != 0 {
+                        let lane = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        stack[top] = Pending {
+                            child: node.children[lane],
+                            t_enter: t_enter[lane],
+                        };
+                        let mut i = top;
+                        while i > base && stack[i - 1].t_enter < stack[i].t_enter {
+                            stack.swap(i - 1, i);
+                            i -= 1;
+                        }
+                        top += 1;
+                    }
+                    top -= 1;
+                    current = stack[top].child;
+                    continue;
+                }
+            }
+            // Resume with the nearest pending node the ray can still reach before t_max.
+            loop {
+                if top == 0 {
+                    return best;
+                }
+                top -= 1;
+                if stack[top].t_enter <= t_max {
+                    current = stack[top].child;
+                    break;
+                }
+            }
+        }
+    }
+
+    /// Whether any triangle lies along `ray` with 0 < t < `ray.t_max`; the first hit found
+    /// ends the search.
+    pub(super) fn any(&self, ray: &Ray, watertight: &WatertightRay, stack: &mut [Pending]) -> bool {
+        let boxes = BoxRay::new(ray);
+        let lanes = RayLanes::new(watertight);
+        let t_max = ray.t_max;
+        stack[0].child = 0;
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let current = stack[top].child;
+            if current & LEAF != 0 {
+                let packet = &self.packets[(current & !LEAF) as usize];
+                let lanes = lanes.test(packet, t_max);
+                if lanes.hits != 0 {
+                    return true;
+                }
+                let mut exact = lanes.exact;
+                while exact != 0 {
+                    let lane = exact.trailing_zeros() as usize;
+                    exact &= exact - 1;
+                    if watertight.intersect(packet.triangle(lane), t_max).is_some() {
+                        return true;
+                    }
+                }
+            } else {
+                let node = &self.nodes[current as usize];
+                let (mut mask, _) = boxes.enter(node, t_max);
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    stack[top].child = node.children[lane];
+                    top += 1;
+                }
+            }
+        }
+        false
+    }
+}
