@@ -43,6 +43,7 @@
 
 pub mod distribution;
 mod error;
+mod lanes_exp;
 pub mod mis;
 pub mod stats;
 pub mod stream;

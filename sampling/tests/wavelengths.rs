@@ -75,6 +75,37 @@ fn visible_normalization_is_derived_not_pasted() {
     assert!((peak - 0.003_939_804_2).abs() < 1e-9, "{peak}");
 }
 
+/// The lane densities a package uses are the f64 densities to within 1e-6 relative,
+/// everywhere: inside the range, at its ends, just outside it and at NaN.
+#[test]
+fn lane_densities_are_the_densities() {
+    for range in ranges() {
+        let (lo, hi) = (range.min(), range.max());
+        for (name, d) in samplers(range) {
+            let mut lambdas = vec![
+                lo.next_down(),
+                hi.next_up(),
+                0.0,
+                -1.0,
+                1e30,
+                f32::NAN,
+                lo,
+                hi,
+            ];
+            lambdas.extend((0..4000).map(|i| lo + (hi - lo) * i as f32 / 4000.0));
+            for chunk in lambdas.chunks_exact(8) {
+                let lanes = d.pdf_lanes(&<[f32; 8]>::try_from(chunk).unwrap());
+                for (l, lane) in chunk.iter().zip(lanes) {
+                    let exact = d.pdf(f64::from(*l));
+                    let error = (f64::from(lane) - exact).abs();
+                    assert!(error <= 1e-6 * exact, "{name} at {l}: {lane} vs {exact}");
+                    assert_eq!(lane > 0.0, exact > 0.0, "{name} at {l}");
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn densities_integrate_to_one_and_invert() {
     for range in ranges() {

@@ -1,6 +1,7 @@
 use super::WavelengthRange;
-use crate::distribution::{PiecewiseConstant1D, clamp_unit};
+use crate::distribution::{PiecewiseConstant1D, clamp_unit, density_f32};
 use crate::error::SamplingError;
+use crate::lanes_exp::exp_lanes;
 
 /// Centre of the visible-importance density, nm (Radziszewski, Boryczko and Alda, "An
 /// improved technique for full spectral rendering", WSCG 2009; used by pbrt-v4 and
@@ -184,6 +185,32 @@ impl WavelengthDistribution {
             WavelengthDistribution::Tabulated { histogram, .. } => {
                 histogram.pdf(lambda.min(hi - (hi - lo) * 1e-12))
             }
+        }
+    }
+
+    /// The densities at each lane's `lambda` as f32, per nm (0 outside the range): what
+    /// [`WavelengthDistribution::pdf`] gives, to within 1e-6 relative, and never 0 inside
+    /// the range where `pdf` is positive. The visible density is computed on all lanes at
+    /// once, in f32 (a package evaluates it per lane per path).
+    pub fn pdf_lanes<const N: usize>(&self, lambda: &[f32; N]) -> [f32; N] {
+        match self {
+            WavelengthDistribution::Visible {
+                range,
+                t_min,
+                t_max,
+            } => {
+                let scale = (VISIBLE_SHARPNESS * 4.0 / (t_max - t_min)) as f32;
+                let (center, sharpness) = (VISIBLE_CENTER_NM as f32, VISIBLE_SHARPNESS as f32);
+                let e = exp_lanes(lambda.map(|l| -2.0 * ((l - center) * sharpness).abs()));
+                std::array::from_fn(|j| {
+                    if lambda[j] >= range.min() && lambda[j] <= range.max() {
+                        (scale * e[j] / ((1.0 + e[j]) * (1.0 + e[j]))).max(f32::MIN_POSITIVE)
+                    } else {
+                        0.0
+                    }
+                })
+            }
+            _ => lambda.map(|l| density_f32(self.pdf(f64::from(l)))),
         }
     }
 

@@ -85,21 +85,20 @@ impl<const N: usize> WavelengthPackage<N> {
         // The renderer uses the f32 wavelength, so its density is evaluated there; if
         // rounding to f32 crossed into a zero-density bin, step back one ulp towards the
         // sampled f64 value.
-        let lanes: [(f32, f64); N] = lambda_f64.map(|l| {
-            let narrow = range.clamp(l as f32);
-            let pdf = distribution.pdf(f64::from(narrow));
-            if pdf > 0.0 {
-                return (narrow, pdf);
+        let mut lambda = lambda_f64.map(|l| range.clamp(l as f32));
+        let mut hero_pdf = distribution.pdf_lanes(&lambda);
+        for j in 0..N {
+            if hero_pdf[j] == 0.0 {
+                let l = lambda_f64[j];
+                let narrow = lambda[j];
+                lambda[j] = range.clamp(if f64::from(narrow) > l {
+                    narrow.next_down()
+                } else {
+                    narrow.next_up()
+                });
+                hero_pdf[j] = density_f32(distribution.pdf(f64::from(lambda[j])));
             }
-            let stepped = range.clamp(if f64::from(narrow) > l {
-                narrow.next_down()
-            } else {
-                narrow.next_up()
-            });
-            (stepped, distribution.pdf(f64::from(stepped)))
-        });
-        let lambda = lanes.map(|(l, _)| l);
-        let hero_pdf = lanes.map(|(_, p)| density_f32(p));
+        }
         let mut package = Self {
             lambda,
             hero_pdf,
