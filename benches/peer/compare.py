@@ -45,7 +45,9 @@ def main():
     ap.add_argument("scene", choices=SCENES)
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--width", type=int, default=256)
-    ap.add_argument("--depth", type=int, default=-1)
+    ap.add_argument("--depth", type=int, default=-1,
+                    help="Mitsuba's max_depth (path segments, camera ray included; -1 unbounded): "
+                         "prism renders D - 1 bounces, the same paths")
     ap.add_argument("--variants", default="scalar_spectral")
     ap.add_argument("--reference", help="a converged EXR of the same scene and size")
     ap.add_argument("--grid", type=int, default=8)
@@ -56,8 +58,14 @@ def main():
     prism_exr = os.path.join(out, "prism.exr")
     cmd = [prism, "render", os.path.join(ROOT, "scenes", SCENES[a.scene]), "--spp", str(a.spp),
            "--width", str(a.width), "--height", str(a.width), "-o", prism_exr, "--stats"] + a.prism_args.split()
-    if a.depth >= 0:
-        cmd += ["--max-depth", str(a.depth)]
+    if a.depth == 0 or a.depth < -1:
+        ap.error("--depth is -1 (unbounded) or at least 1")
+    if a.depth >= 1:
+        # Mitsuba's max_depth counts segments (1: emitters seen directly); prism's
+        # --max-depth counts bounces (0: the same). Equal numbers would give prism one
+        # bounce more: measured 5.9% region differences at depth 8 on the box, 0.96% with
+        # this (within noise at 256 spp).
+        cmd += ["--max-depth", str(a.depth - 1)]
     prism_stats = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
     result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth,
               "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes")}}
