@@ -63,7 +63,36 @@ impl Observer {
         }
         let i = (x as usize).min(CMF_LEN - 2);
         let t = x - i as f64;
-        self.tables()
-            .map(|table| (1.0 - t) * table[i] + t * table[i + 1])
+        // The film calls this for every lane of every sample: both nodes' three values
+        // are two adjacent rows of one table rather than six loads from three.
+        let table = match self {
+            Observer::Cie1931 => &CIE1931_ROWS,
+            Observer::Cie1964 => &CIE1964_ROWS,
+        };
+        let (a, b) = (table[i], table[i + 1]);
+        [0, 1, 2].map(|k| (1.0 - t) * a[k] + t * b[k])
     }
 }
+
+/// The three tables of an observer as rows (x-bar, y-bar, z-bar) per nm, made at compile
+/// time from the generated tables, so there is still one source of the data.
+const fn rows(tables: [&[f64; CMF_LEN]; 3]) -> [[f64; 3]; CMF_LEN] {
+    let mut rows = [[0.0; 3]; CMF_LEN];
+    let mut i = 0;
+    while i < CMF_LEN {
+        rows[i] = [tables[0][i], tables[1][i], tables[2][i]];
+        i += 1;
+    }
+    rows
+}
+
+static CIE1931_ROWS: [[f64; 3]; CMF_LEN] = rows([
+    &cie_cmf::CIE1931_X,
+    &cie_cmf::CIE1931_Y,
+    &cie_cmf::CIE1931_Z,
+]);
+static CIE1964_ROWS: [[f64; 3]; CMF_LEN] = rows([
+    &cie_cmf::CIE1964_X,
+    &cie_cmf::CIE1964_Y,
+    &cie_cmf::CIE1964_Z,
+]);
