@@ -6,6 +6,14 @@
   python3 benches/peer/compare.py box --spp 64 --width 256
   python3 benches/peer/compare.py box --reference ref.exr   # also compare against a reference
 
+A reference is a converged render of the same scene and size, e.g. prism's own with another
+seed: `prism render scenes/cornell-box.gltf --width 256 --height 256 --spp 4096 --seed 999
+-o ref.exr` (prism and Mitsuba agree within 1% per region; at 64 spp the error is noise).
+With one, each renderer's relative MSE is reported (prism compare's: the mean of
+(a - b)^2 / (b^2 + 0.01)), and for each peer the error ratio (prism / peer, at equal spp:
+<= 1 is "equal or lower error") and the efficiency ratio, time times error of the peer over
+prism's: how much sooner prism reaches the same error.
+
 The Mitsuba side is ../shared/scenes/peer/mitsuba_peer.py (the same Cornell box and bunny box
 as the glTF files). Prints one JSON object. Region agreement: the image is cut into a
 GRID x GRID grid; for each region and channel the relative difference of the means
@@ -38,6 +46,11 @@ def agreement(a, b, grid):
     rel = np.abs(ra - rb)[signal] / rb[signal]
     return {"max_rel": float(rel.max()), "mean_rel": float(rel.mean()), "regions": int(signal.sum()),
             "mean_ratio": [float(x) for x in ra.mean(axis=(0, 1)) / rb.mean(axis=(0, 1))]}
+
+
+def relmse(img, ref):
+    """prism compare's relative MSE: noise relative to the reference, floored in the dark."""
+    return float(np.mean((img - ref) ** 2 / (ref ** 2 + 0.01)))
 
 
 def main():
@@ -83,6 +96,14 @@ def main():
     if a.reference:
         ref = read_exr(a.reference)
         result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
+        errors = {name: relmse(img, ref) for name, img in images.items()}
+        result["prism"]["relmse"] = errors["prism"]
+        for variant in a.variants.split(","):
+            peer = result[variant]
+            peer["relmse"] = errors[variant]
+            peer["prism_error_ratio"] = errors["prism"] / errors[variant]
+            peer["prism_efficiency_ratio"] = (peer["seconds"] * errors[variant]) / (
+                result["prism"]["seconds"] * errors["prism"])
     print(json.dumps(result))
 
 
