@@ -93,7 +93,11 @@ fn traversal_equals_brute_force() {
             .enumerate()
             .filter_map(|(i, t)| intersect_triangle(&ray, *t).map(|h| (i, h.t)))
             .min_by(|a, b| a.1.total_cmp(&b.1));
-        let found = bvh.intersect(&ray).map(|h| (h.triangle, h.hit.t));
+        let hit = bvh.intersect(&ray);
+        if let Some(h) = hit {
+            assert_eq!(h.vertices, mesh[h.triangle], "ray {k}: the hit's vertices");
+        }
+        let found = hit.map(|h| (h.triangle, h.hit.t));
         assert_eq!(found.map(|f| f.1), brute.map(|b| b.1), "ray {k}");
     }
 }

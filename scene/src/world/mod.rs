@@ -290,7 +290,8 @@ impl Scene {
     /// The closest hit along `ray`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let hit = self.bvh.intersect(ray)?;
-        let v = self.triangles[hit.triangle];
+        // The BVH's copy of the vertices: the same values, already in cache.
+        let v = hit.vertices;
         let b = hit.hit.barycentric;
         let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
         let normal = triangle_normal(v);

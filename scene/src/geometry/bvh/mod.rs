@@ -46,6 +46,8 @@ pub struct SurfaceHit {
     pub triangle: usize,
     /// Ray parameter and barycentrics.
     pub hit: TriangleHit,
+    /// The triangle's vertices, as given to [`Bvh::build`].
+    pub vertices: [Vec3; 3],
 }
 
 /// A four-wide BVH over triangles with packets of four triangles for leaves, traversed
@@ -123,9 +125,10 @@ impl Bvh {
         let tree = self.tree.as_ref()?;
         let watertight = WatertightRay::new(ray)?;
         let found = with_stack(tree, |stack| tree.closest(ray, &watertight, stack));
-        found.map(|(triangle, hit)| SurfaceHit {
+        found.map(|(triangle, hit, vertices)| SurfaceHit {
             triangle: triangle as usize,
             hit,
+            vertices,
         })
     }
 

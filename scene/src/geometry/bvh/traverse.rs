@@ -2,9 +2,9 @@
 //! children, children visited nearest first for closest hits (Wald, Benthin and Boulos,
 //! RT 2008, §4), and leaves tested four triangles at a time.
 
-use glam::Vec4;
+use glam::{Vec3, Vec4};
 
-use super::packet::RayLanes;
+use super::packet::{Packet, RayLanes};
 use super::wide::{ChildRef, LEAF, Node, WideBvh};
 use crate::geometry::Ray;
 use crate::geometry::offset::gamma;
@@ -78,17 +78,19 @@ impl BoxRay {
 
 impl WideBvh {
     /// The closest hit along `ray` with 0 < t < `ray.t_max`: the input index of its
-    /// triangle and the scalar watertight test's hit. `stack` holds at least
-    /// [`stack_size`] entries.
+    /// triangle, the scalar watertight test's hit, and the triangle's vertices (read from
+    /// its packet, already in cache, so that callers need not fetch them again).
+    /// `stack` holds at least [`stack_size`] entries.
     pub(super) fn closest(
         &self,
         ray: &Ray,
         watertight: &WatertightRay,
         stack: &mut [Pending],
-    ) -> Option<(u32, TriangleHit)> {
+    ) -> Option<(u32, TriangleHit, [Vec3; 3])> {
         let boxes = BoxRay::new(ray);
         let lanes = RayLanes::new(watertight);
-        let mut best: Option<(u32, TriangleHit)> = None;
+        // The packet and lane of the closest hit so far.
+        let mut best: Option<(&Packet, usize, TriangleHit)> = None;
         let mut t_max = ray.t_max;
         let mut top = 0;
         let mut current: ChildRef = 0;
@@ -99,7 +101,7 @@ impl WideBvh {
                 if let Some(lane) = lanes.nearest() {
                     let hit = lanes.hit(lane);
                     t_max = hit.t;
-                    best = Some((packet.triangles[lane], hit));
+                    best = Some((packet, lane, hit));
                 }
                 let mut exact = lanes.exact;
                 while exact != 0 {
@@ -107,7 +109,7 @@ impl WideBvh {
                     exact &= exact - 1;
                     if let Some(hit) = watertight.intersect(packet.triangle(lane), t_max) {
                         t_max = hit.t;
-                        best = Some((packet.triangles[lane], hit));
+                        best = Some((packet, lane, hit));
                     }
                 }
             } else {
@@ -143,7 +145,9 @@ impl WideBvh {
             // Resume with the nearest pending node the ray can still reach before t_max.
             loop {
                 if top == 0 {
-                    return best;
+                    return best.map(|(packet, lane, hit)| {
+                        (packet.triangles[lane], hit, packet.triangle(lane))
+                    });
                 }
                 top -= 1;
                 if stack[top].t_enter <= t_max {
