@@ -23,6 +23,10 @@
 //!   the radiance gathered so far goes to the film with the whole package's densities,
 //!   then the secondaries end and the hero carries on alone with its density divided by C
 //!   (the film never sees a terminated lane as if it had been traced).
+//! - **Russian roulette on what a path will bring back**: survival follows the throughput
+//!   with the 1 / eta^2 of each refraction undone (it returns when the path leaves the
+//!   glass), so paths are not ended for being inside glass; measured, this more than
+//!   doubled the efficiency of the glass scenes (docs/trade-offs.md, "Russian roulette").
 //! - **Non-finite samples are rejected and counted**, never written: they count as zero
 //!   in the pixel's normalization, and the count is reported.
 //! - **RGB never reaches here.** The scene hands over spectra and BSDFs; this crate does not
@@ -35,8 +39,9 @@
 //!   sampling", EGSR 2014, §4 (packages, spectral MIS).
 //! - E. Veach, 1997 (above), §5.3 (adjoint BSDFs with shading normals), §10.2 (light
 //!   tracing and the camera's importance).
-//! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §13.4 (path tracing with NEE),
-//!   §5.4 (film), §4.5.4 (sampled spectra to XYZ).
+//! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §13.4 (path tracing with NEE, and
+//!   its `etaScale` for roulette through glass), §5.4 (film), §4.5.4 (sampled spectra
+//!   to XYZ).
 
 mod accumulation;
 mod bands;

@@ -130,6 +130,9 @@ impl Tracer<'_> {
         let mut previous: Option<(f32, Vec3)> = None;
         let mut rays = 0u64;
         let mut depth = 0u32;
+        // The product of eta^2 over the refractions so far: beta carries 1 / eta^2 from
+        // each, which Russian roulette must not read as lost energy.
+        let mut eta_scale = 1.0f32;
         // Whether the path so far is one that light paths carry: a first vertex that is
         // neither a delta nor fluorescent, then only delta bounces (at least one).
         let mut caustic_prefix = false;
@@ -259,6 +262,7 @@ impl Tracer<'_> {
                 break;
             }
             beta *= sample.f * (sample.wi.z.abs() / pdf);
+            eta_scale *= sample.eta * sample.eta;
             if sample.wavelength_dependent && !package.secondary_terminated() {
                 // The secondaries' light so far was estimated with the whole package; it
                 // goes to the film with the package's densities before they change.
@@ -287,9 +291,11 @@ impl Tracer<'_> {
             // Russian roulette on the throughput, from the third bounce: survivors are
             // divided by their survival probability, so it is unbiased. Survival is capped
             // at 0.95 so that a path in a closed scene of albedo 1 (throughput never below
-            // 1) still ends.
+            // 1) still ends. The throughput is read without the refractions' 1 / eta^2
+            // (what a path inside glass regains on leaving it): with it, paths inside
+            // glass died at every bounce with probability 1 - 1/eta^2 (56% at 1.5).
             if depth >= ROULETTE_DEPTH {
-                let q = beta.max_value().min(0.95);
+                let q = (beta.max_value() * eta_scale).min(0.95);
                 if q.is_nan() || q <= 0.0 || u_roulette >= q {
                     break;
                 }

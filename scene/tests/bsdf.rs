@@ -263,6 +263,28 @@ mod dielectric {
         let s = plain.sample(inside, 0.99, TransportMode::Radiance).unwrap();
         assert!(s.wi.z < 0.0, "TIR stays inside");
     }
+
+    /// Each sample names the relative index it crossed, the one whose 1 / eta^2 radiance
+    /// transport applies and Russian roulette undoes: eta entering, 1 / eta leaving, 1 for
+    /// a reflection; the radiance weight times eta^2 is the importance weight.
+    #[test]
+    fn samples_report_the_index_crossed() {
+        let glass = SmoothDielectric::new([1.5f32; 4]);
+        for (wo, expected) in [
+            (Vec3::new(0.3, 0.2, 0.9).normalize(), 1.5f32),
+            (Vec3::new(0.1, -0.2, -0.95).normalize(), 1.0 / 1.5),
+        ] {
+            let radiance = glass.sample(wo, 0.999, TransportMode::Radiance).unwrap();
+            let importance = glass.sample(wo, 0.999, TransportMode::Importance).unwrap();
+            assert!(radiance.wi.z * wo.z < 0.0, "a refraction");
+            assert_eq!(radiance.eta, expected);
+            let weight = |s: &prism_scene::bsdf::BsdfSample<4>| s.f[0] / s.pdf[0];
+            let undone = weight(&radiance) * radiance.eta * radiance.eta;
+            assert!((undone - weight(&importance)).abs() < 1e-5 * weight(&importance));
+            let reflected = glass.sample(wo, 0.0, TransportMode::Radiance).unwrap();
+            assert!(reflected.wi.z * wo.z > 0.0 && reflected.eta == 1.0);
+        }
+    }
 }
 
 mod conductor {
@@ -421,6 +443,43 @@ mod rough_dielectric {
             eta: [1.5; 4],
             mode,
         }
+    }
+
+    /// Refractions report the index crossed (1.5 entering, 1 / 1.5 leaving) and
+    /// reflections 1, and the radiance BSDF is the importance one over eta^2.
+    #[test]
+    fn samples_report_the_index_crossed() {
+        let (radiance, importance) = (
+            glass(0.4, TransportMode::Radiance),
+            glass(0.4, TransportMode::Importance),
+        );
+        let mut stream = IndependentStream::new(7, 0, 0);
+        let (mut refracted, mut reflected) = (0, 0);
+        for wo in [
+            Vec3::new(0.2, 0.1, 0.97).normalize(),
+            Vec3::new(0.3, -0.2, -0.9).normalize(),
+        ] {
+            for _ in 0..2000 {
+                let (uc, u) = (stream.next_1d(), stream.next_2d());
+                let Some(s) = radiance.sample(wo, uc, u) else {
+                    continue;
+                };
+                if s.wi.z * wo.z < 0.0 {
+                    refracted += 1;
+                    let expected = if wo.z > 0.0 { 1.5 } else { 1.0 / 1.5 };
+                    assert_eq!(s.eta, expected);
+                    let f = importance.f(wo, s.wi)[0];
+                    assert!((s.f[0] * s.eta * s.eta - f).abs() <= 1e-5 * f.abs().max(1e-6));
+                } else {
+                    reflected += 1;
+                    assert_eq!(s.eta, 1.0);
+                }
+            }
+        }
+        assert!(
+            refracted > 100 && reflected > 100,
+            "{refracted} / {reflected}"
+        );
     }
 
     /// Sampling over the whole sphere (reflection and transmission) matches the density,

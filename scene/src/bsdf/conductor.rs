@@ -65,6 +65,7 @@ impl<const N: usize> SmoothConductor<N> {
             pdf: [1.0; N],
             delta: true,
             wavelength_dependent: false,
+            eta: 1.0,
         })
     }
 }

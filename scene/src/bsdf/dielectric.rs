@@ -97,6 +97,7 @@ impl<const N: usize> SmoothDielectric<N> {
                 pdf: reflectance,
                 delta: true,
                 wavelength_dependent: false,
+                eta: 1.0,
             });
         }
         let (wi, eta_hero) = refract(wo, self.eta[0])?;
@@ -131,6 +132,7 @@ impl<const N: usize> SmoothDielectric<N> {
             pdf,
             delta: true,
             wavelength_dependent: dispersive,
+            eta: eta_hero,
         })
     }
 }

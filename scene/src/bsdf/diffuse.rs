@@ -47,6 +47,7 @@ impl<const N: usize> Diffuse<N> {
             pdf: [pdf; N],
             delta: false,
             wavelength_dependent: false,
+            eta: 1.0,
         })
     }
 

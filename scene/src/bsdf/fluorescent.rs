@@ -182,6 +182,7 @@ impl FluorescentDiffuse<'_> {
                 pdf,
                 delta: false,
                 wavelength_dependent: false,
+                eta: 1.0,
             },
             lambda_in,
             lambda_pdf,

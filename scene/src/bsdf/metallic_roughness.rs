@@ -129,6 +129,7 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             pdf: [pdf; N],
             delta: false,
             wavelength_dependent: false,
+            eta: 1.0,
         })
     }
 }

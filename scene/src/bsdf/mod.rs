@@ -47,6 +47,12 @@ pub struct BsdfSample<const N: usize> {
     /// Whether the direction was chosen for the hero wavelength only (a dispersive delta):
     /// the path must terminate its secondary wavelengths.
     pub wavelength_dependent: bool,
+    /// The relative index of refraction the hero lane crossed (the index of the side `wi`
+    /// points into over that of `wo`'s side; 1 for a reflection). Radiance transported
+    /// through a refraction is scaled by 1 / eta^2, and Russian roulette undoes that
+    /// scale so that it does not end paths inside glass for being there (*PBR* 4th ed.
+    /// §13.4, `etaScale`).
+    pub eta: f32,
 }
 
 /// cos(theta) of a local direction.

@@ -76,6 +76,7 @@ impl<const N: usize> RoughConductor<N> {
             pdf: [pdf; N],
             delta: false,
             wavelength_dependent: false,
+            eta: 1.0,
         })
     }
 }

@@ -152,6 +152,11 @@ impl<const N: usize> RoughDielectric<N> {
             pdf,
             delta: false,
             wavelength_dependent: dispersive,
+            eta: if transmitted {
+                Self::crossing(self.eta[0], wo)
+            } else {
+                1.0
+            },
         })
     }
 }
