@@ -64,8 +64,12 @@ pub(super) struct RayLanes {
 
 impl RayLanes {
     pub(super) fn new(ray: &WatertightRay) -> Self {
-        let kz = ray.kz as usize;
-        let axes = [(kz + 1) % 3, (kz + 2) % 3, kz];
+        // (kz + 1, kz + 2, kz) mod 3, without a division.
+        let axes = match ray.kz {
+            0 => [1, 2, 0],
+            1 => [2, 0, 1],
+            _ => [0, 1, 2],
+        };
         Self {
             axes,
             origin: axes.map(|a| Vec4::splat(ray.origin[a])),

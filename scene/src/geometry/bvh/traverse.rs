@@ -48,12 +48,12 @@ impl BoxRay {
             };
             1.0 / d
         });
-        let near = [0, 1, 2].map(|a| if inverse[a] >= 0.0 { a } else { a + 3 });
+        let positive = inverse.map(|i| i >= 0.0);
         Self {
             origin: ray.origin.to_array().map(Vec4::splat),
             inverse: inverse.map(Vec4::splat),
-            near,
-            far: near.map(|i| (i + 3) % 6),
+            near: [0, 1, 2].map(|a| if positive[a] { a } else { a + 3 }),
+            far: [0, 1, 2].map(|a| if positive[a] { a + 3 } else { a }),
         }
     }
 
