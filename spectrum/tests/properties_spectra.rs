@@ -249,3 +249,53 @@ fn packages_at_the_edges() {
         assert!(!ok(550.0, bad), "density {bad}");
     }
 }
+
+proptest! {
+    /// Blackbody lanes (the path's per-sample form) agree with the f64 evaluation: the
+    /// shape with peak 1 within 1.2e-5 relative (the rounding of x = hc / lambda k T in f32
+    /// grows with x: 1e-6 near the peak, 1e-5 where the value is 1e-36 of it), or 1e-29
+    /// absolute where f32's expm1 overflows; absolute radiance as f64 rounded; 0 and
+    /// never NaN for any bit pattern of a wavelength, at any temperature.
+    #[test]
+    fn blackbody_lanes_match_evaluate(
+        kelvin in prop_oneof![log_uniform(1.0, 1e6), Just(f64::MIN_POSITIVE), Just(1e300)],
+        lambdas in prop::array::uniform8(any_f32_bits()),
+    ) {
+        for b in [Blackbody::normalized(kelvin).unwrap(), Blackbody::new(kelvin).unwrap()] {
+            let lanes = b.evaluate_lanes(&lambdas);
+            for (l, v) in lambdas.iter().zip(lanes) {
+                let want = b.evaluate(f64::from(*l));
+                prop_assert!(!v.is_nan(), "{b:?} at {l}: NaN");
+                if want as f32 != f32::INFINITY {
+                    prop_assert!(v.is_finite(), "{b:?} at {l}: {v}");
+                    prop_assert!(
+                        (f64::from(v) - want).abs() <= 1.2e-5 * want.abs() + 1e-29,
+                        "{b:?} at {l}: lanes {v}, evaluate {want}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// Gaussian lanes agree with the f64 evaluation within 1.2e-5 relative (the exponent's
+    /// f32 rounding grows with its size: 1e-7 near the centre) or 1e-37 absolute where f32
+    /// underflows, for any centre, width and peak and any wavelength bits.
+    #[test]
+    fn gaussian_lanes_match_evaluate(
+        center in prop_oneof![200.0..900.0f64, any_f64()],
+        fwhm in prop_oneof![log_uniform(1e-3, 1e4), Just(f64::MAX)],
+        peak in prop_oneof![0.0..1e3f64, Just(0.0), Just(1e30), Just(-1.0)],
+        lambdas in prop::array::uniform8(any_f32_bits()),
+    ) {
+        let Ok(g) = Gaussian::new(center, fwhm, peak) else { return Ok(()) };
+        let lanes = g.evaluate_lanes(&lambdas);
+        for (l, v) in lambdas.iter().zip(lanes) {
+            let want = g.evaluate(f64::from(*l));
+            prop_assert!(v.is_finite(), "{g:?} at {l}: {v}");
+            prop_assert!(
+                (f64::from(v) - want).abs() <= 1.2e-5 * want.abs() + 1e-37 * peak.abs().max(1.0),
+                "{g:?} at {l}: lanes {v}, evaluate {want}"
+            );
+        }
+    }
+}

@@ -74,6 +74,36 @@ impl Blackbody {
     pub fn radiance_si(&self, lambda_m: f64) -> f64 {
         planck_radiance(lambda_m, self.kelvin)
     }
+
+    /// [`Spectrum::evaluate`] at every lane of a package, in f32: what a path pays per
+    /// light sample. The shape with peak 1 is the same ratio in f32 (one `expm1f` instead
+    /// of an f64 `expm1` per lane), within 1.2e-5 relative of `evaluate` (1e-6 near the
+    /// peak: x = hc / lambda k T rounds in f32, and e^x's error grows with x); where that
+    /// `expm1f` overflows (x > 88.7, below a sixteenth of the peak wavelength, values
+    /// under 1e-30) it is 0. Absolute radiance keeps the f64 evaluation. 0 for
+    /// non-positive or non-finite wavelengths, never NaN.
+    pub fn evaluate_lanes<const N: usize>(&self, lambda: &[f32; N]) -> [f32; N] {
+        match self.normalization {
+            Normalization::Absolute => lambda.map(|l| self.evaluate(f64::from(l)) as f32),
+            Normalization::PeakOne => {
+                let peak = self.peak_nm() as f32;
+                lambda.map(|l| {
+                    if !(l > 0.0 && l.is_finite()) {
+                        return 0.0;
+                    }
+                    let ratio = peak / l;
+                    let r2 = ratio * ratio;
+                    let value =
+                        r2 * r2 * ratio * (WIEN_X_EXPM1 as f32) / (WIEN_X as f32 * ratio).exp_m1();
+                    if value.is_finite() {
+                        value.min(1.0)
+                    } else {
+                        0.0
+                    }
+                })
+            }
+        }
+    }
 }
 
 /// e^WIEN_X - 1, the peak's denominator (a libm call per evaluation otherwise: measured

@@ -42,6 +42,24 @@ impl Gaussian {
     }
 }
 
+impl Gaussian {
+    /// [`Spectrum::evaluate`] at every lane of a package with one `expf` per lane instead
+    /// of an f64 `exp` (the distance to the centre and the peak stay f64, so no scale of
+    /// parameters can make an infinity times a zero): within 1.2e-5 relative of
+    /// `evaluate` (1e-7 near the centre; the exponent rounds to f32, and the error grows
+    /// with it), or 1e-37 absolute where f32 underflows. 0 for non-finite wavelengths, never NaN.
+    pub fn evaluate_lanes<const N: usize>(&self, lambda: &[f32; N]) -> [f32; N] {
+        lambda.map(|l| {
+            if !l.is_finite() {
+                return 0.0;
+            }
+            let t = (f64::from(l) - self.center_nm) / self.sigma_nm;
+            let falloff = ((-0.5 * t * t) as f32).exp();
+            (self.peak * f64::from(falloff)) as f32
+        })
+    }
+}
+
 impl Spectrum for Gaussian {
     /// 0 for non-finite wavelengths.
     fn evaluate(&self, lambda_nm: f64) -> f64 {
