@@ -39,10 +39,10 @@ const ROULETTE_DEPTH: u32 = 3;
 /// The throughput below which Russian roulette puts a path at risk: it survives with
 /// probability min(0.95, throughput / ROULETTE_THROUGHPUT), so survivors carry at least
 /// this much. Survival equal to the throughput (1 here) ended too many paths that still
-/// had light to bring: measured on five scenes at equal time (docs/trade-offs.md), 0.25
-/// is 10-23% more efficient on the Cornell box, the bunny box, the glass bunny and the
-/// effects stage and twice as efficient under the blacklight, for 5-9% fewer paths per
-/// second; 0.5 and 0.125 gain less.
+/// had light to bring: measured as efficiency, 1 / (seconds x relative MSE), on five
+/// scenes (docs/trade-offs.md), 0.25 is 10-23% more efficient on the Cornell box, the
+/// bunny box, the glass bunny and the effects stage and twice as efficient under the
+/// blacklight, for 5-13% fewer paths per second; 0.5 and 0.125 gain less.
 const ROULETTE_THROUGHPUT: f32 = 0.25;
 
 /// An orthonormal frame whose z is a given unit normal.
