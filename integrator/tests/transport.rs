@@ -111,23 +111,36 @@ const SAMPLERS: [LambdaSampler; 4] = [
     LambdaSampler::Spd,
 ];
 
-fn furnace_scene() -> Scene {
-    let triangles = icosphere(2);
+/// A furnace: `triangles` (material `triangle_material[i]` of `materials`) in a uniform
+/// environment of radiance 1, seen from +z by an orthographic camera of half-size `half`.
+fn furnace(
+    triangles: Vec<[Vec3; 3]>,
+    triangle_material: Vec<u32>,
+    materials: Vec<Material>,
+    half: f32,
+) -> Scene {
     Scene::new(SceneParts {
         attributes: Default::default(),
-        triangle_material: vec![0; triangles.len()],
+        triangle_material,
         triangles,
-        materials: vec![Material::Diffuse {
-            reflectance: SceneSpectrum::Constant(1.0),
-        }],
+        materials,
         emission: vec![],
         lights: vec![Light::Environment {
             radiance: SceneSpectrum::Constant(1.0),
         }],
-        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 0.6),
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), half),
         quality: BvhQuality::Medium,
     })
     .unwrap()
+}
+
+fn furnace_scene() -> Scene {
+    let triangles = icosphere(2);
+    let white = Material::Diffuse {
+        reflectance: SceneSpectrum::Constant(1.0),
+    };
+    let triangle_material = vec![0; triangles.len()];
+    furnace(triangles, triangle_material, vec![white], 0.6)
 }
 
 /// A white (albedo 1) sphere in a uniform environment of radiance 1 is invisible: every
@@ -489,28 +502,15 @@ fn dispersive_glass_furnace_returns_the_environment() {
     let mut triangle_material = vec![0; glass_sphere.len()];
     triangle_material.extend(vec![1; white_sphere.len()]);
     let triangles = [glass_sphere, white_sphere].concat();
-    let scene = Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangle_material,
-        triangles,
-        materials: vec![
-            Material::Dielectric {
-                ior: SceneSpectrum::Dense(std::sync::Arc::new(ior)),
-                roughness: 0.0,
-                absorption: None,
-            },
-            Material::Diffuse {
-                reflectance: SceneSpectrum::Constant(1.0),
-            },
-        ],
-        emission: vec![],
-        lights: vec![Light::Environment {
-            radiance: SceneSpectrum::Constant(1.0),
-        }],
-        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 1.1),
-        quality: BvhQuality::Medium,
-    })
-    .unwrap();
+    let glass = Material::Dielectric {
+        ior: SceneSpectrum::Dense(std::sync::Arc::new(ior)),
+        roughness: 0.0,
+        absorption: None,
+    };
+    let white = Material::Diffuse {
+        reflectance: SceneSpectrum::Constant(1.0),
+    };
+    let scene = furnace(triangles, triangle_material, vec![glass, white], 1.1);
     assert!(scene.features().dispersion);
     let expected = constant_xyz(1.0);
     for (c, scheme) in [
@@ -553,23 +553,13 @@ fn roulette_does_not_end_paths_for_being_inside_glass() {
                 .map(move |t| t.map(|v| v + Vec3::new(0.0, 0.0, z)))
         })
         .collect();
-    let scene = Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangle_material: vec![0; triangles.len()],
-        triangles,
-        materials: vec![Material::Dielectric {
-            ior: SceneSpectrum::Constant(1.5),
-            roughness: 0.0,
-            absorption: None,
-        }],
-        emission: vec![],
-        lights: vec![Light::Environment {
-            radiance: SceneSpectrum::Constant(1.0),
-        }],
-        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 0.6),
-        quality: BvhQuality::Medium,
-    })
-    .unwrap();
+    let glass = Material::Dielectric {
+        ior: SceneSpectrum::Constant(1.5),
+        roughness: 0.0,
+        absorption: None,
+    };
+    let triangle_material = vec![0; triangles.len()];
+    let scene = furnace(triangles, triangle_material, vec![glass], 0.6);
     let settings = RenderSettings {
         energy: true,
         ..settings(16, 16, 4, LambdaSampler::Uniform)
