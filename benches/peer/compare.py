@@ -5,10 +5,12 @@
   cargo build --release -p prism-cli
   python3 benches/peer/compare.py box --spp 64 --width 256
   python3 benches/peer/compare.py box --reference ref.exr   # also compare against a reference
+  python3 benches/peer/compare.py box --width 128 --reference-spp 4096   # render one first
 
 A reference is a converged render of the same scene and size, e.g. prism's own with another
 seed: `prism render scenes/cornell-box.gltf --width 256 --height 256 --spp 4096 --seed 999
--o ref.exr` (prism and Mitsuba agree within 1% per region; at 64 spp the error is noise).
+-o ref.exr`, which `--reference-spp 4096` renders first (prism and Mitsuba agree within 1%
+per region, so at 64 spp the error is noise either way; same depth as the comparison).
 With one, each renderer's relative MSE is reported (prism compare's: the mean of
 (a - b)^2 / (b^2 + 0.01)), and for each peer the error ratio (prism / peer, at equal spp:
 <= 1 is "equal or lower error") and the efficiency ratio, time times error of the peer over
@@ -63,6 +65,8 @@ def main():
                          "prism renders D - 1 bounces, the same paths")
     ap.add_argument("--variants", default="scalar_spectral")
     ap.add_argument("--reference", help="a converged EXR of the same scene and size")
+    ap.add_argument("--reference-spp", type=int,
+                    help="without --reference: render one with prism at this many spp (seed 999)")
     ap.add_argument("--grid", type=int, default=8)
     ap.add_argument("--prism-args", default="", help="extra arguments for prism render")
     a = ap.parse_args()
@@ -93,8 +97,19 @@ def main():
                            "prism_speed_ratio": prism_stats["paths_per_second"] / stats["paths_per_second"]}
         images[variant] = read_exr(exr)
         result[variant]["prism_vs_peer"] = agreement(images["prism"], images[variant], a.grid)
-    if a.reference:
-        ref = read_exr(a.reference)
+    reference = a.reference
+    if reference is None and a.reference_spp:
+        reference = os.path.join(out, "reference.exr")
+        ref_cmd = [c for c in cmd if c != "--stats"]
+        ref_cmd[ref_cmd.index("--spp") + 1] = str(a.reference_spp)
+        ref_cmd[ref_cmd.index(prism_exr)] = reference
+        if "--seed" in ref_cmd:
+            ref_cmd[ref_cmd.index("--seed") + 1] = "999"
+        else:
+            ref_cmd += ["--seed", "999"]
+        subprocess.run(ref_cmd + ["-q"], check=True, capture_output=True)
+    if reference:
+        ref = read_exr(reference)
         result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
         errors = {name: relmse(img, ref) for name, img in images.items()}
         result["prism"]["relmse"] = errors["prism"]
