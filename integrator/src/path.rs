@@ -149,7 +149,7 @@ impl Tracer<'_> {
         loop {
             rays += 1;
             let Some(hit) = self.scene.intersect(&ray) else {
-                if let Some((le, light_pdf)) = self.scene.escaped(&transport) {
+                if let Some((le, light_pdf)) = self.scene.escaped(&transport, &mut emission) {
                     let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
@@ -164,7 +164,8 @@ impl Tracer<'_> {
                 .emitted(&hit, wo_world, &transport, &mut emission);
             if !le.is_black() && !light_caustic {
                 let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
-                    power_heuristic(1, bsdf_pdf, 1, self.scene.light_pdf(from, &hit))
+                    let light_pdf = self.scene.light_pdf(from, &hit, &transport, &mut emission);
+                    power_heuristic(1, bsdf_pdf, 1, light_pdf)
                 });
                 radiance += beta * le * w;
             }
@@ -249,7 +250,9 @@ impl Tracer<'_> {
             {
                 let wi = frame.to_local(light.wi);
                 let f = bsdf.f(wo, wi) * wi.z.abs();
-                if !f.is_black() {
+                // A light dark at every wavelength of the path (chosen by the defensive
+                // share of a spectral choice, or by power) needs no shadow ray.
+                if !f.is_black() && !light.radiance.is_black() {
                     rays += 1;
                     if !self.scene.occluded(&hit.spawn_to(light.wi, light.distance)) {
                         let w = if light.delta {

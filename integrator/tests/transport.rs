@@ -15,7 +15,8 @@ use prism_scene::geometry::BvhQuality;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
-use prism_spectrum::spectra::Constant;
+use prism_spectrum::spectra::{Constant, Gaussian};
+use std::sync::Arc;
 
 /// A unit icosphere subdivided `levels` times, outward winding.
 fn icosphere(levels: u32) -> Vec<[Vec3; 3]> {
@@ -188,11 +189,21 @@ fn polygon_irradiance(corners: &[Vec3], l: f64) -> f64 {
 /// window at the origin, lit by `lights` and optionally by a black quad emitting radiance 3
 /// downwards.
 fn floor_render(lights: Vec<Light>, emitter: Option<[Vec3; 4]>, sampler: LambdaSampler) -> Film {
+    let emitter = emitter.map(|q| (q, SceneSpectrum::Constant(3.0)));
+    let scene = floor_scene(lights, emitter);
+    render(&scene, &settings(4, 256, 4, sampler)).unwrap().0
+}
+
+/// The floor of [`floor_render`], lit by `lights` and a black quad emitting the given
+/// radiance downwards.
+fn floor_scene(lights: Vec<Light>, emitter: Option<([Vec3; 4], SceneSpectrum)>) -> Scene {
     let s = 100.0;
     let mut triangles = common::square_z0(s);
     let mut triangle_material = vec![0, 0];
     let mut lights = lights;
-    if let Some(q) = emitter {
+    let mut emission = vec![SceneSpectrum::Constant(0.0)];
+    if let Some((q, spectrum)) = emitter {
+        emission[0] = spectrum;
         // Facing down (-z): wound clockwise seen from above.
         triangles.push([q[0], q[2], q[1]]);
         triangles.push([q[0], q[3], q[2]]);
@@ -206,7 +217,7 @@ fn floor_render(lights: Vec<Light>, emitter: Option<[Vec3; 4]>, sampler: LambdaS
             });
         }
     }
-    let scene = Scene::new(SceneParts {
+    Scene::new(SceneParts {
         attributes: Default::default(),
         triangles,
         triangle_material,
@@ -218,14 +229,13 @@ fn floor_render(lights: Vec<Light>, emitter: Option<[Vec3; 4]>, sampler: LambdaS
                 reflectance: SceneSpectrum::Constant(0.0),
             },
         ],
-        emission: vec![SceneSpectrum::Constant(3.0)],
+        emission,
         lights,
         // Looking down from between the floor and the emitter.
         camera: ortho_camera(Vec3::new(0.0, 0.0, 0.5), 1e-3),
         quality: BvhQuality::Medium,
     })
-    .unwrap();
-    render(&scene, &settings(4, 256, 4, sampler)).unwrap().0
+    .unwrap()
 }
 
 #[test]
@@ -332,6 +342,63 @@ fn area_light_direct_lighting_is_analytic() {
             &film,
             0.5 / std::f64::consts::PI * e,
             &format!("side {side} at {height} (E = {e})"),
+        );
+    }
+}
+
+#[test]
+fn lights_of_different_spectra_light_the_floor_analytically() {
+    // Three narrow bands: a point light overhead (blue), one off to the side (red), both
+    // below an area light (green) that would otherwise shadow them. Lights of different spectra are chosen by their power at each
+    // path's wavelengths, and MIS with BSDF sampling uses the same probabilities: the
+    // floor's colour must still be rho / pi times the sum of the irradiances, band by band.
+    let band = |centre: f64| Gaussian::new(centre, 20.0, 1.0).unwrap();
+    let (blue, red, green) = (band(450.0), band(620.0), band(540.0));
+    let lights = vec![
+        Light::Point {
+            position: Vec3::new(0.0, 0.0, 0.8),
+            intensity: SceneSpectrum::Scaled(Arc::new(SceneSpectrum::Gaussian(blue)), 2.0),
+        },
+        Light::Point {
+            position: Vec3::new(1.0, 0.0, 0.8),
+            intensity: SceneSpectrum::Scaled(Arc::new(SceneSpectrum::Gaussian(red)), 5.0),
+        },
+    ];
+    let q = [
+        Vec3::new(-0.2, -0.5, 1.0),
+        Vec3::new(0.8, -0.5, 1.0),
+        Vec3::new(0.8, 0.5, 1.0),
+        Vec3::new(-0.2, 0.5, 1.0),
+    ];
+    let scene = floor_scene(
+        lights,
+        Some((
+            q,
+            SceneSpectrum::Scaled(Arc::new(SceneSpectrum::Gaussian(green)), 3.0),
+        )),
+    );
+    assert!(scene.lights().spectral_choice());
+    let film = render(&scene, &settings(4, 1024, 4, LambdaSampler::Visible))
+        .unwrap()
+        .0;
+    let irradiance = [
+        (2.0 / 0.64, blue),
+        (5.0 * 0.8 / 1.64f64.powf(1.5), red),
+        (polygon_irradiance(&q, 3.0), green),
+    ];
+    let mut expected = [0.0f64; 3];
+    for (e, spectrum) in irradiance {
+        let xyz = emission_xyz(&spectrum, Observer::Cie1931).to_array();
+        for k in 0..3 {
+            expected[k] += 0.5 / std::f64::consts::PI * e * xyz[k];
+        }
+    }
+    for k in 0..3 {
+        let (mean, error) = mean_and_error(&film, k);
+        assert!(
+            (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
+            "channel {k}: {mean} +- {error} vs {}",
+            expected[k]
         );
     }
 }

@@ -28,9 +28,12 @@
 //!   triangles per instruction. The packet test is the scalar watertight test lane by lane,
 //!   bit for bit, so its guarantees hold for every query. (obvhs's compressed eight-wide
 //!   tree was measured 8% slower on the Cornell box and 17% on the bunny box, in whole
-//!   renders.)
+//!   renders.) The collapse is planned by the surface area heuristic, bottom-up, rather
+//!   than greedy.
 //! - **Light sampling by what the receiver sees.** Lights are chosen by power (an alias
-//!   table); an emissive triangle is then sampled uniformly in the solid angle it
+//!   table), or, when their spectra differ, by power at the path's own wavelengths
+//!   (`world/light_choice.rs`: lights grouped by spectrum, a 1 nm proxy of each, a
+//!   defensive floor); an emissive triangle is then sampled uniformly in the solid angle it
 //!   subtends when that angle is large enough for its cos / d^2 to vary (0.05 sr and up),
 //!   by area otherwise, and `Scene::light_pdf` reports the density of the same choice for
 //!   MIS (the trade is measured in `world/light.rs`).
@@ -40,6 +43,8 @@
 //! - I. Wald, C. Benthin, S. Boulos, "Getting rid of packets: efficient SIMD single-ray
 //!   traversal using multi-branching BVHs", RT 2008, §3-4 (the four-wide collapse and
 //!   traversal).
+//! - H. Ylitie, T. Karras, S. Laine, "Efficient incoherent ray traversal on GPUs through
+//!   compressed wide BVHs", HPG 2017, §4.1 (the optimal collapse by dynamic programming).
 //! - D. Meister, J. Bittner, "Parallel locally-ordered clustering for bounding volume
 //!   hierarchy construction", IEEE TVCG 24(3), 2018 (PLOC, obvhs's builder).
 //! - M. Pharr, W. Jakob, G. Humphreys, *PBR* 4th ed., §6.5.3 (triangle test), §6.8

@@ -1,6 +1,7 @@
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::SceneSpectrum;
+use super::light_choice::Weights;
 
 /// How many of a scene's emission spectra a cache holds (the first ones; the rest are
 /// evaluated every time). Scenes have a handful of emitting materials.
@@ -18,6 +19,9 @@ pub struct EmissionCache<const N: usize> {
     lambdas: [f32; N],
     filled: u32,
     values: [SampledSpectrum<N>; SLOTS],
+    /// The lights' choice weights at these wavelengths, once computed (scenes whose
+    /// lights differ in spectrum; see `light_choice`).
+    pub(crate) choice_weights: Option<Weights>,
 }
 
 impl<const N: usize> Default for EmissionCache<N> {
@@ -26,6 +30,7 @@ impl<const N: usize> Default for EmissionCache<N> {
             lambdas: [f32::NAN; N],
             filled: 0,
             values: [SampledSpectrum::splat(0.0); SLOTS],
+            choice_weights: None,
         }
     }
 }
@@ -34,6 +39,16 @@ impl<const N: usize> EmissionCache<N> {
     /// An empty cache.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Empties the cache if `wavelengths` are not the ones its values were computed at.
+    pub(crate) fn refresh(&mut self, wavelengths: &SampledWavelengths<N>) {
+        // Bitwise: the NaN the cache starts with never equals a wavelength.
+        if self.lambdas.map(f32::to_bits) != wavelengths.lambdas().map(f32::to_bits) {
+            self.lambdas = *wavelengths.lambdas();
+            self.filled = 0;
+            self.choice_weights = None;
+        }
     }
 
     /// Emission spectrum number `index` of the scene's `spectra`, at `wavelengths`.
@@ -48,11 +63,7 @@ impl<const N: usize> EmissionCache<N> {
         if slot >= SLOTS {
             return spectrum.at(wavelengths);
         }
-        // Bitwise: the NaN the cache starts with never equals a wavelength.
-        if self.lambdas.map(f32::to_bits) != wavelengths.lambdas().map(f32::to_bits) {
-            self.lambdas = *wavelengths.lambdas();
-            self.filled = 0;
-        }
+        self.refresh(wavelengths);
         if self.filled & (1 << slot) == 0 {
             self.values[slot] = spectrum.at(wavelengths);
             self.filled |= 1 << slot;

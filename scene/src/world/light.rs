@@ -1,5 +1,6 @@
 //! Lights of a render-ready scene: emissive triangles, KHR punctual lights and a constant
-//! environment, chosen in proportion to their power through an alias table.
+//! environment, chosen in proportion to their power through an alias table, or, when
+//! their spectra differ, to their power at the path's wavelengths (`light_choice`).
 
 use std::f32::consts::PI;
 
@@ -11,6 +12,7 @@ use prism_sampling::warp::{
 };
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
+use super::light_choice::SpectralChoice;
 use super::{EmissionCache, SceneSpectrum};
 use crate::geometry::{
     Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
@@ -150,14 +152,24 @@ pub struct Lights {
     pub(crate) lights: Vec<Light>,
     /// None when there is no light with power.
     pub(crate) choice: Option<AliasTable>,
+    /// The choice at a path's wavelengths, for next-event estimation in scenes whose
+    /// lights differ in spectrum (None: by power).
+    spectral: Option<SpectralChoice>,
     /// The light index of each triangle, u32::MAX where it does not emit.
     pub(crate) of_triangle: Vec<u32>,
     pub(crate) environment: Option<u32>,
 }
 
 impl Lights {
-    /// The lights, chosen in proportion to `power` (which must match `lights`).
-    pub(crate) fn new(lights: Vec<Light>, power: &[f64], triangles: usize) -> Self {
+    /// The lights, chosen in proportion to `power` (which must match `lights`), or to
+    /// `extent` times their spectra at a path's wavelengths (see `light_choice`).
+    pub(crate) fn new(
+        lights: Vec<Light>,
+        power: &[f64],
+        extent: &[f64],
+        emission: &[SceneSpectrum],
+        triangles: usize,
+    ) -> Self {
         let mut of_triangle = vec![u32::MAX; triangles];
         let mut environment = None;
         for (i, light) in lights.iter().enumerate() {
@@ -173,6 +185,7 @@ impl Lights {
             .map(|&p| if p.is_finite() && p > 0.0 { p } else { 0.0 })
             .collect();
         Self {
+            spectral: SpectralChoice::new(&lights, extent, emission),
             lights,
             choice: if usable {
                 AliasTable::new(&weights).ok()
@@ -189,7 +202,8 @@ impl Lights {
         &self.lights
     }
 
-    /// The probability of choosing light `i`.
+    /// The probability of choosing light `i` by power (light paths start so; next-event
+    /// estimation too unless the lights differ in spectrum: see [`Lights::pmf_at`]).
     pub fn pmf(&self, i: u32) -> f32 {
         self.choice
             .as_ref()
@@ -207,6 +221,29 @@ impl Lights {
     /// The environment light's index, if the scene has one.
     pub fn environment(&self) -> Option<u32> {
         self.environment
+    }
+
+    /// Whether next-event estimation chooses lights by their spectra at the path's
+    /// wavelengths (the scene's lights differ in spectrum).
+    pub fn spectral_choice(&self) -> bool {
+        self.spectral.is_some()
+    }
+
+    /// The probability that next-event estimation chooses light `i` for a path at
+    /// `wavelengths` (`cache`: the path's emission cache).
+    pub fn pmf_at<const N: usize>(
+        &self,
+        i: u32,
+        wavelengths: &SampledWavelengths<N>,
+        cache: &mut EmissionCache<N>,
+    ) -> f32 {
+        match &self.spectral {
+            Some(spectral) => {
+                let weights = spectral.weights(wavelengths, cache);
+                spectral.pmf(i as usize, &weights)
+            }
+            None => self.pmf(i),
+        }
     }
 
     /// A light chosen with `u_choice` in proportion to power, and its probability.
@@ -228,7 +265,13 @@ impl Lights {
         emission: &[SceneSpectrum],
         cache: &mut EmissionCache<N>,
     ) -> Option<LightSample<N>> {
-        let (index, pmf) = self.choose(u_choice)?;
+        let (index, pmf) = match &self.spectral {
+            Some(spectral) => {
+                let weights = spectral.weights(wavelengths, cache);
+                spectral.choose(u_choice, &weights)?
+            }
+            None => self.choose(u_choice)?,
+        };
         let sample = match &self.lights[index] {
             Light::Triangle {
                 triangle,
@@ -455,18 +498,4 @@ pub(crate) fn light_spectrum<'a>(
         | Light::Directional { irradiance: s, .. }
         | Light::Environment { radiance: s } => s,
     }
-}
-
-/// The power of each light over `range` nm, for choosing among them: its extent times
-/// its spectrum's mean over the range (the visible range, or wider where fluorescent
-/// materials turn ultraviolet into visible light).
-pub(crate) fn light_power(
-    light: &Light,
-    triangles: &[[Vec3; 3]],
-    emission: &[SceneSpectrum],
-    scene_radius: f32,
-    range: (f64, f64),
-) -> f64 {
-    light_extent(light, triangles, scene_radius)
-        * light_spectrum(light, emission).mean_over(range.0, range.1)
 }

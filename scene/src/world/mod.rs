@@ -7,6 +7,7 @@ mod emission_cache;
 mod from_gltf;
 mod guide;
 mod light;
+mod light_choice;
 mod material;
 mod spectrum;
 mod texture;
@@ -14,6 +15,7 @@ mod texture;
 pub use emission_cache::EmissionCache;
 pub use from_gltf::SceneOptions;
 pub use light::{EmissionSample, Light, LightSample, Lights};
+pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
 pub use spectrum::SceneSpectrum;
 pub use texture::{RgbTexture, SpectralTexture, UvTransform, Wrap};
@@ -216,13 +218,20 @@ impl Scene {
             .fold((360.0f64, 830.0f64), |(lo, hi), (a, b)| {
                 (lo.min(f64::from(a)), hi.max(f64::from(b)))
             });
+        let extent: Vec<f64> = lights
+            .iter()
+            .map(|l| light::light_extent(l, &triangles, radius))
+            .collect();
         let power: Vec<f64> = lights
             .iter()
-            .map(|l| light::light_power(l, &triangles, &emission, radius, power_range))
+            .zip(&extent)
+            .map(|(l, x)| {
+                x * light::light_spectrum(l, &emission).mean_over(power_range.0, power_range.1)
+            })
             .collect();
         let light_wavelengths =
             guide::light_wavelengths(&materials, &lights, &triangles, &emission, radius);
-        let lights = Lights::new(lights, &power, triangles.len());
+        let lights = Lights::new(lights, &power, &extent, &emission, triangles.len());
         Ok(Self {
             bvh,
             triangles,
@@ -365,35 +374,45 @@ impl Scene {
     }
 
     /// The density (solid angle, times the choice probability) with which light sampling
-    /// from `from` would have produced the direction to `hit`, an emitter.
-    pub fn light_pdf(&self, from: Vec3, hit: &Hit) -> f32 {
+    /// from `from`, with the path at `wavelengths`, would have produced the direction to
+    /// `hit`, an emitter. `cache` is the path's, as in [`Scene::sample_light`].
+    pub fn light_pdf<const N: usize>(
+        &self,
+        from: Vec3,
+        hit: &Hit,
+        wavelengths: &SampledWavelengths<N>,
+        cache: &mut EmissionCache<N>,
+    ) -> f32 {
         let Some(l) = self.lights.of_triangle(hit.triangle) else {
             return 0.0;
         };
+        let pmf = self.lights.pmf_at(l, wavelengths, cache);
         let v = self.triangles[hit.triangle as usize];
         let pdf = match light::solid_angle_sampled(from, v) {
-            Some(omega) => self.lights.pmf(l) / omega,
+            Some(omega) => pmf / omega,
             None => {
                 let to = hit.p - from;
                 let d2 = to.length_squared();
                 let cos = hit.normal.dot(to).abs() / d2.sqrt();
-                self.lights.pmf(l) * d2 / (cos * triangle_area(v))
+                pmf * d2 / (cos * triangle_area(v))
             }
         };
         if pdf.is_finite() { pdf } else { 0.0 }
     }
 
     /// Radiance arriving along a ray that leaves the scene, and the density with which
-    /// light sampling would have chosen its direction.
+    /// light sampling would have chosen its direction (`cache` as in
+    /// [`Scene::light_pdf`]).
     pub fn escaped<const N: usize>(
         &self,
         wavelengths: &SampledWavelengths<N>,
+        cache: &mut EmissionCache<N>,
     ) -> Option<(SampledSpectrum<N>, f32)> {
         let l = self.lights.environment()?;
         match &self.lights.lights[l as usize] {
             Light::Environment { radiance } => Some((
                 radiance.at(wavelengths),
-                self.lights.pmf(l) / (4.0 * std::f32::consts::PI),
+                self.lights.pmf_at(l, wavelengths, cache) / (4.0 * std::f32::consts::PI),
             )),
             _ => None,
         }
