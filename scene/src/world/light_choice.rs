@@ -247,6 +247,7 @@ mod tests {
     use prism_sampling::stats::chi_square_test;
     use prism_spectrum::spectra::Gaussian;
     use prism_spectrum::{SampledWavelengths, Spectrum};
+    use proptest::prelude::*;
 
     use super::{DEFENSIVE, MAX_GROUPS, SpectralChoice, TABLE_LEN, TABLE_MIN, proxy_table};
     use crate::world::{EmissionCache, Light, SceneSpectrum};
@@ -392,6 +393,44 @@ mod tests {
                 p >= lo * (1.0 - 1e-6) && p <= hi * (1.0 + 1e-6),
                 "bin {k}: {p} not in [{lo}, {hi}]"
             );
+        }
+    }
+
+    fn wavelength() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            Just(f32::MIN_POSITIVE),
+            Just(1e-45f32),
+            Just(199.4f32),
+            Just(199.5f32),
+            Just(1200.49f32),
+            Just(1200.5f32),
+            Just(f32::MAX),
+            1.0..2000.0f32,
+            350.0..800.0f32,
+        ]
+    }
+
+    proptest! {
+        /// For any wavelengths a package can carry (positive and finite: subnormal, at
+        /// the proxy table's ends, huge), the weights and probabilities are finite, the
+        /// probabilities sum to 1, and every u in [0, 1) chooses a light with exactly the
+        /// probability `pmf` reports.
+        #[test]
+        fn any_wavelengths_give_a_distribution(
+            lambda in prop::array::uniform4(wavelength()),
+            u in prop_oneof![Just(0.0f32), Just(1.0 - f32::EPSILON / 2.0), 0.0..1.0f32],
+        ) {
+            let (lights, extent, emission) = lights();
+            let choice = SpectralChoice::new(&lights, &extent, &emission).unwrap();
+            let w = wavelengths(lambda);
+            let weights = choice.weights(&w, &mut EmissionCache::new());
+            prop_assert!(weights.total.is_finite() && weights.total > 0.0);
+            let pmf: Vec<f32> = (0..4).map(|i| choice.pmf(i, &weights)).collect();
+            prop_assert!(pmf.iter().all(|p| p.is_finite() && *p >= 0.0));
+            prop_assert!((pmf.iter().sum::<f32>() - 1.0).abs() < 1e-5, "{pmf:?}");
+            let (i, p) = choice.choose(u, &weights).expect("every light has a floor");
+            prop_assert_eq!(p, pmf[i]);
+            prop_assert!(p > 0.0);
         }
     }
 
