@@ -14,9 +14,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::light_choice::SpectralChoice;
 use super::{EmissionCache, SceneSpectrum};
-use crate::geometry::{
-    Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
-};
+use crate::geometry::{Ray, offset_ray_origin, triangle_area, triangle_point_error};
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -101,6 +99,34 @@ fn around(axis: Vec3, local: Vec3) -> Vec3 {
     local.x * x + local.y * y + local.z * axis
 }
 
+/// What sampling a triangle light reads of its geometry, computed once per light: the
+/// normal, area and centroid were recomputed per light sample (~1% of the Cornell box's
+/// instructions).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct TriangleShape {
+    pub(crate) vertices: [Vec3; 3],
+    centroid: Vec3,
+    /// (v1 - v0) x (v2 - v0): twice the area, along the normal.
+    cross: Vec3,
+    /// The unit normal (`triangle_normal`).
+    pub(crate) normal: Vec3,
+    /// The area (`triangle_area`).
+    pub(crate) area: f32,
+}
+
+impl TriangleShape {
+    fn new(v: [Vec3; 3]) -> Self {
+        let cross = (v[1] - v[0]).cross(v[2] - v[0]);
+        Self {
+            vertices: v,
+            centroid: (v[0] + v[1] + v[2]) / 3.0,
+            cross,
+            normal: cross.normalize_or_zero(),
+            area: 0.5 * cross.length(),
+        }
+    }
+}
+
 /// The subtended solid angles (sr) over which a triangle light is sampled uniformly in
 /// solid angle rather than by area (the start also bounds a cheap screening estimate, see
 /// [`solid_angle_sampled`]). Area sampling's noise is the variation of cos / d^2 over the
@@ -114,21 +140,22 @@ fn around(axis: Vec3, local: Vec3) -> Vec3 {
 /// 4th ed. §6.5.4).
 const SOLID_ANGLE_SAMPLING: std::ops::RangeInclusive<f32> = 0.05..=6.22;
 
-/// The solid angle triangle `v` subtends from `p`, when light sampling from `p` samples
-/// it by solid angle (else None: by area). `Scene::light_pdf` decides the same way.
-pub(crate) fn solid_angle_sampled(p: Vec3, v: [Vec3; 3]) -> Option<f32> {
+/// The solid angle triangle `shape` subtends from `p`, when light sampling from `p`
+/// samples it by solid angle (else None: by area). `Scene::light_pdf` decides the same
+/// way.
+pub(crate) fn solid_angle_sampled(p: Vec3, shape: &TriangleShape) -> Option<f32> {
     // Screened first by the solid angle of a small patch of the triangle's area at its
     // centroid, A |cos| / d^2 (no normalizations, no arctangent): most samples from most
     // points are of far lights (measured: the exact angle for every decision was 1.5% of
     // the Cornell box's instructions). Only what passes gets the exact angle.
-    let to = (v[0] + v[1] + v[2]) / 3.0 - p;
+    let to = shape.centroid - p;
     let d2 = to.length_squared();
-    let patch = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).dot(to).abs() / (d2 * d2.sqrt());
+    let patch = 0.5 * shape.cross.dot(to).abs() / (d2 * d2.sqrt());
     // NaN (p at the centroid) fails too.
     if patch.is_nan() || patch < *SOLID_ANGLE_SAMPLING.start() {
         return None;
     }
-    let omega = spherical_triangle_solid_angle(p, v);
+    let omega = spherical_triangle_solid_angle(p, shape.vertices);
     SOLID_ANGLE_SAMPLING.contains(&omega).then_some(omega)
 }
 
@@ -158,6 +185,8 @@ pub struct Lights {
     /// The light index of each triangle, u32::MAX where it does not emit.
     pub(crate) of_triangle: Vec<u32>,
     pub(crate) environment: Option<u32>,
+    /// Per light: its triangle's shape (the default for other lights).
+    shapes: Vec<TriangleShape>,
 }
 
 impl Lights {
@@ -168,9 +197,18 @@ impl Lights {
         power: &[f64],
         extent: &[f64],
         emission: &[SceneSpectrum],
-        triangles: usize,
+        triangles: &[[Vec3; 3]],
     ) -> Self {
-        let mut of_triangle = vec![u32::MAX; triangles];
+        let mut of_triangle = vec![u32::MAX; triangles.len()];
+        let shapes = lights
+            .iter()
+            .map(|light| match light {
+                Light::Triangle { triangle, .. } => {
+                    TriangleShape::new(triangles[*triangle as usize])
+                }
+                _ => TriangleShape::default(),
+            })
+            .collect();
         let mut environment = None;
         for (i, light) in lights.iter().enumerate() {
             match light {
@@ -194,7 +232,13 @@ impl Lights {
             },
             of_triangle,
             environment,
+            shapes,
         }
+    }
+
+    /// The shape of light `i`'s triangle (meaningful for triangle lights only).
+    pub(crate) fn shape(&self, i: u32) -> &TriangleShape {
+        &self.shapes[i as usize]
     }
 
     /// The lights.
@@ -261,7 +305,6 @@ impl Lights {
         u_choice: f32,
         u: Vec2,
         wavelengths: &SampledWavelengths<N>,
-        triangles: &[[Vec3; 3]],
         emission: &[SceneSpectrum],
         cache: &mut EmissionCache<N>,
     ) -> Option<LightSample<N>> {
@@ -274,13 +317,13 @@ impl Lights {
         };
         let sample = match &self.lights[index] {
             Light::Triangle {
-                triangle,
                 emission: e,
                 two_sided,
+                ..
             } => {
-                let v = triangles[*triangle as usize];
-                let n = triangle_normal(v);
-                let (wi, distance, pdf) = match solid_angle_sampled(p, v) {
+                let shape = &self.shapes[index];
+                let (v, n) = (shape.vertices, shape.normal);
+                let (wi, distance, pdf) = match solid_angle_sampled(p, shape) {
                     Some(omega) => {
                         // Uniform in the subtended solid angle; the point is where the
                         // direction meets the triangle's plane. A failure (a triangle
@@ -296,7 +339,7 @@ impl Lights {
                         let distance = d2.sqrt();
                         let wi = to / distance;
                         let cos = n.dot(wi).abs();
-                        (wi, distance, d2 / (cos * triangle_area(v)))
+                        (wi, distance, d2 / (cos * shape.area))
                     }
                 };
                 let cos = -n.dot(wi);
@@ -383,24 +426,23 @@ impl Lights {
         u_position: Vec2,
         u_direction: Vec2,
         wavelengths: &SampledWavelengths<N>,
-        triangles: &[[Vec3; 3]],
         emission: &[SceneSpectrum],
         (centre, radius): (Vec3, f32),
     ) -> Option<EmissionSample<N>> {
         let (index, pmf) = self.choose(u_choice)?;
         let (ray, beta) = match &self.lights[index] {
             Light::Triangle {
-                triangle,
                 emission: e,
                 two_sided,
+                ..
             } => {
                 // Uniform in area, cosine-weighted in direction on an emitting side:
                 // Le cos / (pdf_area pdf_dir) = Le pi area (times 2 for a side chosen at
                 // random).
-                let v = triangles[*triangle as usize];
+                let shape = &self.shapes[index];
+                let (v, n) = (shape.vertices, shape.normal);
                 let b = uniform_triangle(u_position);
                 let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-                let n = triangle_normal(v);
                 let (u, side, sides) = if *two_sided {
                     if u_direction.x < 0.5 {
                         (Vec2::new(2.0 * u_direction.x, u_direction.y), n, 2.0)
@@ -412,7 +454,7 @@ impl Lights {
                 };
                 let direction = around(side, cosine_hemisphere(u.min(Vec2::splat(0.999_999_9))));
                 let origin = offset_ray_origin(p, triangle_point_error(v, b), n, direction);
-                let scale = PI * triangle_area(v) * sides / pmf;
+                let scale = PI * shape.area * sides / pmf;
                 (
                     Ray::new(origin, direction, f32::INFINITY),
                     emission[*e as usize].at(wavelengths) * scale,

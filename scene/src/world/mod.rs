@@ -25,7 +25,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::camera::Camera;
 use crate::geometry::{
-    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
+    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_normal, triangle_point_error,
 };
 
 /// What a scene uses, so that the integrator pays only for what is there.
@@ -231,7 +231,7 @@ impl Scene {
             .collect();
         let light_wavelengths =
             guide::light_wavelengths(&materials, &lights, &triangles, &emission, radius);
-        let lights = Lights::new(lights, &power, &extent, &emission, triangles.len());
+        let lights = Lights::new(lights, &power, &extent, &emission, &triangles);
         Ok(Self {
             bvh,
             triangles,
@@ -387,14 +387,14 @@ impl Scene {
             return 0.0;
         };
         let pmf = self.lights.pmf_at(l, wavelengths, cache);
-        let v = self.triangles[hit.triangle as usize];
-        let pdf = match light::solid_angle_sampled(from, v) {
+        let shape = self.lights.shape(l);
+        let pdf = match light::solid_angle_sampled(from, shape) {
             Some(omega) => pmf / omega,
             None => {
                 let to = hit.p - from;
                 let d2 = to.length_squared();
                 let cos = hit.normal.dot(to).abs() / d2.sqrt();
-                pmf * d2 / (cos * triangle_area(v))
+                pmf * d2 / (cos * shape.area)
             }
         };
         if pdf.is_finite() { pdf } else { 0.0 }
@@ -432,7 +432,6 @@ impl Scene {
             u_position,
             u_direction,
             wavelengths,
-            &self.triangles,
             &self.emission,
             (self.centre, self.radius),
         )
@@ -448,14 +447,7 @@ impl Scene {
         wavelengths: &SampledWavelengths<N>,
         cache: &mut EmissionCache<N>,
     ) -> Option<LightSample<N>> {
-        self.lights.sample(
-            hit.p,
-            u_choice,
-            u,
-            wavelengths,
-            &self.triangles,
-            &self.emission,
-            cache,
-        )
+        self.lights
+            .sample(hit.p, u_choice, u, wavelengths, &self.emission, cache)
     }
 }
