@@ -17,8 +17,8 @@
 //! the same cached weights, for MIS with BSDF sampling.
 //!
 //! Lights that share an emission spectrum form one group, chosen among by extent (an alias
-//! table), so the work per path is one spectrum evaluation per group, cached with the
-//! emission spectra. A scene whose lights all share one spectrum has one group, and then
+//! table), so the work per set of wavelengths is one lookup per group and lane, cached
+//! with the emission spectra. A scene whose lights all share one spectrum has one group, and then
 //! nothing changes: lights are chosen by power as before. Scenes with more than
 //! [`MAX_GROUPS`] spectra also keep the choice by power, bounding the per-path work.
 //!
@@ -32,9 +32,7 @@
 //! bands, 3% less on a fluorescent scene whose weights change at every vertex.
 
 use prism_sampling::distribution::AliasTable;
-use prism_spectrum::SampledWavelengths;
-
-use prism_spectrum::Spectrum;
+use prism_spectrum::{SampledWavelengths, Spectrum};
 
 use super::light::{Light, light_spectrum};
 use super::{EmissionCache, SceneSpectrum};
@@ -59,7 +57,7 @@ const DEFENSIVE: f32 = 1e-3;
 struct Group {
     spectrum: SceneSpectrum,
     /// The spectrum's largest value within each 1 nm bin centred on TABLE_MIN + k: a
-    /// proxy that never misses a narrow band and costs one load per lane.
+    /// proxy that catches bands narrower than a bin and costs one load per lane.
     proxy: Vec<f32>,
     /// DEFENSIVE times the proxy's mean.
     floor: f32,
