@@ -17,9 +17,6 @@ pub(super) struct Pending {
     t_enter: f32,
 }
 
-/// Stack entries a traversal keeps on the machine stack; deeper trees use the heap.
-pub(super) const INLINE_STACK: usize = 64;
-
 /// Entries a traversal of a tree `depth` nodes deep can hold at once: each level leaves at
 /// most three siblings behind.
 pub(super) fn stack_size(depth: usize) -> usize {
