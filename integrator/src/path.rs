@@ -173,8 +173,7 @@ impl Tracer<'_> {
                 break;
             }
             stream.set_dimension(sample_base + u64::from(depth) * DIMENSIONS_PER_BOUNCE);
-            let u_light = stream.next_1d();
-            let u_light_2d = stream.next_2d();
+            let u_light = stream.next_2d();
             let u_lobe = stream.next_1d();
             let u_bsdf = stream.next_2d();
             let u_roulette = stream.next_1d();
@@ -246,7 +245,7 @@ impl Tracer<'_> {
             if !bsdf.is_delta()
                 && let Some(light) =
                     self.scene
-                        .sample_light(&hit, u_light, u_light_2d, &transport, &mut emission)
+                        .sample_light(&hit, u_light, &transport, &mut emission)
             {
                 let wi = frame.to_local(light.wi);
                 let f = bsdf.f(wo, wi) * wi.z.abs();

@@ -273,7 +273,9 @@ fn glass_block_scene() -> Scene {
 fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
     let scene = glass_block_scene();
     const SIZE: u32 = 16;
-    const RUNS: u64 = 8;
+    // Eight seeds once left a corner block 4.8 standard errors out (the caustic's tail;
+    // 64 seeds put the same block at 0.05), so sixteen.
+    const RUNS: u64 = 16;
     for filter in [Filter::Box, Filter::from_name("gaussian").unwrap()] {
         let mut differences = vec![Vec::new(); 16];
         let mut level = [0.0; 16];

@@ -108,6 +108,29 @@ fn alias_table_matches_its_weights() {
     assert!((sum - 1.0).abs() < 1e-12);
 }
 
+/// What `sample_remapped` leaves of u is uniform within every chosen entry (10 bins per
+/// entry, chi-square over all of them), and the entry is `sample`'s.
+#[test]
+fn alias_table_remapped_numbers_are_uniform_within_each_entry() {
+    let weights = test_values(13);
+    let table = AliasTable::new(&weights).unwrap();
+    let mut u = uniforms("alias remapped");
+    const BINS: usize = 10;
+    let mut counts = vec![0u64; 13 * BINS];
+    for _ in 0..SAMPLES {
+        let x = u();
+        let (i, p, rest) = table.sample_remapped(x);
+        assert_eq!((i, p), table.sample(x));
+        assert!((0.0..1.0).contains(&rest), "{rest}");
+        counts[i * BINS + (rest * BINS as f64) as usize] += 1;
+    }
+    let total: f64 = weights.iter().sum();
+    let expected: Vec<f64> = (0..13 * BINS)
+        .map(|k| weights[k / BINS] / total * SAMPLES as f64 / BINS as f64)
+        .collect();
+    assert_chi_square("alias table remapped", &counts, &expected);
+}
+
 #[test]
 fn two_dimensional_distribution_matches_its_cells() {
     let (w, h) = (12, 9);

@@ -67,15 +67,26 @@ impl AliasTable {
     /// `u` is clamped into [0, 1); one uniform number suffices (its fractional part after
     /// choosing the column decides between the column and its alias).
     pub fn sample(&self, u: f64) -> (usize, f64) {
+        let (index, pmf, _) = self.sample_remapped(u);
+        (index, pmf)
+    }
+
+    /// [`AliasTable::sample`], and what is left of `u`: its position within the part of
+    /// [0, 1) that chose the index, again uniform in [0, 1). One number can then choose
+    /// an entry and sample within it (a light and a point on it), which keeps the
+    /// stratification of a 2D sample across the whole set where two numbers would break
+    /// it between entries.
+    pub fn sample_remapped(&self, u: f64) -> (usize, f64, f64) {
         let scaled = clamp_unit(u) * self.len() as f64;
         let column = (scaled as usize).min(self.len() - 1);
         let fraction = scaled - column as f64;
-        let index = if fraction < self.keep[column] {
-            column
+        let keep = self.keep[column];
+        let (index, rest) = if fraction < keep {
+            (column, fraction / keep)
         } else {
-            self.alias[column]
+            (self.alias[column], (fraction - keep) / (1.0 - keep))
         };
-        (index, self.pmf[index])
+        (index, self.pmf[index], clamp_unit(rest))
     }
 
     /// The probability of `index` (0 outside).

@@ -34,7 +34,7 @@
 use prism_sampling::distribution::AliasTable;
 use prism_spectrum::{SampledWavelengths, Spectrum};
 
-use super::light::{Light, light_spectrum};
+use super::light::{Light, light_spectrum, unit_f32};
 use super::{EmissionCache, SceneSpectrum};
 
 /// The most groups (distinct light spectra) chosen among by wavelength.
@@ -197,9 +197,10 @@ impl SpectralChoice {
         weights
     }
 
-    /// A light chosen with `u` in proportion to `weights` (from [`Self::weights`]), and
-    /// its probability; None when no light emits at the path's wavelengths.
-    pub(crate) fn choose(&self, u: f32, weights: &Weights) -> Option<(usize, f32)> {
+    /// A light chosen with `u` in proportion to `weights` (from [`Self::weights`]), its
+    /// probability, and what is left of `u` (uniform in [0, 1) again); None when no light
+    /// has weight.
+    pub(crate) fn choose(&self, u: f32, weights: &Weights) -> Option<(usize, f32, f32)> {
         if weights.total <= 0.0 {
             return None;
         }
@@ -222,10 +223,10 @@ impl SpectralChoice {
         let u_member = (f64::from(target - below) / f64::from(weights.group[g]))
             .clamp(0.0, 1.0 - f64::EPSILON);
         let group = &self.groups[g];
-        let (m, _) = group.members.sample(u_member);
+        let (m, _, rest) = group.members.sample_remapped(u_member);
         let light = group.lights[m] as usize;
         let pmf = self.pmf(light, weights);
-        (pmf > 0.0).then_some((light, pmf))
+        (pmf > 0.0).then_some((light, pmf, unit_f32(rest)))
     }
 
     /// The probability that [`Self::choose`] picks light `i` given `weights`.
@@ -331,7 +332,7 @@ mod tests {
             let mut counts = [0u64; 4];
             for k in 0..n {
                 let u = (k as f32 + 0.5) / n as f32;
-                let (i, p) = choice.choose(u, &weights).expect("every light has a floor");
+                let (i, p, _) = choice.choose(u, &weights).expect("every light has a floor");
                 assert_eq!(p, choice.pmf(i, &weights));
                 counts[i] += 1;
             }
@@ -426,7 +427,8 @@ mod tests {
             let pmf: Vec<f32> = (0..4).map(|i| choice.pmf(i, &weights)).collect();
             prop_assert!(pmf.iter().all(|p| p.is_finite() && *p >= 0.0));
             prop_assert!((pmf.iter().sum::<f32>() - 1.0).abs() < 1e-5, "{pmf:?}");
-            let (i, p) = choice.choose(u, &weights).expect("every light has a floor");
+            let (i, p, rest) = choice.choose(u, &weights).expect("every light has a floor");
+            prop_assert!((0.0..1.0).contains(&rest));
             prop_assert_eq!(p, pmf[i]);
             prop_assert!(p > 0.0);
         }

@@ -437,17 +437,17 @@ impl Scene {
         )
     }
 
-    /// Chooses a light with `u_choice` and samples a direction to it from `hit` with `u`.
-    /// The light's emission comes from `cache`, as in [`Scene::emitted`].
+    /// Chooses a light and samples a direction to it from `hit`, both with `u` (`u.x`
+    /// chooses, and what is left of it places the point). The light's emission comes
+    /// from `cache`, as in [`Scene::emitted`].
     pub fn sample_light<const N: usize>(
         &self,
         hit: &Hit,
-        u_choice: f32,
         u: Vec2,
         wavelengths: &SampledWavelengths<N>,
         cache: &mut EmissionCache<N>,
     ) -> Option<LightSample<N>> {
         self.lights
-            .sample(hit.p, u_choice, u, wavelengths, &self.emission, cache)
+            .sample(hit.p, u, wavelengths, &self.emission, cache)
     }
 }
