@@ -249,22 +249,18 @@ fn point_light_direct_lighting_is_analytic() {
     for sampler in [LambdaSampler::Uniform, LambdaSampler::Visible] {
         let film = floor_render(lights.clone(), None, sampler);
         let radiance = 0.5 / std::f64::consts::PI * 2.0 / 4.0;
-        let expected = constant_xyz(radiance);
-        for k in 0..3 {
-            let (mean, error) = mean_and_error(&film, k);
-            assert!(
-                (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
-                "{sampler:?} channel {k}: {mean} vs {}",
-                expected[k]
-            );
-        }
+        assert_floor_radiance(&film, radiance, &format!("{sampler:?}"));
     }
 }
 
 /// Asserts that every XYZ channel of `film` is the floor's radiance `radiance` (of a
 /// constant spectrum) within Monte Carlo error.
 fn assert_floor_radiance(film: &Film, radiance: f64, what: &str) {
-    let expected = constant_xyz(radiance);
+    assert_floor_xyz(film, constant_xyz(radiance), what);
+}
+
+/// Asserts that every channel of `film` is `expected` within Monte Carlo error.
+fn assert_floor_xyz(film: &Film, expected: [f64; 3], what: &str) {
     for k in 0..3 {
         let (mean, error) = mean_and_error(film, k);
         assert!(
@@ -393,14 +389,7 @@ fn lights_of_different_spectra_light_the_floor_analytically() {
             expected[k] += 0.5 / std::f64::consts::PI * e * xyz[k];
         }
     }
-    for k in 0..3 {
-        let (mean, error) = mean_and_error(&film, k);
-        assert!(
-            (mean - expected[k]).abs() < 5.0 * error + 2e-3 * expected[k],
-            "channel {k}: {mean} +- {error} vs {}",
-            expected[k]
-        );
-    }
+    assert_floor_xyz(&film, expected, "three bands");
 }
 
 #[test]
