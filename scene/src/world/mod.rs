@@ -418,8 +418,11 @@ impl Scene {
         }
     }
 
-    /// Chooses a light with `u_choice` and samples a ray leaving it (the start of a light
-    /// path): see [`Lights::sample_emission`].
+    /// Chooses a light with `u_choice` in proportion to its power and samples a ray
+    /// leaving it (the start of a light path): a point with `u_position` and a direction
+    /// with `u_direction`, cosine-weighted from an emitting triangle, uniform from a point
+    /// light, within the cone of a spot, parallel through a disk covering the scene for a
+    /// directional light; an environment gives None (camera paths find its caustics).
     pub fn sample_emission<const N: usize>(
         &self,
         u_choice: f32,
