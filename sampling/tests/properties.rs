@@ -85,6 +85,9 @@ proptest! {
         if let Ok(t) = AliasTable::new(&values) {
             let (i, p) = t.sample(u);
             prop_assert!(values[i] > 0.0 && p > 0.0 && p <= 1.0);
+            let (j, q, rest) = t.sample_remapped(u);
+            prop_assert_eq!((i, p), (j, q));
+            prop_assert!((0.0..1.0).contains(&rest), "{}", rest);
         }
         if let Ok(l) = PiecewiseLinear1D::new(&values, 0.0, 1.0) {
             let (x, p) = l.sample(u);
