@@ -70,15 +70,14 @@ struct Group {
 }
 
 impl Group {
-    /// The proxy of the spectrum at `lambda`.
-    fn proxy(&self, lambda: f32) -> f32 {
-        // Bin k holds [TABLE_MIN + k - 0.5, TABLE_MIN + k + 0.5): the truncating cast of
-        // a non-negative value is the floor, without a libm round.
-        let x = lambda - (TABLE_MIN - 0.5);
-        if x >= 0.0 && x < TABLE_LEN as f32 {
-            self.proxy[x as usize]
-        } else {
-            (self.spectrum.evaluate(f64::from(lambda)) as f32).max(0.0)
+    /// The proxy of the spectrum at `lambda`, whose bin is `bin` (None outside the
+    /// table: the spectrum itself). Bin k holds [TABLE_MIN + k - 0.5, TABLE_MIN + k +
+    /// 0.5), so the bin of l is the truncating cast of l - TABLE_MIN + 0.5 where that is
+    /// in range, without a libm round.
+    fn proxy(&self, bin: Option<usize>, lambda: f32) -> f32 {
+        match bin.and_then(|k| self.proxy.get(k)) {
+            Some(&p) => p,
+            None => (self.spectrum.evaluate(f64::from(lambda)) as f32).max(0.0),
         }
     }
 }
@@ -182,10 +181,18 @@ impl SpectralChoice {
         if let Some(weights) = cache.choice_weights {
             return weights;
         }
+        // Lane by lane, each lane's bin found once for every group.
+        let mut lanes = [0.0f32; MAX_GROUPS];
+        for &l in wavelengths.lambdas() {
+            let x = l - (TABLE_MIN - 0.5);
+            let bin = (x >= 0.0 && x < TABLE_LEN as f32).then_some(x as i32 as usize);
+            for (sum, g) in lanes.iter_mut().zip(&self.groups) {
+                *sum += g.proxy(bin, l);
+            }
+        }
         let mut group = [0.0f32; MAX_GROUPS];
-        for (w, g) in group.iter_mut().zip(&self.groups) {
-            let lanes: f32 = wavelengths.lambdas().iter().map(|&l| g.proxy(l)).sum();
-            let weight = (g.extent * f64::from(lanes + N as f32 * g.floor)) as f32;
+        for ((w, g), sum) in group.iter_mut().zip(&self.groups).zip(lanes) {
+            let weight = (g.extent * f64::from(sum + N as f32 * g.floor)) as f32;
             *w = if weight.is_finite() { weight } else { 0.0 };
         }
         let total = group.iter().sum::<f32>();
@@ -223,8 +230,14 @@ impl SpectralChoice {
         let u_member = (f64::from(target - below) / f64::from(weights.group[g]))
             .clamp(0.0, 1.0 - f64::EPSILON);
         let group = &self.groups[g];
-        let (m, _, rest) = group.members.sample_remapped(u_member);
-        let light = group.lights[m] as usize;
+        // A group of one light (a punctual light, the environment) needs no second choice.
+        let (light, rest) = match group.lights.as_slice() {
+            [only] => (*only as usize, u_member),
+            members => {
+                let (m, _, rest) = group.members.sample_remapped(u_member);
+                (members[m] as usize, rest)
+            }
+        };
         let pmf = self.pmf(light, weights);
         (pmf > 0.0).then_some((light, pmf, unit_f32(rest)))
     }
