@@ -145,7 +145,7 @@ impl PiecewiseConstant1D {
         if !(x >= self.min && x < self.max) {
             return 0.0;
         }
-        let bin = (((x - self.min) / (self.max - self.min) * self.len() as f64) as usize)
+        let bin = (((x - self.min) / (self.max - self.min) * self.len() as f64) as u32 as usize)
             .min(self.len() - 1);
         self.values[bin] / self.integral
     }
@@ -160,7 +160,7 @@ impl PiecewiseConstant1D {
             return 1.0;
         }
         let position = (x - self.min) / (self.max - self.min) * self.len() as f64;
-        let bin = (position as usize).min(self.len() - 1);
+        let bin = (position as u32 as usize).min(self.len() - 1);
         let t = position - bin as f64;
         self.cdf[bin] + t * (self.cdf[bin + 1] - self.cdf[bin])
     }
