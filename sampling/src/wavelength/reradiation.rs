@@ -77,7 +77,7 @@ impl ReradiationSampler {
             return None;
         }
         let t = (lambda - self.range.min()) / self.range.width();
-        Some(((t * self.bins as f32) as usize).min(self.bins - 1))
+        Some(((t * self.bins as f32) as u32 as usize).min(self.bins - 1))
     }
 
     /// M(incident, outgoing) at two wavelengths (0 outside the range).

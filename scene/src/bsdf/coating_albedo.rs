@@ -81,7 +81,7 @@ impl CoatingAlbedo {
 
     fn alpha_coordinate(alpha: f32) -> (usize, f32) {
         let t = alpha.clamp(1e-3, 1.0).sqrt() * (ALPHA_STEPS - 1) as f32;
-        let j = (t as usize).min(ALPHA_STEPS - 2);
+        let j = (t as u32 as usize).min(ALPHA_STEPS - 2);
         (j, t - j as f32)
     }
 
@@ -89,7 +89,7 @@ impl CoatingAlbedo {
     pub fn albedo(&self, mu: f32, alpha: f32) -> f32 {
         let x =
             (mu.abs().clamp(0.0, 1.0) * MU_STEPS as f32 - 0.5).clamp(0.0, (MU_STEPS - 1) as f32);
-        let i = (x as usize).min(MU_STEPS - 2);
+        let i = (x as u32 as usize).min(MU_STEPS - 2);
         let tx = x - i as f32;
         let (j, ty) = Self::alpha_coordinate(alpha);
         let at = |i: usize, j: usize| self.table[j * MU_STEPS + i];
