@@ -14,7 +14,9 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::light_choice::SpectralChoice;
 use super::{EmissionCache, SceneSpectrum};
-use crate::geometry::{Ray, offset_ray_origin, triangle_area, triangle_point_error};
+use crate::geometry::{
+    Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
+};
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -114,21 +116,18 @@ pub(crate) struct TriangleShape {
     centroid: Vec3,
     /// (v1 - v0) x (v2 - v0): twice the area, along the normal.
     cross: Vec3,
-    /// The unit normal (`triangle_normal`).
     pub(crate) normal: Vec3,
-    /// The area (`triangle_area`).
     pub(crate) area: f32,
 }
 
 impl TriangleShape {
     fn new(v: [Vec3; 3]) -> Self {
-        let cross = (v[1] - v[0]).cross(v[2] - v[0]);
         Self {
             vertices: v,
             centroid: (v[0] + v[1] + v[2]) / 3.0,
-            cross,
-            normal: cross.normalize_or_zero(),
-            area: 0.5 * cross.length(),
+            cross: (v[1] - v[0]).cross(v[2] - v[0]),
+            normal: triangle_normal(v),
+            area: triangle_area(v),
         }
     }
 }
