@@ -31,8 +31,9 @@
 //!   renders.) The collapse is planned by the surface area heuristic, bottom-up, rather
 //!   than greedy.
 //! - **Light sampling by what the receiver sees.** Lights are chosen by power (an alias
-//!   table), or, when their spectra differ, by power at the path's own wavelengths
-//!   (`world/light_choice.rs`: lights grouped by spectrum, a 1 nm proxy of each, a
+//!   table), or, when their spectra differ in ways a package of wavelengths can see
+//!   (narrow bands, ultraviolet), by power at the path's own wavelengths
+//!   (`world/light_choice.rs`: lights grouped by spectral shape, a 1 nm proxy of each, a
 //!   defensive floor); an emissive triangle is then sampled uniformly in the solid angle it
 //!   subtends when that angle is large enough for its cos / d^2 to vary (0.05 sr and up),
 //!   by area otherwise, and `Scene::light_pdf` reports the density of the same choice for

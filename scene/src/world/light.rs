@@ -1,6 +1,7 @@
 //! Lights of a render-ready scene: emissive triangles, KHR punctual lights and a constant
 //! environment, chosen in proportion to their power through an alias table, or, when
-//! their spectra differ, to their power at the path's wavelengths (`light_choice`).
+//! their spectra differ in narrow bands or the ultraviolet, to their power at the path's
+//! wavelengths (`light_choice`).
 
 use std::f32::consts::PI;
 

@@ -16,20 +16,31 @@
 //! contributes nothing to the path. `Scene::light_pdf` reports the same probability, from
 //! the same cached weights, for MIS with BSDF sampling.
 //!
-//! Lights that share an emission spectrum form one group, chosen among by extent (an alias
-//! table), so the work per set of wavelengths is one lookup per group and lane, cached
-//! with the emission spectra. A scene whose lights all share one spectrum has one group, and then
-//! nothing changes: lights are chosen by power as before. Scenes with more than
-//! [`MAX_GROUPS`] spectra also keep the choice by power, bounding the per-path work.
+//! Lights whose spectra differ only by a factor (the triangles of one emissive material,
+//! lamps of one colour at different intensities) form one group, chosen among by extent
+//! in units of the group's spectrum (an alias table), so the work per set of wavelengths
+//! is one lookup per group and lane, cached with the emission spectra. A scene whose
+//! lights all share one spectral shape has one group, and then nothing changes: lights
+//! are chosen by power as before. Scenes with more than [`MAX_GROUPS`] shapes also keep
+//! the choice by power, bounding the per-path work.
 //!
 //! Each group's spectrum is read through a 1 nm proxy table (its largest value within
 //! each bin), one load per lane instead of a blackbody or table evaluation, because the
 //! weights are recomputed whenever a fluorescent vertex changes the path's wavelengths.
 //! Any positive weight keeps the choice unbiased; a floor of [`DEFENSIVE`] times each
 //! spectrum's mean keeps every emitting light possible whatever the proxy says.
-//! Measured (docs/trade-offs.md, "Light choice"): 5-7% more efficient on the effects
-//! stage and a Cornell box with coloured lamps, 20-200 times less variance with narrow
-//! bands, 3% less on a fluorescent scene whose weights change at every vertex.
+//!
+//! When the choice follows the wavelengths: only when some group's sum over a package
+//! changes from package to package ([`lane_sum_variation`] above [`SPECTRAL_VARIATION`]):
+//! bands narrower than a package's spacing, or light only outside the visible. A
+//! package's wavelengths are spread across the range, so a broad spectrum's sum over them
+//! is nearly its mean, and choosing by it only adds the other lights' spectral noise to
+//! each light's estimate: measured (docs/trade-offs.md, "Light choice"), the choice by
+//! power is 4-7% more efficient with a warm lamp and daylight or 40 nm LED bands, while the
+//! spectral choice gains 2-5% with 30 nm bands, 5% on the effects stage (its 365 nm
+//! tube), and 1.7-200 times with 20 nm bands.
+
+use std::collections::HashMap;
 
 use prism_sampling::distribution::AliasTable;
 use prism_spectrum::{SampledWavelengths, Spectrum};
@@ -45,6 +56,10 @@ pub const MAX_GROUPS: usize = 8;
 /// responses. A wavelength outside it is looked up in the spectrum itself.
 const TABLE_MIN: f32 = 200.0;
 const TABLE_LEN: usize = 1001;
+
+/// The least [`lane_sum_variation`] of some group for which the choice follows the
+/// path's wavelengths.
+const SPECTRAL_VARIATION: f64 = 0.4;
 
 /// Each group's weight includes this fraction of its spectrum's mean (per lane), so that
 /// every light with any emission keeps a nonzero probability whatever the proxy says:
@@ -95,6 +110,67 @@ fn proxy_table(spectrum: &SceneSpectrum) -> Vec<f32> {
         .collect()
 }
 
+/// A spectrum's values at the proxy table's bin centres and their mean: what tells
+/// spectra that differ only by a factor (lamps of one colour at different intensities,
+/// emissive materials of one colour at different strengths), which share a group.
+struct Shape {
+    values: Vec<f64>,
+    mean: f64,
+}
+
+impl Shape {
+    fn of(spectrum: &SceneSpectrum) -> Self {
+        let values: Vec<f64> = (0..TABLE_LEN)
+            .map(|k| spectrum.evaluate(f64::from(TABLE_MIN) + k as f64))
+            .collect();
+        let mean = values.iter().sum::<f64>() / TABLE_LEN as f64;
+        Self { values, mean }
+    }
+
+    /// Whether the two are one spectrum times a positive factor, to within rounding: 1e-6
+    /// relative at every bin, or 1e-9 of the mean, where far tails lose their precision
+    /// to subnormals. Spectra dark over the whole table are never merged: nothing here
+    /// tells their shapes apart.
+    fn proportional(&self, other: &Shape) -> bool {
+        let usable = |m: f64| m > 0.0 && m.is_finite();
+        usable(self.mean)
+            && usable(other.mean)
+            && self.values.iter().zip(&other.values).all(|(&a, &b)| {
+                let (a, b) = (a / self.mean, b / other.mean);
+                (a - b).abs() <= 1e-6 * a.abs().max(b.abs()) + 1e-9
+            })
+    }
+}
+
+/// How much a spectrum's sum over a path's wavelengths varies from path to path, as the
+/// coefficient of variation of the sum over eight wavelengths spaced evenly across
+/// 360-830 nm (the default package over the visible range) at 64 offsets. A spectrum
+/// dark at every such wavelength gives infinity: it matters only where fluorescence
+/// takes paths (the ultraviolet).
+fn lane_sum_variation(proxy: &[f32]) -> f64 {
+    const LANES: usize = 8;
+    const OFFSETS: usize = 64;
+    let (lo, width) = (360.0, 470.0);
+    let sums: Vec<f64> = (0..OFFSETS)
+        .map(|k| {
+            let offset = (k as f64 + 0.5) / OFFSETS as f64;
+            (0..LANES)
+                .map(|j| {
+                    let lambda = lo + (offset + j as f64) * width / LANES as f64;
+                    let bin = (lambda - f64::from(TABLE_MIN)).round() as usize;
+                    f64::from(proxy.get(bin).copied().unwrap_or(0.0))
+                })
+                .sum()
+        })
+        .collect();
+    let mean = sums.iter().sum::<f64>() / OFFSETS as f64;
+    if mean.is_nan() || mean <= 0.0 {
+        return f64::INFINITY;
+    }
+    let variance = sums.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / OFFSETS as f64;
+    variance.sqrt() / mean
+}
+
 /// Lights grouped by spectrum, for the choice at a path's wavelengths.
 #[derive(Debug, Clone)]
 pub(crate) struct SpectralChoice {
@@ -121,40 +197,57 @@ impl SpectralChoice {
         extent: &[f64],
         emission: &[SceneSpectrum],
     ) -> Option<Self> {
+        // A light's spectrum is its triangle's emission (shared by every triangle of an
+        // emissive material) or its own.
         let source_of = |i: usize| match &lights[i] {
             Light::Triangle { emission, .. } => (0u8, *emission),
             _ => (1u8, i as u32),
         };
-        let mut keys: Vec<(u8, u32)> = Vec::new();
-        let mut members: Vec<Vec<u32>> = Vec::new();
+        let mut shapes: Vec<Shape> = Vec::new();
+        let mut shape_of: HashMap<(u8, u32), usize> = HashMap::new();
+        // Per group: its representative shape, and its members with their extents in
+        // units of the representative's spectrum.
+        let mut representatives: Vec<usize> = Vec::new();
+        let mut members: Vec<Vec<(u32, f64)>> = Vec::new();
         for (i, &weight) in extent.iter().enumerate().take(lights.len()) {
             if !(weight > 0.0 && weight.is_finite()) {
                 continue;
             }
-            let key = source_of(i);
-            match keys.iter().position(|k| *k == key) {
-                Some(g) => members[g].push(i as u32),
+            let s = *shape_of.entry(source_of(i)).or_insert_with(|| {
+                shapes.push(Shape::of(light_spectrum(&lights[i], emission)));
+                shapes.len() - 1
+            });
+            let group = representatives
+                .iter()
+                .position(|&r| shapes[r].proportional(&shapes[s]));
+            let g = match group {
+                Some(g) => g,
                 None => {
-                    if keys.len() == MAX_GROUPS {
+                    if representatives.len() == MAX_GROUPS {
                         return None;
                     }
-                    keys.push(key);
-                    members.push(vec![i as u32]);
+                    representatives.push(s);
+                    members.push(Vec::new());
+                    representatives.len() - 1
                 }
-            }
+            };
+            let ratio = shapes[s].mean / shapes[representatives[g]].mean;
+            // A shape without mean is its own group's representative (ratio 1).
+            let ratio = if ratio.is_finite() { ratio } else { 1.0 };
+            members[g].push((i as u32, weight * ratio));
         }
-        if keys.len() < 2 {
+        if representatives.len() < 2 {
             return None;
         }
         let mut group_of = vec![(u32::MAX, 0.0f32); lights.len()];
-        let mut groups = Vec::with_capacity(keys.len());
+        let mut groups = Vec::with_capacity(representatives.len());
         for (g, members) in members.into_iter().enumerate() {
-            let weights: Vec<f64> = members.iter().map(|&i| extent[i as usize]).collect();
+            let weights: Vec<f64> = members.iter().map(|&(_, w)| w).collect();
             let table = AliasTable::new(&weights).ok()?;
-            for (m, &i) in members.iter().enumerate() {
+            for (m, &(i, _)) in members.iter().enumerate() {
                 group_of[i as usize] = (g as u32, table.pmf(m) as f32);
             }
-            let spectrum = light_spectrum(&lights[members[0] as usize], emission).clone();
+            let spectrum = light_spectrum(&lights[members[0].0 as usize], emission).clone();
             let proxy = proxy_table(&spectrum);
             let mean = proxy.iter().map(|&v| f64::from(v)).sum::<f64>() / TABLE_LEN as f64;
             groups.push(Group {
@@ -163,10 +256,13 @@ impl SpectralChoice {
                 floor: DEFENSIVE * mean as f32,
                 extent: weights.iter().sum(),
                 members: table,
-                lights: members,
+                lights: members.iter().map(|&(i, _)| i).collect(),
             });
         }
-        Some(Self { groups, group_of })
+        let varies = groups
+            .iter()
+            .any(|g| lane_sum_variation(&g.proxy) > SPECTRAL_VARIATION);
+        varies.then_some(Self { groups, group_of })
     }
 
     /// Each group's weight at `wavelengths`: its extent times its proxy spectrum summed
@@ -255,13 +351,18 @@ impl SpectralChoice {
 
 #[cfg(test)]
 mod tests {
+    use std::sync::Arc;
+
     use glam::Vec3;
     use prism_sampling::stats::chi_square_test;
     use prism_spectrum::spectra::Gaussian;
     use prism_spectrum::{SampledWavelengths, Spectrum};
     use proptest::prelude::*;
 
-    use super::{DEFENSIVE, MAX_GROUPS, SpectralChoice, TABLE_LEN, TABLE_MIN, proxy_table};
+    use super::{
+        DEFENSIVE, MAX_GROUPS, SPECTRAL_VARIATION, SpectralChoice, TABLE_LEN, TABLE_MIN,
+        lane_sum_variation, proxy_table,
+    };
     use crate::world::{EmissionCache, Light, SceneSpectrum};
 
     fn band(centre: f64, fwhm: f64) -> SceneSpectrum {
@@ -363,6 +464,75 @@ mod tests {
             // The weights were cached for these wavelengths.
             assert_eq!(cache.choice_weights, Some(weights));
         }
+    }
+
+    /// Twelve point lamps in three colours at four intensities each: more lights than
+    /// groups, but three spectral shapes, so the choice stays spectral, each lamp chosen
+    /// by its own power at the path's wavelengths; with one colour it is the choice by
+    /// power.
+    #[test]
+    fn lamps_of_one_colour_at_different_intensities_share_a_group() {
+        let lamp = |centre: f64, scale: f64| Light::Point {
+            position: Vec3::ZERO,
+            intensity: SceneSpectrum::Scaled(Arc::new(band(centre, 15.0)), scale),
+        };
+        let lights: Vec<Light> = [450.0, 550.0, 650.0]
+            .iter()
+            .flat_map(|&c| [0.5, 1.0, 3.0, 40.0].map(|k| lamp(c, k)))
+            .collect();
+        assert!(lights.len() > MAX_GROUPS);
+        let extent = vec![4.0 * std::f64::consts::PI; lights.len()];
+        let choice = SpectralChoice::new(&lights, &extent, &[]).expect("three shapes");
+        assert_eq!(choice.groups.len(), 3);
+        let spectrum = |l: &Light| match l {
+            Light::Point { intensity, .. } => intensity.clone(),
+            _ => unreachable!(),
+        };
+        for lambda in [[450.0, 470.0, 600.0, 640.0], [500.0, 550.0, 551.0, 700.0]] {
+            let w = wavelengths(lambda);
+            let weights = choice.weights(&w, &mut EmissionCache::new());
+            let power: Vec<f64> = lights
+                .iter()
+                .zip(&extent)
+                .map(|(l, &x)| expected_weight(&spectrum(l), x, &w))
+                .collect();
+            let total: f64 = power.iter().sum();
+            for (i, p) in power.iter().enumerate() {
+                let pmf = f64::from(choice.pmf(i, &weights));
+                assert!(
+                    (pmf - p / total).abs() <= 1e-5 * (p / total).max(1e-3),
+                    "{lambda:?}: lamp {i} pmf {pmf} vs {}",
+                    p / total
+                );
+            }
+        }
+        let one_colour: Vec<Light> = [0.5, 1.0, 3.0].map(|k| lamp(550.0, k)).into();
+        assert!(SpectralChoice::new(&one_colour, &extent[..3], &[]).is_none());
+    }
+
+    /// Broad spectra that differ in shape (a warm and a cool lamp) keep the choice by
+    /// power: their sums over a package barely change from path to path, and choosing by
+    /// them was measured to add noise (docs/trade-offs.md, "Light choice"). Bands narrower
+    /// than the package's spacing, or dark over the visible, make the choice spectral.
+    #[test]
+    fn only_spectra_that_vary_across_packages_make_the_choice_spectral() {
+        let point = |s: SceneSpectrum| Light::Point {
+            position: Vec3::ZERO,
+            intensity: s,
+        };
+        let extent = [1.0; 2];
+        let broad = [band(500.0, 120.0), band(600.0, 120.0)].map(point);
+        assert!(SpectralChoice::new(&broad, &extent, &[]).is_none());
+        let narrow = [band(500.0, 120.0), band(600.0, 20.0)].map(point);
+        assert!(SpectralChoice::new(&narrow, &extent, &[]).is_some());
+        let ultraviolet = [band(500.0, 120.0), band(300.0, 20.0)].map(point);
+        assert!(SpectralChoice::new(&ultraviolet, &extent, &[]).is_some());
+
+        let variation = |s: &SceneSpectrum| lane_sum_variation(&proxy_table(s));
+        assert!(variation(&SceneSpectrum::Constant(2.0)) < 1e-6);
+        assert!(variation(&band(550.0, 120.0)) < 0.01);
+        assert!(variation(&band(550.0, 20.0)) > 2.0 * SPECTRAL_VARIATION);
+        assert_eq!(variation(&band(250.0, 10.0)), f64::INFINITY);
     }
 
     #[test]
