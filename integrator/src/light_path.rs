@@ -14,6 +14,7 @@
 //! unbiased and each path is counted once.
 
 use glam::Vec2;
+use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::bsdf::TransportMode;
@@ -128,7 +129,7 @@ impl Tracer<'_> {
                 break;
             }
             let pdf = sample.pdf[0];
-            if !(pdf > 0.0 && pdf.is_finite()) {
+            if !positive_finite(pdf) {
                 break;
             }
             let wi_world = frame.to_world(sample.wi);

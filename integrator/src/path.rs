@@ -3,6 +3,7 @@
 //! wavelengths that is split at dispersive delta events.
 
 use glam::{Vec2, Vec3};
+use prism_sampling::distribution::positive_finite;
 use prism_sampling::mis::power_heuristic;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
@@ -269,7 +270,7 @@ impl Tracer<'_> {
                 break;
             };
             let pdf = sample.pdf[0];
-            if !(pdf > 0.0 && pdf.is_finite()) {
+            if !positive_finite(pdf) {
                 break;
             }
             beta *= sample.f * (sample.wi.z.abs() / pdf);

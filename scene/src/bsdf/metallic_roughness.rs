@@ -1,4 +1,5 @@
 use glam::{Vec2, Vec3};
+use prism_sampling::distribution::positive_finite;
 use prism_sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 use prism_spectrum::SampledSpectrum;
 
@@ -120,7 +121,7 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             return None;
         }
         let pdf = self.pdf(wo, wi);
-        if !(pdf > 0.0 && pdf.is_finite()) {
+        if !positive_finite(pdf) {
             return None;
         }
         Some(BsdfSample {

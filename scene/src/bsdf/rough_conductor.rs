@@ -1,4 +1,5 @@
 use glam::{Vec2, Vec3};
+use prism_sampling::distribution::positive_finite;
 use prism_spectrum::SampledSpectrum;
 
 use super::microfacet::Ggx;
@@ -67,7 +68,7 @@ impl<const N: usize> RoughConductor<N> {
             return None;
         }
         let pdf = self.pdf(wo, wi);
-        if !(pdf > 0.0 && pdf.is_finite()) {
+        if !positive_finite(pdf) {
             return None;
         }
         Some(BsdfSample {

@@ -1,4 +1,5 @@
 use glam::{Vec2, Vec3};
+use prism_sampling::distribution::positive_finite;
 use prism_spectrum::SampledSpectrum;
 
 use super::microfacet::Ggx;
@@ -143,7 +144,7 @@ impl<const N: usize> RoughDielectric<N> {
                 pdf[lane] = density;
             }
         }
-        if !(pdf[0] > 0.0 && pdf[0].is_finite()) {
+        if !positive_finite(pdf[0]) {
             return None;
         }
         Some(BsdfSample {

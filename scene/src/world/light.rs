@@ -6,7 +6,7 @@
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
-use prism_sampling::distribution::AliasTable;
+use prism_sampling::distribution::{AliasTable, positive_finite};
 use prism_sampling::warp::{
     cosine_hemisphere, spherical_triangle, spherical_triangle_solid_angle, uniform_cone,
     uniform_cone_pdf, uniform_disk_concentric, uniform_sphere, uniform_triangle,
@@ -355,7 +355,7 @@ impl Lights {
                 };
                 let cos = -n.dot(wi);
                 let facing = cos > 0.0 || (*two_sided && cos < 0.0);
-                let valid = distance > 0.0 && distance.is_finite() && pdf.is_finite();
+                let valid = positive_finite(distance) && pdf.is_finite();
                 if !facing || !valid {
                     return None;
                 }
@@ -420,7 +420,7 @@ impl Lights {
                 delta: false,
             },
         };
-        (sample.pdf.is_finite() && sample.pdf > 0.0 && sample.wi.is_finite()).then_some(sample)
+        (positive_finite(sample.pdf) && sample.wi.is_finite()).then_some(sample)
     }
 }
 
