@@ -8,4 +8,5 @@ mod triangle;
 pub use bvh::{Bvh, BvhQuality, SurfaceHit};
 pub use offset::{offset_ray_origin, triangle_point_error};
 pub use ray::Ray;
+pub(crate) use triangle::unit_or_zero;
 pub use triangle::{TriangleHit, intersect_triangle, triangle_area, triangle_normal};

@@ -1,4 +1,5 @@
 use glam::{DVec3, Vec3};
+use prism_sampling::distribution::positive_finite;
 
 use super::Ray;
 use super::offset::gamma;
@@ -11,7 +12,19 @@ pub fn triangle_area(p: [Vec3; 3]) -> f32 {
 /// The unit normal of a triangle, on the side its counter-clockwise winding faces (zero
 /// for a degenerate triangle).
 pub fn triangle_normal(p: [Vec3; 3]) -> Vec3 {
-    (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero()
+    unit_or_zero((p[1] - p[0]).cross(p[2] - p[0]))
+}
+
+/// `v` scaled to unit length, or zero where that is not finite (zero, subnormal or
+/// non-finite `v`): glam's `normalize_or_zero`, the same operations, with the check on the
+/// reciprocal's bits (see `positive_finite`), which is run for every hit.
+pub(crate) fn unit_or_zero(v: Vec3) -> Vec3 {
+    let rcp = 1.0 / v.length();
+    if positive_finite(rcp) {
+        v * rcp
+    } else {
+        Vec3::ZERO
+    }
 }
 
 /// Where a ray meets a triangle.
@@ -131,5 +144,40 @@ impl WatertightRay {
             t,
             barycentric: [e0 * inverse, e1 * inverse, e2 * inverse],
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use proptest::prelude::*;
+
+    use super::unit_or_zero;
+
+    fn component() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            Just(0.0f32),
+            Just(-0.0f32),
+            Just(1e-45f32),
+            Just(f32::MIN_POSITIVE),
+            Just(f32::MAX),
+            Just(f32::INFINITY),
+            Just(f32::NAN),
+            any::<f32>(),
+            -2.0..2.0f32,
+        ]
+    }
+
+    proptest! {
+        /// Bit for bit glam's `normalize_or_zero`, whatever the components (zero,
+        /// subnormal, huge, infinite, NaN).
+        #[test]
+        fn unit_or_zero_is_glams_normalize_or_zero(v in prop::array::uniform3(component())) {
+            let v = Vec3::from(v);
+            prop_assert_eq!(
+                unit_or_zero(v).to_array().map(f32::to_bits),
+                v.normalize_or_zero().to_array().map(f32::to_bits)
+            );
+        }
     }
 }

@@ -25,7 +25,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::camera::Camera;
 use crate::geometry::{
-    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_normal, triangle_point_error,
+    Bvh, BvhQuality, Ray, offset_ray_origin, triangle_normal, triangle_point_error, unit_or_zero,
 };
 
 /// What a scene uses, so that the integrator pays only for what is there.
@@ -306,7 +306,7 @@ impl Scene {
         let normal = triangle_normal(v);
         let shading_normal = match self.attributes.normals.get(hit.triangle) {
             Some(n) => {
-                let s = (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]).normalize_or_zero();
+                let s = unit_or_zero(b[0] * n[0] + b[1] * n[1] + b[2] * n[2]);
                 // Vertex normals that cancel, or face away from the surface, are not a
                 // shading frame prism can use: the face's own normal is.
                 let d = s.dot(normal);
