@@ -168,10 +168,14 @@ impl SobolStream {
 
     fn point(&self, dimension: u64) -> (u32, u32) {
         let (h, index) = self.scrambled_index(dimension);
-        let x = laine_karras_permutation(index, (h >> 32) as u32).reverse_bits();
+        let x = laine_karras_permutation(index, (h >> 32) as u32);
         let y_reversed = by_bytes(&DIMENSION_1_BYTES_REVERSED, index);
-        let y = laine_karras_permutation(y_reversed, mix64(h) as u32).reverse_bits();
-        (x, y)
+        let y = laine_karras_permutation(y_reversed, mix64(h) as u32);
+        // Both coordinates reversed by one 64-bit reversal (x86-64 has none for either
+        // width: each is a byte swap and three mask-and-shift steps): the reversal of
+        // x:y is reverse(y):reverse(x).
+        let both = ((u64::from(x) << 32) | u64::from(y)).reverse_bits();
+        (both as u32, (both >> 32) as u32)
     }
 }
 
