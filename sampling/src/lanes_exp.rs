@@ -22,15 +22,19 @@ pub(crate) fn exp_lanes<const N: usize>(x: [f32; N]) -> [f32; N] {
         let x = x.clamp(-87.0, 88.0);
         // Round to nearest by adding and removing 1.5 * 2^23 (exact for |y| < 2^22):
         // `f32::round` is a libm call without SSE4.1, and would stop vectorization.
-        let n = (x * std::f32::consts::LOG2_E + ROUNDING) - ROUNDING;
+        let shifted = x * std::f32::consts::LOG2_E + ROUNDING;
+        let n = shifted - ROUNDING;
         let r = (x - n * LN2_HI) - n * LN2_LO;
         let p = 1.0
             + r * (1.0
                 + r * (1.0 / 2.0
                     + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0))))));
-        // n is in [-126, 127] here, so n + 127 is a valid biased exponent; a NaN lane
-        // casts to 0 and keeps its NaN through p.
-        let scale = f32::from_bits(((n as i32 + 127) as u32) << 23);
+        // n is in [-126, 127] here, so n + 127 is a valid biased exponent. n is read off
+        // the low bits of the shifted sum (1.5 * 2^23 + n is 0x4b40_0000 + n) rather than
+        // by `n as i32`, whose saturating conversion kept LLVM from vectorizing the lanes.
+        // A NaN lane keeps its NaN through p.
+        let n_bits = shifted.to_bits().wrapping_sub(ROUNDING.to_bits());
+        let scale = f32::from_bits(n_bits.wrapping_add(127) << 23);
         p * scale
     })
 }

@@ -45,18 +45,35 @@ impl WavelengthRange {
         lambda >= self.min && lambda <= self.max
     }
 
-    /// `lambda` clamped into the range (NaN to `min`).
+    /// `lambda` clamped into the range (NaN to `min`). `f32::max` takes the operand that
+    /// is not NaN; no `f32::clamp`, whose check that min <= max is a branch per lane of
+    /// every package (the constructor guarantees it).
     pub fn clamp(&self, lambda: f32) -> f32 {
-        if lambda.is_nan() {
-            self.min
-        } else {
-            lambda.clamp(self.min, self.max)
-        }
+        lambda.max(self.min).min(self.max)
     }
 }
 
 impl Default for WavelengthRange {
     fn default() -> Self {
         Self::VISIBLE
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::WavelengthRange;
+
+    proptest! {
+        /// Any f32 (NaN, infinities, subnormals, either sign) lands in the range, as
+        /// `f32::clamp` would put it there, NaN at the minimum.
+        #[test]
+        fn clamp_is_the_clamp_with_nan_at_the_minimum(bits in any::<u32>(), lo in 1.0..500.0f32, width in 1e-3..700.0f32) {
+            let range = WavelengthRange::new(lo, lo + width).unwrap();
+            let x = f32::from_bits(bits);
+            let expected = if x.is_nan() { range.min() } else { x.clamp(range.min(), range.max()) };
+            prop_assert_eq!(range.clamp(x).to_bits(), expected.to_bits());
+        }
     }
 }
