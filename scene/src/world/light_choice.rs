@@ -617,6 +617,38 @@ mod tests {
         }
     }
 
+    proptest! {
+        /// Lamps of any intensity (subnormal to near f64's limit, zero) and any extent:
+        /// grouping never panics, and a spectral choice it makes gives finite
+        /// probabilities that sum to 1 (or chooses nothing when no weight is left).
+        #[test]
+        fn any_intensities_give_a_distribution_or_none(
+            scales in prop::array::uniform3(prop_oneof![
+                Just(0.0f64), Just(1e-310f64), Just(1e-30f64), Just(1.0f64), Just(1e30f64),
+                Just(1e300f64), 1e-3..1e3f64,
+            ]),
+            extent in prop::array::uniform3(prop_oneof![Just(0.0f64), Just(1e-300f64), Just(1e300f64), 1e-3..1e3f64]),
+            lambda in prop::array::uniform4(350.0..850.0f32),
+        ) {
+            let lamp = |centre: f64, scale: f64| Light::Point {
+                position: Vec3::ZERO,
+                intensity: SceneSpectrum::Scaled(Arc::new(band(centre, 15.0)), scale),
+            };
+            let lights = [lamp(450.0, scales[0]), lamp(450.0, scales[1]), lamp(650.0, scales[2])];
+            if let Some(choice) = SpectralChoice::new(&lights, &extent, &[]) {
+                let weights = choice.weights(&wavelengths(lambda), &mut EmissionCache::new());
+                prop_assert!(weights.total.is_finite() && weights.total >= 0.0);
+                let pmf: Vec<f32> = (0..3).map(|i| choice.pmf(i, &weights)).collect();
+                prop_assert!(pmf.iter().all(|p| p.is_finite() && *p >= 0.0));
+                if weights.total > 0.0 {
+                    prop_assert!((pmf.iter().sum::<f32>() - 1.0).abs() < 1e-4, "{pmf:?}");
+                } else {
+                    prop_assert!(choice.choose(0.5, &weights).is_none());
+                }
+            }
+        }
+    }
+
     #[test]
     fn one_spectrum_or_too_many_keep_the_choice_by_power() {
         let emission: Vec<SceneSpectrum> = (0..=MAX_GROUPS)
