@@ -145,8 +145,9 @@ impl Shape {
 /// How much a spectrum's sum over a path's wavelengths varies from path to path, as the
 /// coefficient of variation of the sum over eight wavelengths spaced evenly across
 /// 360-830 nm (the default package over the visible range) at 64 offsets. A spectrum
-/// dark at every such wavelength gives infinity: it matters only where fluorescence
-/// takes paths (the ultraviolet).
+/// dark at every such wavelength gives infinity: it matters only at wavelengths outside
+/// the visible (the ultraviolet that fluorescent materials absorb, a camera's infrared),
+/// where the choice by power over the visible cannot see it.
 fn lane_sum_variation(proxy: &[f32]) -> f64 {
     const LANES: usize = 8;
     const OFFSETS: usize = 64;
