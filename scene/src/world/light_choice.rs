@@ -147,7 +147,8 @@ impl Shape {
 /// 360-830 nm (the default package over the visible range) at 64 offsets. A spectrum
 /// dark at every such wavelength gives infinity: it matters only at wavelengths outside
 /// the visible (the ultraviolet that fluorescent materials absorb, a camera's infrared),
-/// where the choice by power over the visible cannot see it.
+/// so a path carries either none of its light or much of it, which one power cannot
+/// weigh.
 fn lane_sum_variation(proxy: &[f32]) -> f64 {
     const LANES: usize = 8;
     const OFFSETS: usize = 64;
