@@ -43,6 +43,7 @@
 use std::collections::HashMap;
 
 use prism_sampling::distribution::AliasTable;
+use prism_sampling::wavelength::WavelengthRange;
 use prism_spectrum::{SampledWavelengths, Spectrum};
 
 use super::light::{Light, light_spectrum, unit_f32};
@@ -152,7 +153,8 @@ impl Shape {
 fn lane_sum_variation(proxy: &[f32]) -> f64 {
     const LANES: usize = 8;
     const OFFSETS: usize = 64;
-    let (lo, width) = (360.0, 470.0);
+    let visible = WavelengthRange::VISIBLE;
+    let (lo, width) = (f64::from(visible.min()), f64::from(visible.width()));
     let sums: Vec<f64> = (0..OFFSETS)
         .map(|k| {
             let offset = (k as f64 + 0.5) / OFFSETS as f64;
