@@ -171,6 +171,13 @@ fn broken_files_are_clear_errors() {
             "index accessor",
         ),
         (
+            // The gltf crate's own validation indexes POSITION accessors unchecked.
+            "POSITION accessor that does not exist",
+            edit(&|d| d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(999)),
+            bin.clone(),
+            "accessor 999 does not exist",
+        ),
+        (
             "lines instead of triangles",
             edit(&|d| d["meshes"][0]["primitives"][0]["mode"] = json!(1)),
             bin.clone(),

@@ -307,8 +307,31 @@ fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<gltf::Gltf, LoadErro
     }
     root.extensions_required
         .retain(|e| !EXTENSIONS_READ_RAW.contains(&e.as_str()));
+    check_position_accessors(&root)?;
     let document = gltf::Document::from_json(root).map_err(invalid)?;
     Ok(gltf::Gltf { document, blob })
+}
+
+/// The gltf crate's validation reads each primitive's `POSITION` accessor by indexing
+/// (gltf-json 1.4's `primitive_validate_hook`), so an index past the accessors would panic
+/// inside it; such a file is rejected here first, with the path the validator would name.
+fn check_position_accessors(root: &gltf::json::Root) -> Result<(), LoadError> {
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+            if let Some(index) = primitive.attributes.get(&position)
+                && index.value() >= root.accessors.len()
+            {
+                return Err(LoadError::Invalid(format!(
+                    "meshes[{m}].primitives[{p}].attributes[\"POSITION\"]: accessor {} does not \
+                     exist ({} accessors)",
+                    index.value(),
+                    root.accessors.len()
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<Camera, LoadError> {
