@@ -254,4 +254,33 @@ proptest! {
         let bvh = Bvh::build(&[tri], BvhQuality::Medium);
         let _ = bvh.intersect(&ray);
     }
+
+    /// BVHs over triangles whose coordinates reach f32's limit (so that box areas, and
+    /// every surface-area cost, overflow to infinity) build without panicking, and find
+    /// the closest hit the scalar test finds among all triangles.
+    #[test]
+    fn bvh_over_extreme_coordinates_equals_brute_force(
+        coords in prop::collection::vec(
+            prop::array::uniform9(prop_oneof![
+                Just(0.0f32), Just(-0.0f32), Just(3.0e38f32), Just(-3.0e38f32), Just(1e30f32),
+                Just(f32::MIN_POSITIVE / 8.0), -2.0..2.0f32,
+            ]),
+            2..40,
+        ),
+        o in prop::array::uniform3(-3.0..3.0f32),
+        d in prop::array::uniform3(-1.0..1.0f32),
+    ) {
+        let triangles: Vec<[Vec3; 3]> = coords
+            .iter()
+            .map(|v| [0, 1, 2].map(|k| Vec3::new(v[3 * k], v[3 * k + 1], v[3 * k + 2])))
+            .collect();
+        let bvh = Bvh::build(&triangles, BvhQuality::Medium);
+        let ray = Ray::new(Vec3::from(o), Vec3::from(d), f32::INFINITY);
+        let brute = triangles
+            .iter()
+            .filter_map(|t| intersect_triangle(&ray, *t).map(|h| h.t))
+            .min_by(f32::total_cmp);
+        prop_assert_eq!(bvh.intersect(&ray).map(|h| h.hit.hit_t()), brute);
+        prop_assert_eq!(bvh.occluded(&ray), brute.is_some());
+    }
 }

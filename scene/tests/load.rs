@@ -178,6 +178,48 @@ fn broken_files_are_clear_errors() {
             "accessor 999 does not exist",
         ),
         (
+            "indices of floats",
+            edit(&|d| d["meshes"][0]["primitives"][0]["indices"] = json!(1)),
+            bin.clone(),
+            "index accessor 1 is F32 Vec3",
+        ),
+        (
+            "normals of scalars",
+            edit(&|d| d["accessors"][1]["type"] = json!("SCALAR")),
+            bin.clone(),
+            "NORMAL accessor 1 is F32 Scalar",
+        ),
+        (
+            "no indices",
+            edit(&|d| d["accessors"][2]["count"] = json!(0)),
+            bin.clone(),
+            "index accessor 2 has no elements",
+        ),
+        (
+            "stride shorter than a position",
+            edit(&|d| d["bufferViews"][0]["byteStride"] = json!(4)),
+            bin.clone(),
+            "POSITION accessor 0 cannot be read",
+        ),
+        (
+            "count that overflows a byte offset",
+            edit(&|d| d["accessors"][2]["count"] = json!(1u64 << 62)),
+            bin.clone(),
+            "index accessor 2 cannot be read",
+        ),
+        (
+            "sparse substitution of no elements",
+            edit(&|d| {
+                d["accessors"][0]["sparse"] = json!({
+                    "count": 0,
+                    "indices": {"bufferView": 2, "componentType": 5125},
+                    "values": {"bufferView": 0},
+                })
+            }),
+            bin.clone(),
+            "POSITION accessor 0 has a sparse substitution",
+        ),
+        (
             "lines instead of triangles",
             edit(&|d| d["meshes"][0]["primitives"][0]["mode"] = json!(1)),
             bin.clone(),

@@ -5,7 +5,7 @@ use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
 use crate::geometry::triangle_normal;
 
-use super::{LoadError, base64};
+use super::{LoadError, accessor, base64};
 use crate::spectral::{self, Overlay, SpectralScene};
 
 /// The triangles of one mesh primitive placed by one node.
@@ -400,6 +400,19 @@ fn add_primitive(
             "{name}: primitive mode {:?} is not supported (only TRIANGLES)",
             primitive.mode()
         )));
+    }
+    // The reader trusts the document; what it would panic on is an error here first.
+    for (semantic, expected) in [
+        (gltf::Semantic::Positions, &accessor::POSITION),
+        (gltf::Semantic::Normals, &accessor::NORMAL),
+        (gltf::Semantic::TexCoords(0), &accessor::TEXCOORD),
+    ] {
+        if let Some(a) = primitive.get(&semantic) {
+            accessor::check(&a, expected, &name, buffers)?;
+        }
+    }
+    if let Some(a) = primitive.indices() {
+        accessor::check(&a, &accessor::INDICES, &name, buffers)?;
     }
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let positions: Vec<Vec3> = reader

@@ -1,6 +1,7 @@
 //! Loading glTF 2.0 scenes. This crate touches no files: the caller hands over the bytes
 //! of the `.gltf` or `.glb` and a resolver for external buffer URIs.
 
+mod accessor;
 mod base64;
 mod error;
 mod geometry;

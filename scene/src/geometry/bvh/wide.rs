@@ -144,11 +144,14 @@ fn plan(binary: &Bvh2) -> Vec<Plan> {
         }
         let (l, r) = (&plans[first], &plans[first + 1]);
         // The two subtrees shared out among j children, j = 2..=4.
+        // The first share is taken whatever its cost: with triangles near f32's limit the
+        // areas, and so every cost, are infinite, and a split must still give each side
+        // at least one child.
         let mut split = [(f32::INFINITY, 0u8); LANES + 1];
         for (j, best) in split.iter_mut().enumerate().skip(2) {
             for k in 1..j {
                 let cost = l.cost[k - 1] + r.cost[j - k - 1];
-                if cost < best.0 {
+                if k == 1 || cost < best.0 {
                     *best = (cost, k as u8);
                 }
             }
