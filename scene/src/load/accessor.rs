@@ -58,9 +58,13 @@ pub(super) fn check(
     };
     let (data_type, dimensions) = (accessor.data_type(), accessor.dimensions());
     if !expected.types.contains(&data_type) || dimensions != expected.dimensions {
+        let types: Vec<&str> = expected.types.iter().map(|&t| type_name(t)).collect();
         return fail(format!(
-            "is {data_type:?} {dimensions:?}, not one of {:?} {:?}",
-            expected.types, expected.dimensions
+            "is {} {}, not {} {}",
+            type_name(data_type),
+            shape_name(dimensions),
+            types.join(" or "),
+            shape_name(expected.dimensions)
         ));
     }
     let element = accessor.size();
@@ -117,4 +121,29 @@ fn fits(
     stride >= size
         && matches!((end, view_end), (Some(end), Some(view_end))
             if end <= view.length() && view_end <= buffer)
+}
+
+/// A component type as the glTF specification names it.
+fn type_name(t: DataType) -> &'static str {
+    match t {
+        DataType::I8 => "BYTE",
+        DataType::U8 => "UNSIGNED_BYTE",
+        DataType::I16 => "SHORT",
+        DataType::U16 => "UNSIGNED_SHORT",
+        DataType::U32 => "UNSIGNED_INT",
+        DataType::F32 => "FLOAT",
+    }
+}
+
+/// An accessor type as the glTF specification names it.
+fn shape_name(d: Dimensions) -> &'static str {
+    match d {
+        Dimensions::Scalar => "SCALAR",
+        Dimensions::Vec2 => "VEC2",
+        Dimensions::Vec3 => "VEC3",
+        Dimensions::Vec4 => "VEC4",
+        Dimensions::Mat2 => "MAT2",
+        Dimensions::Mat3 => "MAT3",
+        Dimensions::Mat4 => "MAT4",
+    }
 }

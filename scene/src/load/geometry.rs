@@ -298,7 +298,11 @@ const EXTENSIONS_READ_RAW: &[&str] = &["KHR_materials_dispersion", spectral::EXT
 /// extension it does not know, so those prism reads itself are taken out of
 /// `extensionsRequired` between parsing and the (otherwise unchanged) validation.
 fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<gltf::Gltf, LoadError> {
-    let invalid = |e: gltf::Error| LoadError::Invalid(e.to_string());
+    // The gltf crate's validation errors begin with the words LoadError adds.
+    let invalid = |e: gltf::Error| {
+        let message = e.to_string();
+        LoadError::Invalid(message.trim_start_matches("invalid glTF: ").to_string())
+    };
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
     let mut root = document.into_json();
