@@ -11,6 +11,7 @@ use exr::prelude::{
 };
 use prism_spectrum::color::{RgbColorSpace, ToneMap, display_8bit};
 
+use crate::film::storable_f32;
 use crate::{Film, RenderError};
 
 /// Extra facts recorded in an EXR header.
@@ -58,7 +59,7 @@ pub fn encode_exr(
                 format!("{:.6}", bands.center(b)).replace('.', ",")
             );
             let values = (0..w * h)
-                .map(|p| (sums[p * count + b] / n) as f32)
+                .map(|p| storable_f32(sums[p * count + b] / n))
                 .collect();
             list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
         }
@@ -79,7 +80,7 @@ pub fn encode_exr(
             ("energy.eV", &|e: [f64; 2]| e[0] / ev),
             ("energy.photons", &|e: [f64; 2]| e[1]),
         ] {
-            let values = per_pixel.iter().map(|&e| f(e) as f32).collect();
+            let values = per_pixel.iter().map(|&e| storable_f32(f(e))).collect();
             list.push(AnyChannel::new(name, FlatSamples::F32(values)));
         }
     }
