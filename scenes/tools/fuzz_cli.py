@@ -1,0 +1,210 @@
+"""Runs `prism render` on mutated copies of the repository's scenes and reports every run
+that panics, hangs or writes a non-finite pixel. Bad input must end in one error line and
+exit code 1 or 2; a good one in a finite image.
+
+  cargo build --release -p prism-cli
+  python3 scenes/tools/fuzz_cli.py gltf 2000 --seed 1   # JSON values and buffer words
+  python3 scenes/tools/fuzz_cli.py toml 600             # overlay material descriptions
+  python3 scenes/tools/fuzz_cli.py glb 1500             # GLB headers, chunk lengths, bytes
+  python3 scenes/tools/fuzz_cli.py args 400             # command-line options
+
+Failing inputs are kept in the work directory (printed at the end). Checking pixels needs
+numpy and mitsuba (to read EXR); without them only exit codes are checked. The same
+mutations of the Cornell box run in the test suite (scene/tests/load_mutations.rs) without
+the CLI; this script also covers rendering, overlays, GLB and the options.
+"""
+import argparse, copy, json, os, random, shutil, struct, subprocess, sys, tempfile
+from collections import Counter
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENES = os.path.join(ROOT, "scenes")
+PRISM = os.path.join(ROOT, "target", "release", "prism")
+GLTF = ["cornell-box.gltf", "cornell-spectral.gltf", "cornell-bunny.gltf", "effects.gltf", "prism.gltf", "rainbow.gltf"]
+NUMBERS = [0, -0.0, 1, -1, 2, 3, 7, 100, 65535, 4294967295, 2**53, 0.5, 1e-45, 1e-39, 1e6, 1e30, 3e38, -3e38, 1e300]
+STRINGS = ["", "x", "data:", "blackbody:-5", "blackbody:1e30", "gaussian:550:0", "csv:missing.csv", "D65", "nan", "1e40"]
+WORDS = [3e38, -3e38, 1e30, 1e-40, 0.0, float("inf"), float("nan")]
+
+
+def paths(v, p=()):
+    yield p
+    if isinstance(v, dict):
+        for k, x in v.items():
+            yield from paths(x, p + (k,))
+    elif isinstance(v, list):
+        for i, x in enumerate(v):
+            yield from paths(x, p + (i,))
+
+
+def get(v, p):
+    for k in p:
+        v = v[k]
+    return v
+
+
+def mutate_json(doc, rng):
+    """One edit: mostly a number replaced (keeping the file valid enough to reach the
+    renderer), else a value deleted, retyped, emptied or duplicated."""
+    ps = list(paths(doc))[1:]
+    numeric = [p for p in ps if isinstance(get(doc, p), (int, float)) and not isinstance(get(doc, p), bool)]
+    if numeric and rng.random() < 0.7:
+        p = rng.choice(numeric)
+        parent, cur = get(doc, p[:-1]), get(doc, p)
+        if isinstance(cur, int) and rng.random() < 0.5:
+            parent[p[-1]] = rng.choice([0, 1, 2, 3, cur + 1, max(0, cur - 1)])
+        else:
+            parent[p[-1]] = rng.choice(NUMBERS + [-cur, cur * 1e10])
+        return
+    p = rng.choice(ps)
+    parent, cur = get(doc, p[:-1]), get(doc, p)
+    if isinstance(parent, dict) and rng.random() < 0.2:
+        del parent[p[-1]]
+    elif isinstance(cur, str):
+        parent[p[-1]] = rng.choice(STRINGS + [cur[: len(cur) // 2]])
+    elif isinstance(cur, list):
+        parent[p[-1]] = rng.choice([[], cur[:1], cur + [copy.deepcopy(cur[0])] if cur else [0]])
+    else:
+        parent[p[-1]] = rng.choice([0, "x", [], {}, None, True])
+
+
+def mutate_buffer(work, doc, rng, i):
+    """Overwrites a few 32-bit words of the file's .bin buffer with extreme values."""
+    uri = doc.get("buffers", [{}])[0].get("uri") if isinstance(doc.get("buffers"), list) and doc["buffers"] and isinstance(doc["buffers"][0], dict) else None
+    if not isinstance(uri, str) or not os.path.isfile(os.path.join(work, uri)):
+        return
+    b = bytearray(open(os.path.join(work, uri), "rb").read())
+    for _ in range(rng.randint(1, 8)):
+        k = rng.randrange(max(1, len(b) // 4)) * 4
+        if k + 4 <= len(b):
+            b[k:k + 4] = struct.pack("<f", rng.choice(WORDS)) if rng.random() < 0.8 else struct.pack("<I", rng.choice([0xFFFFFFFF, 1 << 31, 12345678]))
+    name = f"buffer{i}.bin"
+    open(os.path.join(work, name), "wb").write(b)
+    doc["buffers"][0]["uri"] = name
+
+
+def case_gltf(work, rng, i):
+    doc = json.load(open(os.path.join(SCENES, rng.choice(GLTF))))
+    for _ in range(rng.randint(1, 3)):
+        mutate_json(doc, rng)
+    if rng.random() < 0.4:
+        mutate_buffer(work, doc, rng, i)
+    path = os.path.join(work, f"case{i}.gltf")
+    json.dump(doc, open(path, "w"))
+    return [path]
+
+
+def case_toml(work, rng, i):
+    import tomllib, tomli_w  # pip install tomli-w
+    name = rng.choice(["cornell-blacklight.toml", "cornell-glass-bunny.toml"])
+    doc = tomllib.load(open(os.path.join(SCENES, name), "rb"))
+    spectra = [0.5, 0, -1, 1e30, 3e38, 1e-45, "blackbody:0", "blackbody:1e30", "illuminant:F13", "daylight:100",
+               "gaussian:365:0", "gaussian:1e30:1e30", "constant:-1", "csv:nir-camera.csv", "csv:", [[400, 0.1]], [],
+               [[700, 1], [400, 2]], {"rgb": [1e30, 0, 0]}, {"rgb": [0, 0]}, {"spectrum": 0.5, "scale": -1}, "x"]
+    keys = ["emission", "reflectance", "absorption", "reemission", "quantum_yield", "type", "ior", "roughness", "metal", "eta", "k"]
+    for _ in range(rng.randint(1, 3)):
+        m = doc.setdefault("materials", {}).setdefault(rng.choice(list(doc.get("materials", {})) + ["white"]), {})
+        if rng.random() < 0.15:
+            m["type"] = rng.choice(["diffuse", "dielectric", "conductor", "fluorescent", "x"])
+        elif m and rng.random() < 0.2:
+            del m[rng.choice(list(m))]
+        else:
+            m[rng.choice(list(m) + keys)] = copy.deepcopy(rng.choice(spectra))
+    path = os.path.join(work, f"case{i}.toml")
+    open(path, "wb").write(tomli_w.dumps(doc).encode())
+    return [path]
+
+
+def glb_of(name):
+    doc = json.load(open(os.path.join(SCENES, name)))
+    b = open(os.path.join(SCENES, doc["buffers"][0].pop("uri")), "rb").read()
+    j = json.dumps(doc).encode()
+    j += b" " * (-len(j) % 4)
+    b += b"\0" * (-len(b) % 4)
+    body = struct.pack("<II", len(j), 0x4E4F534A) + j + struct.pack("<II", len(b), 0x004E4942) + b
+    return bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+
+
+def case_glb(work, rng, i, bases={}):
+    if not bases:
+        bases.update({n: glb_of(n) for n in ["cornell-box.gltf", "cornell-spectral.gltf"]})
+    g = bytearray(rng.choice(list(bases.values())))
+    for _ in range(rng.randint(1, 6)):
+        r = rng.random()
+        if r < 0.3 and len(g) >= 16:
+            k = rng.choice([4, 8, 12, 16, 20 + struct.unpack("<I", g[12:16])[0]])
+            if k + 4 <= len(g):
+                g[k:k + 4] = struct.pack("<I", rng.choice([0, 1, 3, 0xFFFFFFFF, len(g), 2 * len(g), rng.randrange(1 << 32)]))
+        elif r < 0.5 and len(g) > 1:
+            g = g[: rng.randrange(len(g))]
+        elif g:
+            g[rng.randrange(len(g))] = rng.randrange(256)
+    path = os.path.join(work, f"case{i}.glb")
+    open(path, "wb").write(g)
+    return [path]
+
+
+def case_args(work, rng, i):
+    values = ["0", "1", "-1", "3", "16", "1e9", "4294967296", "nan", "inf", "x", "", "1:1", "830:360", "100:20000", "5..2", "0..0"]
+    options = {o: values for o in ["--spp", "--width", "--height", "--seed", "--threads", "--max-depth", "--wavelengths",
+                                   "--spectral-bands", "--spectral-range", "--wavelength-range", "--scene-index", "--clamp",
+                                   "--exposure", "--time", "--checkpoint", "--environment"]}
+    options.update({"--lambda-sampler": ["uniform", "visible", "response", "spd", "x"], "--filter": ["box", "gaussian", "x"],
+                    "--camera-response": [os.path.join(SCENES, "nir-camera.csv"), "/nonexistent.csv", os.path.join(SCENES, "cornell-box.bin")],
+                    "--white-balance": ["illuminant:A", "blackbody:0", "blackbody:1e30", "daylight:1", "x"],
+                    "--space": ["srgb", "acescg", "x"], "--camera": ["camera", "x"], "--bvh": ["slow", "x"],
+                    "--resume": ["/nonexistent.exr", os.path.join(SCENES, "cornell-box.bin")]})
+    scene = rng.choice([os.path.join(SCENES, s) for s in ["cornell-box.gltf", "effects.gltf", "cornell-blacklight.toml"]] + ["/nonexistent.gltf", os.path.join(SCENES, "cornell-box.bin")])
+    args = [scene]
+    for _ in range(rng.randint(1, 4)):
+        o = rng.choice(list(options))
+        args += [o, rng.choice(options[o])]
+    return args + [f for f in ["--energy", "--no-light-paths", "--stats"] if rng.random() < 0.2]
+
+
+def finite_exr(path):
+    try:
+        import numpy as np, mitsuba as mi
+    except ImportError:
+        return True
+    mi.set_variant("scalar_rgb")
+    return bool(np.isfinite(np.array(mi.Bitmap(path))).all())
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("kind", choices=["gltf", "toml", "glb", "args"])
+    ap.add_argument("cases", type=int)
+    ap.add_argument("--seed", type=int, default=1)
+    a = ap.parse_args()
+    rng = random.Random(a.seed)
+    work = tempfile.mkdtemp(prefix="prism-fuzz-")
+    for f in os.listdir(SCENES):
+        if os.path.isfile(os.path.join(SCENES, f)) and not f.endswith(".toml"):
+            shutil.copy(os.path.join(SCENES, f), work)
+    make = {"gltf": case_gltf, "toml": case_toml, "glb": case_glb, "args": case_args}[a.kind]
+    codes, bad = Counter(), 0
+    for i in range(a.cases):
+        out = os.path.join(work, "out.exr")
+        args = [PRISM, "render"] + make(work, rng, i) + ["--width", "8", "--height", "8", "--spp", "2", "-o", out, "-q"]
+        try:
+            r = subprocess.run(args, capture_output=True, text=True, timeout=120, cwd=work)
+        except subprocess.TimeoutExpired:
+            bad += 1
+            print("hang:", " ".join(args[2:]))
+            continue
+        codes[r.returncode] += 1
+        failed = r.returncode not in (0, 1, 2) or "panicked" in r.stderr
+        if r.returncode == 1 and len(r.stderr.strip().splitlines()) != 1:
+            failed = True
+        if r.returncode == 0 and os.path.exists(out) and not finite_exr(out):
+            failed = True
+        if failed:
+            bad += 1
+            print(f"exit {r.returncode}:", " ".join(args[2:]), "|", r.stderr.strip()[-300:])
+        if os.path.exists(out):
+            os.remove(out)
+    print(json.dumps({"cases": a.cases, "failed": bad, "exit_codes": dict(codes), "work": work}))
+    sys.exit(1 if bad else 0)
+
+
+if __name__ == "__main__":
+    main()
