@@ -56,6 +56,12 @@ fn exact_upsampling_round_trips() {
     let black: serde_json::Value =
         serde_json::from_slice(&prism(&["upsample", "0", "0", "0", "--json"]).stdout).unwrap();
     assert_eq!(black["black"], true);
+    assert_eq!(black["coefficients"][2], "-inf");
+    // White's constant 1 is c2 = +inf, which JSON numbers cannot hold (it was null).
+    let white: serde_json::Value =
+        serde_json::from_slice(&prism(&["upsample", "1", "1", "1", "--json"]).stdout).unwrap();
+    assert_eq!(white["black"], false);
+    assert_eq!(white["coefficients"], serde_json::json!([0.0, 0.0, "inf"]));
 }
 
 #[test]

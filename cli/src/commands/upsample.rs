@@ -34,7 +34,9 @@ pub struct UpsampleArgs {
     /// Read lines `r g b` from stdin and write `c0 c1 c2` per line (l in nm), nothing else.
     #[arg(long)]
     pub stdin: bool,
-    /// Print one JSON object.
+    /// Print one JSON object. Coefficients are numbers, or the strings "inf" and "-inf"
+    /// where the spectrum is exactly 1 or 0 (white and black), which JSON numbers cannot
+    /// hold.
     #[arg(long, conflicts_with = "stdin")]
     pub json: bool,
 }
@@ -102,13 +104,18 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
     let c = spectrum.map_or([0.0, 0.0, f64::NEG_INFINITY], |s| s.coefficients);
     let (round_trip, de) = round_trip(&context, choice.illuminant.as_ref(), rgb, spectrum)?;
     if args.json {
-        let finite = |v: f64| if v.is_finite() { json!(v) } else { json!(null) };
+        // JSON has no infinity: the sigmoid's limits (exactly 0 or 1) are strings.
+        let coefficient = |v: f64| match v {
+            f64::INFINITY => json!("inf"),
+            f64::NEG_INFINITY => json!("-inf"),
+            v => json!(v),
+        };
         println!(
             "{}",
             json!({
                 "space": choice.name,
                 "rgb": rgb,
-                "coefficients": c.map(finite),
+                "coefficients": c.map(coefficient),
                 "black": spectrum.is_none(),
                 "clamped": clamped,
                 "round_trip_rgb": round_trip,
