@@ -211,21 +211,28 @@ fn spectral_and_energy_checkpoints_resume_to_the_same_file() {
     // The checkpoint holds bands and energy: resuming it without them, or with other
     // bands, is refused before rendering.
     let elsewhere = p("x.exr");
-    for other in [
-        vec!["--spp", "5"],
-        vec!["--spp", "5", "--spectral-bands", "6", "--energy"],
-        vec![
-            "--spp",
-            "5",
-            "--spectral-bands",
-            "5",
-            "--spectral-range",
-            "400:700",
-        ],
+    // The error names only the settings that differ.
+    for (other, difference) in [
+        (vec!["--spp", "5"], "energy true vs false"),
+        (
+            vec!["--spp", "5", "--spectral-bands", "6", "--energy"],
+            "bands 5@400:700 vs 6@380:780",
+        ),
+        (
+            vec![
+                "--spp",
+                "5",
+                "--spectral-bands",
+                "5",
+                "--spectral-range",
+                "400:700",
+            ],
+            "energy true vs false (the file's vs this render's)",
+        ),
     ] {
         let mut args = vec!["render", "-q", "--width", "24", "--height", "16"];
         args.extend(other);
         args.extend(["--resume", &checkpoint, "-o", &elsewhere]);
-        assert_one_line_errors(&[(&args, "other settings")]);
+        assert_one_line_errors(&[(&args, difference)]);
     }
 }

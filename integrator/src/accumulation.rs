@@ -55,8 +55,49 @@ pub struct Accumulation {
     pub film: Film,
     /// Sample indices rendered in every pixel (merged files: the hull of their ranges).
     pub samples: Range<u64>,
-    /// What the caller recorded about the render's settings (checked on resume and merge).
+    /// What the caller recorded about the render's settings (checked on resume and merge),
+    /// as `key=value` entries joined by `;` so that a mismatch can name what differs
+    /// ([`settings_difference`]); any other text is compared whole.
     pub settings: String,
+}
+
+/// What differs between two settings records of the `key=value;key=value` form: each key
+/// whose values differ (or that only one has, its other value shown as "none"), as
+/// "key A vs B" joined by ", ". Records without that form are shown whole.
+pub fn settings_difference(a: &str, b: &str) -> String {
+    let entries = |s: &'_ str| -> Vec<(String, String)> {
+        s.split(';')
+            .map(|e| match e.split_once('=') {
+                Some((k, v)) => (k.to_string(), v.to_string()),
+                None => (String::new(), e.to_string()),
+            })
+            .collect()
+    };
+    let (ea, eb) = (entries(a), entries(b));
+    let value = |e: &[(String, String)], key: &str| {
+        e.iter()
+            .find(|(k, _)| k == key)
+            .map_or_else(|| "none".to_string(), |(_, v)| v.clone())
+    };
+    let mut keys: Vec<&str> = Vec::new();
+    for (k, _) in ea.iter().chain(&eb) {
+        if !keys.contains(&k.as_str()) {
+            keys.push(k);
+        }
+    }
+    let differing: Vec<String> = keys
+        .into_iter()
+        .filter(|k| value(&ea, k) != value(&eb, k))
+        .map(|k| match k {
+            "" => format!("'{a}' vs '{b}'"),
+            k => format!("{k} {} vs {}", value(&ea, k), value(&eb, k)),
+        })
+        .collect();
+    if differing.is_empty() {
+        format!("'{a}' vs '{b}'")
+    } else {
+        differing.join(", ")
+    }
 }
 
 /// The film of sample range `samples` as accumulation-file bytes, with `settings` (any
@@ -247,8 +288,8 @@ pub fn merge_accumulations(parts: &[Accumulation]) -> Result<Accumulation, Rende
         .ok_or_else(|| RenderError::Setting("nothing to merge".into()))?;
     if let Some(other) = parts.iter().find(|p| p.settings != first.settings) {
         return Err(RenderError::Setting(format!(
-            "parts were rendered with different settings: '{}' and '{}'",
-            first.settings, other.settings
+            "parts were rendered with different settings: {}",
+            settings_difference(&first.settings, &other.settings)
         )));
     }
     let mut ranges: Vec<&Range<u64>> = parts.iter().map(|p| &p.samples).collect();

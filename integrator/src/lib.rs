@@ -61,6 +61,7 @@ mod settings;
 
 pub use accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
+    settings_difference,
 };
 pub use bands::SpectralBands;
 pub use camera_response::{CameraResponse, ResponseCurve};

@@ -61,6 +61,16 @@ fn merged_ranges_equal_the_whole_render() {
     other.settings = "bunny".into();
     let e = merge_accumulations(&[part(0..1), other]).unwrap_err();
     assert!(e.to_string().contains("different settings"), "{e}");
+    // Records of key=value entries name only what differs.
+    let mut a = part(0..1);
+    a.settings = "scene=box.gltf;size=8x8;seed=0".into();
+    let mut b = part(1..2);
+    b.settings = "scene=box.gltf;size=16x8;seed=0;energy=true".into();
+    let e = merge_accumulations(&[a, b]).unwrap_err().to_string();
+    assert!(
+        e.ends_with("different settings: size 8x8 vs 16x8, energy none vs true"),
+        "{e}"
+    );
 }
 
 #[test]

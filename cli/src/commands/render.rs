@@ -479,9 +479,10 @@ fn resume(path: &Path, fingerprint: &str, range: &Range<u64>) -> Result<Film, St
     let saved = decode_accumulation(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
     if saved.settings != fingerprint {
         return Err(format!(
-            "'{}' was rendered with other settings ({}) than this render ({fingerprint})",
+            "'{}' was rendered with other settings than this render: {} (the file's vs this \
+             render's)",
             path.display(),
-            saved.settings
+            prism_integrator::settings_difference(&saved.settings, fingerprint)
         ));
     }
     if saved.samples.start != range.start || saved.samples.end > range.end {
