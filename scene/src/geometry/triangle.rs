@@ -10,9 +10,33 @@ pub fn triangle_area(p: [Vec3; 3]) -> f32 {
 }
 
 /// The unit normal of a triangle, on the side its counter-clockwise winding faces (zero
-/// for a degenerate triangle).
+/// for a degenerate triangle: zero area even in f64, or non-finite vertices).
+#[inline]
 pub fn triangle_normal(p: [Vec3; 3]) -> Vec3 {
-    unit_or_zero((p[1] - p[0]).cross(p[2] - p[0]))
+    let cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    let rcp = 1.0 / cross.length();
+    if positive_finite(rcp) {
+        cross * rcp
+    } else {
+        triangle_normal_f64(p)
+    }
+}
+
+/// [`triangle_normal`] where f32 cannot: its cross product overflows for edges beyond
+/// ~1e19 (the length squared is infinite, or inf - inf is NaN) and underflows for edges
+/// below ~1e-19, though such triangles have a normal and can be hit. f64 has the range
+/// for every f32 triangle. Out of line, so that the common path stays small.
+#[cold]
+#[inline(never)]
+fn triangle_normal_f64(p: [Vec3; 3]) -> Vec3 {
+    let [a, b, c] = p.map(|v| v.as_dvec3());
+    let cross = (b - a).cross(c - a);
+    let length = cross.length();
+    if length > 0.0 && length.is_finite() {
+        (cross / length).as_vec3()
+    } else {
+        Vec3::ZERO
+    }
 }
 
 /// `v` scaled to unit length, or zero where that is not finite (zero, subnormal or
@@ -152,7 +176,7 @@ mod tests {
     use glam::Vec3;
     use proptest::prelude::*;
 
-    use super::unit_or_zero;
+    use super::{triangle_normal, unit_or_zero};
 
     fn component() -> impl Strategy<Value = f32> {
         prop_oneof![
@@ -179,5 +203,53 @@ mod tests {
                 v.normalize_or_zero().to_array().map(f32::to_bits)
             );
         }
+
+        /// Any triangle of finite vertices has a unit normal unless its area is zero in
+        /// f64, including triangles whose f32 cross product overflows (edges of 1e20 and
+        /// more) or underflows; non-finite vertices give zero.
+        #[test]
+        fn normals_exist_wherever_the_area_does(
+            v in prop::array::uniform9(prop_oneof![
+                component(),
+                Just(3e38f32),
+                Just(-3e38f32),
+                Just(1e20f32),
+                Just(1e-30f32),
+            ]),
+        ) {
+            let p = [0, 1, 2].map(|k| Vec3::new(v[3 * k], v[3 * k + 1], v[3 * k + 2]));
+            let n = triangle_normal(p);
+            prop_assert!(n.is_finite());
+            let [a, b, c] = p.map(|x| x.as_dvec3());
+            let cross = (b - a).cross(c - a);
+            if p.iter().all(|x| x.is_finite()) && cross.length() > 0.0 {
+                // (Its direction is f32's: slivers mixing scales of 1e38 and 1e-30 cancel
+                // in f32 as in any f32 renderer; the huge triangle below is checked against
+                // f64.)
+                prop_assert!((n.length() - 1.0).abs() < 1e-6, "{:?} -> {:?}", p, n);
+            } else {
+                prop_assert_eq!(n, Vec3::ZERO);
+            }
+        }
+    }
+
+    #[test]
+    fn huge_and_tiny_triangles_have_normals() {
+        let huge = [
+            Vec3::new(0.0, -3e38, 0.0),
+            Vec3::new(-1.84, 0.0, 1.5e-39),
+            Vec3::new(-1.61, 1e30, 1.5e-39),
+        ];
+        let n = triangle_normal(huge);
+        let [a, b, c] = huge.map(|x| x.as_dvec3());
+        let exact = (b - a).cross(c - a).normalize();
+        assert!(n.as_dvec3().dot(exact) > 1.0 - 1e-6, "{n} against {exact}");
+        let tiny = [
+            Vec3::ZERO,
+            Vec3::new(1e-25, 0.0, 0.0),
+            Vec3::new(0.0, 1e-25, 0.0),
+        ];
+        assert_eq!(triangle_normal(tiny), Vec3::Z);
+        assert_eq!(triangle_normal([Vec3::ONE; 3]), Vec3::ZERO);
     }
 }

@@ -14,7 +14,7 @@ use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
 
 use super::Ray;
-use super::triangle::{TriangleHit, WatertightRay};
+use super::triangle::{TriangleHit, WatertightRay, triangle_normal};
 use traverse::{Pending, stack_size};
 use wide::{Source, WideBvh};
 
@@ -67,7 +67,7 @@ impl Bvh {
         let (mut kept, mut original) = (Vec::new(), Vec::new());
         for (i, t) in triangles.iter().enumerate() {
             let finite = t.iter().all(|v| v.is_finite());
-            if finite && (t[1] - t[0]).cross(t[2] - t[0]).length_squared() > 0.0 {
+            if finite && triangle_normal(*t) != Vec3::ZERO {
                 kept.push(*t);
                 original.push(i);
             }
