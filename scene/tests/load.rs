@@ -122,6 +122,53 @@ fn transforms_compose_and_mirroring_keeps_winding() {
     assert_eq!(matrix.triangles[0][0], Vec3::new(5.0, 0.0, 0.0));
 }
 
+/// Nodes shared by several parents are instanced under each; a graph that multiplies a
+/// mesh beyond what prism can index is an error before anything is allocated (forty levels
+/// that each list one child twice: 2^40 instances from a file of a few kilobytes), and so
+/// is a cycle, however long.
+#[test]
+fn shared_nodes_instance_and_exploding_or_cyclic_graphs_are_errors() {
+    let with_nodes = |nodes: Vec<Value>| {
+        let mut doc = triangle_doc(json!({"mesh": 0}));
+        doc["nodes"] = Value::Array(nodes);
+        doc
+    };
+    // One node listed twice, by two parents: the triangle twice.
+    let shared = with_nodes(vec![
+        json!({"children": [1, 2]}),
+        json!({"children": [3], "translation": [1, 0, 0]}),
+        json!({"children": [3]}),
+        json!({"mesh": 0}),
+    ]);
+    assert_eq!(load_json(&shared, &[]).unwrap().triangles.len(), 2);
+    let doubling: Vec<Value> = (0..40)
+        .map(|i| json!({"children": [i + 1, i + 1]}))
+        .chain([json!({"mesh": 0})])
+        .collect();
+    let e = load_json(&with_nodes(doubling), &[])
+        .unwrap_err()
+        .to_string();
+    // 2^40 instances of one primitive of one triangle.
+    assert!(
+        e.contains("instances 2199023255552 triangles, primitives"),
+        "{e}"
+    );
+    let cycle = with_nodes(vec![
+        json!({"children": [1]}),
+        json!({"children": [2], "mesh": 0}),
+        json!({"children": [1]}),
+    ]);
+    let e = load_json(&cycle, &[]).unwrap_err().to_string();
+    assert!(e.contains("node 1 is its own ancestor"), "{e}");
+    // A chain longer than any recursion could follow: counted, then refused by depth.
+    let chain: Vec<Value> = (0..100_000)
+        .map(|i| json!({"children": [i + 1]}))
+        .chain([json!({"mesh": 0})])
+        .collect();
+    let e = load_json(&with_nodes(chain), &[]).unwrap_err().to_string();
+    assert!(e.contains("deeper than 256"), "{e}");
+}
+
 /// The corpus of broken files: each a named edit of the Cornell box, each an error that
 /// names the problem, none a panic.
 #[test]
@@ -202,10 +249,17 @@ fn broken_files_are_clear_errors() {
             "POSITION accessor 0 cannot be read",
         ),
         (
-            "count that overflows a byte offset",
+            // (An index count this large is refused earlier, as instancing too much.)
+            "position count that overflows a byte offset",
+            edit(&|d| d["accessors"][0]["count"] = json!(1u64 << 62)),
+            bin.clone(),
+            "POSITION accessor 0 cannot be read",
+        ),
+        (
+            "index count beyond what prism can instance",
             edit(&|d| d["accessors"][2]["count"] = json!(1u64 << 62)),
             bin.clone(),
-            "index accessor 2 cannot be read",
+            "more than prism's limit",
         ),
         (
             "sparse substitution of no elements",

@@ -180,6 +180,7 @@ pub fn load_scene(
             .or_else(|| gltf.scenes().next())
             .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
     };
+    super::instancing::check(&gltf, &scene)?;
     let mut out = LoadedGeometry::default();
     // Fitting needs a context; scenes without colours never build one.
     let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
@@ -222,7 +223,7 @@ pub fn load_scene(
     while let Some((node, parent, depth)) = stack.pop() {
         if depth > 256 {
             return Err(LoadError::Scene(
-                "node hierarchy deeper than 256 (a cycle?)".into(),
+                "node hierarchy deeper than 256 levels".into(),
             ));
         }
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());

@@ -6,6 +6,7 @@ mod base64;
 mod error;
 mod geometry;
 mod images;
+mod instancing;
 mod lights;
 mod materials;
 mod summary;
