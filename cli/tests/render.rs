@@ -146,6 +146,10 @@ fn bad_input_is_one_clear_line() {
         (&["render", "--space", "nope", "-o", out], "nope"),
         (&["render", "--filter", "lanczos", "-o", out], "lanczos"),
         (&["render", "--clamp", "0", "-o", out], "clamp"),
+        (
+            &["render", "--threads", "100000", "-o", out],
+            "at most 1024",
+        ),
         (&["render", "--environment", "-1", "-o", out], "environment"),
         (&["render", "missing.gltf", "-o", out], "missing.gltf"),
         (&["render", broken, "-o", out], "broken.gltf"),

@@ -114,6 +114,9 @@ impl Default for RenderSettings {
     }
 }
 
+/// The most worker threads a render may ask for.
+pub const MAX_THREADS: usize = 1024;
+
 impl RenderSettings {
     /// Checks every setting, naming the first one out of range.
     pub fn validate(&self) -> Result<(), RenderError> {
@@ -129,6 +132,15 @@ impl RenderSettings {
             return bad(format!(
                 "image size {}x{} is too large (at most 2^31 pixels)",
                 self.width, self.height
+            ));
+        }
+        // Threads are spawned one by one before any work: --threads 100000 spent minutes
+        // creating threads, then failed with EAGAIN, and tearing them down outlasted a
+        // two-minute timeout. More workers than this gains nothing on any machine.
+        if self.threads > MAX_THREADS {
+            return bad(format!(
+                "{} threads: at most {MAX_THREADS} (0 is one per core)",
+                self.threads
             ));
         }
         if self.samples.is_empty() {

@@ -51,7 +51,7 @@ pub struct RenderArgs {
     /// Seed of the random streams.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Worker threads (default: one per core); never changes the image.
+    /// Worker threads (default: one per core; at most 1024); never changes the image.
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Longest path in bounces (default: unbounded, ended by Russian roulette).

@@ -52,7 +52,7 @@ pub struct TradeArgs {
     /// Longest path in bounces (default: unbounded).
     #[arg(long)]
     pub max_depth: Option<u32>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; at most 1024).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Render every run this many times (seeds 1, 2, ...) and record the medians of its
