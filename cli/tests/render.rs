@@ -150,6 +150,12 @@ fn bad_input_is_one_clear_line() {
             &["render", "--threads", "100000", "-o", out],
             "at most 1024",
         ),
+        (&["render", "--time", "1e300", "-o", out], "--time 1e300"),
+        (
+            &["render", "--checkpoint", "1e300", "-o", out],
+            "--checkpoint",
+        ),
+        (&["render", "--time", "nan", "-o", out], "--time NaN"),
         (&["render", "--environment", "-1", "-o", out], "environment"),
         (&["render", "missing.gltf", "-o", out], "missing.gltf"),
         (&["render", broken, "-o", out], "broken.gltf"),

@@ -272,11 +272,20 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             available as f64 / f64::from(1u32 << 30)
         ));
     }
-    let seconds_arg = |name: &str, v: Option<f64>| match v {
-        Some(s) if !(s.is_finite() && s >= 0.0) => {
-            Err(format!("--{name} {s} must be finite and >= 0 seconds"))
-        }
-        _ => Ok(v.map(Duration::from_secs_f64)),
+    // Duration::from_secs_f64 panics past u64 seconds (1e300 did); such a span is a
+    // mistake, not a plan, so it is an error like any other out-of-range value.
+    let seconds_arg = |name: &str, v: Option<f64>| {
+        v.map(|s| {
+            Duration::try_from_secs_f64(s).map_err(|_| {
+                let shown = if s.abs() >= 1e6 {
+                    format!("{s:e}")
+                } else {
+                    format!("{s}")
+                };
+                format!("--{name} {shown} must be a finite number of seconds >= 0")
+            })
+        })
+        .transpose()
     };
     let time_budget = seconds_arg("time", args.time)?;
     let checkpoint_every = seconds_arg("checkpoint", args.checkpoint)?;
