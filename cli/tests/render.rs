@@ -157,6 +157,7 @@ fn bad_input_is_one_clear_line() {
         ),
         (&["render", "--time", "nan", "-o", out], "--time NaN"),
         (&["render", "--environment", "-1", "-o", out], "environment"),
+        (&["render", "--environment", "1e300", "-o", out], "3.4e38"),
         (&["render", "missing.gltf", "-o", out], "missing.gltf"),
         (&["render", broken, "-o", out], "broken.gltf"),
         (&["render", "--camera", "nobody", "-o", out], "nobody"),

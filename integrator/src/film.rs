@@ -6,6 +6,7 @@ use prism_spectrum::color::RgbColorSpace;
 
 use crate::SpectralBands;
 use prism_spectrum::colorimetry::Xyz;
+use prism_spectrum::saturating_f32;
 
 /// Accumulated XYZ per pixel, row-major from the top-left.
 #[derive(Debug, Clone, PartialEq)]
@@ -251,7 +252,7 @@ impl Film {
                 } else {
                     space.xyz_to_rgb(Xyz::new(s[0] / n, s[1] / n, s[2] / n))
                 };
-                rgb.map(storable_f32)
+                rgb.map(saturating_f32)
             })
             .collect()
     }
@@ -304,41 +305,5 @@ impl Film {
         self.samples += other.samples;
         self.nonfinite += other.nonfinite;
         Ok(())
-    }
-}
-
-/// An f64 sum or mean as the f32 an image stores: non-finite becomes 0 and magnitudes past
-/// f32's range saturate at `f32::MAX`, since `as f32` would round them to infinity (a
-/// light of radiance 1e38 overflows f32 once its RGB matrix or the bands sum it).
-pub(crate) fn storable_f32(x: f64) -> f32 {
-    if x.is_finite() {
-        x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32
-    } else {
-        0.0
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::storable_f32;
-
-    #[test]
-    fn storable_values_are_finite_and_exact_in_range() {
-        let max = f64::from(f32::MAX);
-        for (x, stored) in [
-            (f64::NAN, 0.0),
-            (f64::INFINITY, 0.0),
-            (f64::NEG_INFINITY, 0.0),
-            (f64::MAX, f32::MAX),
-            (-f64::MAX, -f32::MAX),
-            (max * (1.0 + 1e-9), f32::MAX),
-            (max, f32::MAX),
-            (1.0, 1.0),
-            (-0.0, -0.0),
-            (1e-320, 0.0),
-            (f64::from(f32::from_bits(1)), f32::from_bits(1)),
-        ] {
-            assert_eq!(storable_f32(x).to_bits(), stored.to_bits(), "{x}");
-        }
     }
 }

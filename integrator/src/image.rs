@@ -10,8 +10,8 @@ use exr::prelude::{
     Vec2, WritableImage,
 };
 use prism_spectrum::color::{RgbColorSpace, ToneMap, display_8bit};
+use prism_spectrum::saturating_f32;
 
-use crate::film::storable_f32;
 use crate::{Film, RenderError};
 
 /// Extra facts recorded in an EXR header.
@@ -59,7 +59,7 @@ pub fn encode_exr(
                 format!("{:.6}", bands.center(b)).replace('.', ",")
             );
             let values = (0..w * h)
-                .map(|p| storable_f32(sums[p * count + b] / n))
+                .map(|p| saturating_f32(sums[p * count + b] / n))
                 .collect();
             list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
         }
@@ -80,7 +80,7 @@ pub fn encode_exr(
             ("energy.eV", &|e: [f64; 2]| e[0] / ev),
             ("energy.photons", &|e: [f64; 2]| e[1]),
         ] {
-            let values = per_pixel.iter().map(|&e| storable_f32(f(e))).collect();
+            let values = per_pixel.iter().map(|&e| saturating_f32(f(e))).collect();
             list.push(AnyChannel::new(name, FlatSamples::F32(values)));
         }
     }

@@ -143,7 +143,7 @@ def case_glb(work, rng, i, bases={}):
 
 
 def case_args(work, rng, i):
-    values = ["0", "1", "-1", "3", "16", "1e9", "4294967296", "nan", "inf", "x", "", "1:1", "830:360", "100:20000", "5..2", "0..0"]
+    values = ["0", "1", "-1", "3", "16", "1e9", "1e300", "-1e300", "100000", "4294967296", "nan", "inf", "x", "", "1:1", "830:360", "100:20000", "0:1e300", "5..2", "0..0"]
     options = {o: values for o in ["--spp", "--width", "--height", "--seed", "--threads", "--max-depth", "--wavelengths",
                                    "--spectral-bands", "--spectral-range", "--wavelength-range", "--scene-index", "--clamp",
                                    "--exposure", "--time", "--checkpoint", "--environment"]}

@@ -40,7 +40,15 @@ impl fmt::Display for SpectrumError {
                 what,
                 value,
                 expected,
-            } => write!(f, "invalid {what} {value}: expected {expected}"),
+            } => {
+                // f64's Display writes every digit: 1e300 would be 301 of them.
+                let large_or_tiny = value.abs() >= 1e9 || (*value != 0.0 && value.abs() < 1e-6);
+                if value.is_finite() && large_or_tiny {
+                    write!(f, "invalid {what} {value:e}: expected {expected}")
+                } else {
+                    write!(f, "invalid {what} {value}: expected {expected}")
+                }
+            }
             SpectrumError::InvalidTable(msg) => write!(f, "invalid spectral table: {msg}"),
             SpectrumError::UnknownName { kind, name, valid } => {
                 write!(f, "unknown {kind} '{name}' (valid: {valid})")
@@ -75,5 +83,32 @@ pub(crate) fn require_finite(what: &'static str, value: f64) -> Result<f64, Spec
             value,
             expected: "a finite number",
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SpectrumError;
+
+    #[test]
+    fn invalid_values_print_short() {
+        let message = |value: f64| {
+            SpectrumError::InvalidValue {
+                what: "temperature (K)",
+                value,
+                expected: "a finite number > 0",
+            }
+            .to_string()
+        };
+        assert_eq!(
+            message(1e300),
+            "invalid temperature (K) 1e300: expected a finite number > 0"
+        );
+        assert!(message(-2.5e-300).contains(" -2.5e-300: "));
+        assert!(message(-1.0).contains(" -1: "));
+        assert!(message(6500.0).contains(" 6500: "));
+        assert!(message(0.0).contains(" 0: "));
+        assert!(message(f64::NAN).contains(" NaN: "));
+        assert!(message(f64::INFINITY).contains(" inf: "));
     }
 }

@@ -69,7 +69,7 @@ pub mod spectra;
 mod spectrum;
 
 pub use error::SpectrumError;
-pub use sampled::{SampledSpectrum, SampledWavelengths};
+pub use sampled::{SampledSpectrum, SampledWavelengths, saturating_f32};
 pub use spectrum::Spectrum;
 
 #[doc(hidden)]

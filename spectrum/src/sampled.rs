@@ -76,6 +76,17 @@ impl<const N: usize> SampledWavelengths<N> {
     }
 }
 
+/// An f64 value as the f32 a sampled spectrum or an image holds: NaN becomes 0 and
+/// magnitudes beyond f32's range saturate at `f32::MAX`, where `as f32` would round them to
+/// infinity (a constant radiance of 1e300 is finite in f64 and infinite in f32).
+pub fn saturating_f32(x: f64) -> f32 {
+    if x.is_nan() {
+        0.0
+    } else {
+        x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32
+    }
+}
+
 /// One value per wavelength lane, with lane-wise arithmetic.
 ///
 /// Division by zero yields 0 rather than inf or NaN: in light transport a zero denominator
@@ -231,5 +242,25 @@ mod tests {
         assert!(SampledWavelengths::new([f32::NAN], [1.0]).is_err());
         assert!(SampledWavelengths::new([500.0], [-1.0]).is_err());
         assert!(SampledWavelengths::new([0.0], [1.0]).is_err());
+    }
+
+    #[test]
+    fn saturating_f32_is_finite_and_exact_in_range() {
+        let max = f64::from(f32::MAX);
+        for (x, stored) in [
+            (f64::NAN, 0.0),
+            (f64::INFINITY, f32::MAX),
+            (f64::NEG_INFINITY, -f32::MAX),
+            (f64::MAX, f32::MAX),
+            (-f64::MAX, -f32::MAX),
+            (max * (1.0 + 1e-9), f32::MAX),
+            (max, f32::MAX),
+            (1.0, 1.0),
+            (-0.0, -0.0),
+            (1e-320, 0.0),
+            (f64::from(f32::from_bits(1)), f32::from_bits(1)),
+        ] {
+            assert_eq!(saturating_f32(x).to_bits(), stored.to_bits(), "{x}");
+        }
     }
 }

@@ -25,7 +25,9 @@ pub trait Spectrum {
     where
         Self: Sized,
     {
-        SampledSpectrum::from_fn(|i| self.evaluate(f64::from(wavelengths.lambda(i))) as f32)
+        SampledSpectrum::from_fn(|i| {
+            crate::sampled::saturating_f32(self.evaluate(f64::from(wavelengths.lambda(i))))
+        })
     }
 }
 

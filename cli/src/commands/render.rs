@@ -184,10 +184,14 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
     let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
     check_outputs(&args.outputs)?;
+    // Radiance is f32 in the renderer: beyond f32::MAX a value would saturate there.
     if let Some(e) = args.environment
-        && !(e.is_finite() && e >= 0.0)
+        && !(e >= 0.0 && e <= f64::from(f32::MAX))
     {
-        return Err(format!("--environment {e} must be finite and >= 0"));
+        return Err(format!(
+            "--environment {} must be >= 0 and at most f32's largest value, 3.4e38",
+            shown(e)
+        ));
     }
     let samples_only = args.sample_range.as_deref().map(parse_range).transpose()?;
     if samples_only.is_some()
@@ -277,12 +281,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let seconds_arg = |name: &str, v: Option<f64>| {
         v.map(|s| {
             Duration::try_from_secs_f64(s).map_err(|_| {
-                let shown = if s.abs() >= 1e6 {
-                    format!("{s:e}")
-                } else {
-                    format!("{s}")
-                };
-                format!("--{name} {shown} must be a finite number of seconds >= 0")
+                format!(
+                    "--{name} {} must be a finite number of seconds >= 0",
+                    shown(s)
+                )
             })
         })
         .transpose()
@@ -565,4 +567,13 @@ pub fn write_images(
         write_atomically(out, &bytes)?;
     }
     Ok(())
+}
+
+/// A number as an error message shows it: f64's Display writes every digit of 1e300.
+fn shown(x: f64) -> String {
+    if x.is_finite() && x.abs() >= 1e6 {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
 }

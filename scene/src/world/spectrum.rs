@@ -5,7 +5,7 @@ use std::sync::Arc;
 use prism_spectrum::Spectrum;
 use prism_spectrum::optics::{Cauchy, Sellmeier};
 use prism_spectrum::spectra::{Blackbody, DenselySampled, Gaussian, NamedSpectrum};
-use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+use prism_spectrum::{SampledSpectrum, SampledWavelengths, saturating_f32};
 use prism_upsample::RgbSpectrum;
 
 /// A spectrum of the scene: an upsampled RGB colour, a constant, a tabulated spectrum or a
@@ -41,7 +41,7 @@ impl SceneSpectrum {
     /// The values at the package's wavelengths, as f32 lanes (finite: every variant is).
     pub fn at<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> SampledSpectrum<N> {
         match self {
-            SceneSpectrum::Constant(v) => SampledSpectrum::splat(*v as f32),
+            SceneSpectrum::Constant(v) => SampledSpectrum::splat(saturating_f32(*v)),
             // Every lane at once (the sigmoid vectorizes): RGB colours are most of what
             // paths sample.
             SceneSpectrum::Rgb(rgb) => {
@@ -59,7 +59,7 @@ impl SceneSpectrum {
             // this enum twice; the scale multiplies in f64, as `evaluate` does.
             SceneSpectrum::Scaled(inner, k) => {
                 let values = inner.at(wavelengths);
-                SampledSpectrum::from_fn(|i| (f64::from(values[i]) * k) as f32)
+                SampledSpectrum::from_fn(|i| saturating_f32(f64::from(values[i]) * k))
             }
             _ => self.sample(wavelengths),
         }
@@ -212,21 +212,24 @@ mod tests {
     proptest! {
         /// A scaled spectrum sampled at a package is its definition (`evaluate`, the inner
         /// spectrum times the scale in f64) within what the inner's lanes promise (1.2e-5
-        /// relative, or a subnormal step, scaled) and f32 rounding; and finite, for
-        /// scales from 0 to 1e30 and wavelengths in and out of range.
+        /// relative, or a subnormal step, scaled) and f32 rounding, saturated at f32::MAX;
+        /// and always finite, for scales from 0 to f64::MAX (a constant alike) and
+        /// wavelengths in and out of range.
         #[test]
         fn scaled_lanes_are_the_scaled_definition(
             lambdas in proptest::array::uniform4(prop_oneof![200.0f32..900.0, Just(300.0), Just(830.0), Just(1e-30)]),
-            scale in prop_oneof![Just(0.0), Just(1.0), Just(1e-30), Just(1e30), 1e-3f64..1e3],
+            scale in prop_oneof![Just(0.0), Just(1.0), Just(1e-30), Just(1e30), Just(1e300), Just(f64::MAX), 1e-3f64..1e3],
         ) {
             let wavelengths = SampledWavelengths::new(lambdas, [0.01; 4]).unwrap();
+            let constant = SceneSpectrum::Constant(scale);
+            prop_assert!(constant.at(&wavelengths).0.iter().all(|v| v.is_finite()));
             for inner in inner_spectra() {
                 let scaled = SceneSpectrum::Scaled(Arc::new(inner), scale);
                 let lanes = scaled.at(&wavelengths);
                 for (i, &l) in lambdas.iter().enumerate() {
-                    let exact = scaled.evaluate(f64::from(l));
+                    let exact = scaled.evaluate(f64::from(l)).min(f64::from(f32::MAX));
                     let got = f64::from(lanes[i]);
-                    prop_assert!(got.is_finite() || exact as f32 == f32::INFINITY);
+                    prop_assert!(got.is_finite(), "{scaled:?} at {l}: {got}");
                     prop_assert!(
                         (got - exact).abs() <= 1.2e-5 * exact.abs() + 1e-37 * (scale + 1.0),
                         "{scaled:?} at {l}: {got} vs {exact}"
