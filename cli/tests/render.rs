@@ -321,7 +321,7 @@ fn compare_measures_and_thresholds() {
     assert_one_line_errors(&[
         (
             &["compare", &path("a.exr"), &path("small.exr")],
-            "sizes differ",
+            "cannot compare: sizes differ",
         ),
         (
             &["compare", &path("acc.exr"), &path("small.exr")],

@@ -85,7 +85,7 @@ pub fn compare_images(
     image: &ChannelImage,
     reference: &ChannelImage,
 ) -> Result<Comparison, RenderError> {
-    let bad = |m: String| RenderError::Setting(m);
+    let bad = RenderError::Comparison;
     if (image.width, image.height) != (reference.width, reference.height) {
         return Err(bad(format!(
             "sizes differ: {}x{} and {}x{}",

@@ -8,6 +8,8 @@ pub enum RenderError {
     Setting(String),
     /// The image could not be encoded.
     Encode(String),
+    /// Two images cannot be compared (sizes or channels differ, a sample is not finite).
+    Comparison(String),
 }
 
 impl fmt::Display for RenderError {
@@ -15,6 +17,7 @@ impl fmt::Display for RenderError {
         match self {
             RenderError::Setting(m) => write!(f, "render setting: {m}"),
             RenderError::Encode(m) => write!(f, "image encoding: {m}"),
+            RenderError::Comparison(m) => write!(f, "cannot compare: {m}"),
         }
     }
 }
