@@ -630,6 +630,38 @@ fn camera_response_files_render_false_colour() {
     ]);
 }
 
+/// The budget cuts repeats too: a billion repeats of the first run end with the budget,
+/// and the CSV records how many were made.
+#[test]
+fn trade_budget_cuts_repeats() {
+    let dir = temp_dir("trade-budget");
+    let out_dir = dir.join("box");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
+    let out = prism(&[
+        "trade",
+        scene,
+        "-o",
+        out_dir.to_str().unwrap(),
+        "--spp",
+        "1",
+        "--reference-spp",
+        "2",
+        "--width",
+        "4",
+        "--height",
+        "4",
+        "--repeat",
+        "1000000000",
+        "--budget",
+        "0.5",
+    ]);
+    assert_success(&out);
+    let csv = std::fs::read_to_string(out_dir.join("runs.csv")).unwrap();
+    let first = csv.lines().nth(1).unwrap();
+    let repeats: u64 = first.rsplit(',').next().unwrap().parse().unwrap();
+    assert!((1..1_000_000_000).contains(&repeats), "{first}");
+}
+
 #[test]
 fn trade_measures_every_sweep_and_redraws_reports() {
     let dir = temp_dir("trade");

@@ -36,8 +36,9 @@ pub struct TradeArgs {
     /// Samples per pixel of the rendered reference.
     #[arg(long, default_value_t = 2048)]
     pub reference_spp: u64,
-    /// Stop starting runs after this many seconds (the reference included); runs are
-    /// ordered by samples per pixel, so a budget cuts the most expensive ones.
+    /// Stop starting runs, and repeats of a run, after this many seconds (the reference
+    /// included; every run keeps one render); runs are ordered by samples per pixel, so a
+    /// budget cuts the most expensive ones.
     #[arg(long, default_value_t = 900.0, allow_negative_numbers = true)]
     pub budget: f64,
     /// The samples-per-pixel ladder of every sweep.
@@ -296,7 +297,7 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
             linear_srgb(&film, args.width, args.height)
         }
     };
-    let mut measured: HashMap<Knobs, (f64, f64, f64)> = HashMap::new();
+    let mut measured: HashMap<Knobs, (f64, f64, f64, u32)> = HashMap::new();
     let mut runs = Vec::new();
     let mut skipped = 0;
     for &spp in &ladder {
@@ -311,6 +312,11 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
                 let (scene, setup) = &scenes[&knobs.upsampling];
                 let (mut times, mut errors) = (Vec::new(), Vec::new());
                 for seed in 1..=u64::from(args.repeat) {
+                    // The budget cuts repeats as it cuts runs: --repeat 1000000000 would
+                    // otherwise never end. Every run keeps at least one render.
+                    if seed > 1 && started.elapsed().as_secs_f64() > args.budget {
+                        break;
+                    }
                     let t = Instant::now();
                     let (film, _) =
                         render(scene, &settings_for(knobs, seed)).map_err(|e| e.to_string())?;
@@ -322,13 +328,14 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
                             .relmse,
                     );
                 }
+                let repeats = times.len() as u32;
                 let (seconds, relmse) = (median(times), median(errors));
                 eprintln!(
                     "prism trade: {sweep} {setting} {spp} spp: {seconds:.2} s, relMSE {relmse:.3e}"
                 );
-                slot.insert((seconds, *setup, relmse));
+                slot.insert((seconds, *setup, relmse, repeats));
             }
-            let (seconds, setup_seconds, relmse) = measured[&knobs];
+            let (seconds, setup_seconds, relmse, repeats) = measured[&knobs];
             runs.push(Run {
                 scene: name.clone(),
                 sweep: sweep.into(),
@@ -337,7 +344,7 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
                 seconds,
                 setup_seconds,
                 relmse,
-                repeats: args.repeat,
+                repeats,
             });
         }
     }
