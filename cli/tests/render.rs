@@ -630,32 +630,48 @@ fn camera_response_files_render_false_colour() {
     ]);
 }
 
+/// `prism trade` on the Cornell box into a fresh directory named `name`, at `size` x
+/// `size` pixels with the spp ladder and reference spp given, plus `extra` arguments.
+fn trade_box(
+    name: &str,
+    size: &str,
+    spp: &str,
+    reference_spp: &str,
+    extra: &[&str],
+) -> std::path::PathBuf {
+    let out_dir = temp_dir(name).join("box");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
+    let dir = out_dir.to_str().unwrap();
+    let mut args = vec![
+        "trade",
+        scene,
+        "-o",
+        dir,
+        "--spp",
+        spp,
+        "--reference-spp",
+        reference_spp,
+        "--width",
+        size,
+        "--height",
+        size,
+    ];
+    args.extend(extra);
+    assert_success(&prism(&args));
+    out_dir
+}
+
 /// The budget cuts repeats too: a billion repeats of the first run end with the budget,
 /// and the CSV records how many were made.
 #[test]
 fn trade_budget_cuts_repeats() {
-    let dir = temp_dir("trade-budget");
-    let out_dir = dir.join("box");
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
-    let out = prism(&[
-        "trade",
-        scene,
-        "-o",
-        out_dir.to_str().unwrap(),
-        "--spp",
+    let out_dir = trade_box(
+        "trade-budget",
+        "4",
         "1",
-        "--reference-spp",
         "2",
-        "--width",
-        "4",
-        "--height",
-        "4",
-        "--repeat",
-        "1000000000",
-        "--budget",
-        "0.5",
-    ]);
-    assert_success(&out);
+        &["--repeat", "1000000000", "--budget", "0.5"],
+    );
     let csv = std::fs::read_to_string(out_dir.join("runs.csv")).unwrap();
     let first = csv.lines().nth(1).unwrap();
     let repeats: u64 = first.rsplit(',').next().unwrap().parse().unwrap();
@@ -664,24 +680,7 @@ fn trade_budget_cuts_repeats() {
 
 #[test]
 fn trade_measures_every_sweep_and_redraws_reports() {
-    let dir = temp_dir("trade");
-    let out_dir = dir.join("box");
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
-    let out = prism(&[
-        "trade",
-        scene,
-        "-o",
-        out_dir.to_str().unwrap(),
-        "--spp",
-        "2,1",
-        "--reference-spp",
-        "8",
-        "--width",
-        "8",
-        "--height",
-        "8",
-    ]);
-    assert_success(&out);
+    let out_dir = trade_box("trade", "8", "2,1", "8", &[]);
     let csv = std::fs::read_to_string(out_dir.join("runs.csv")).unwrap();
     // 5 package sizes + 4 samplers + 5 upsampling modes, at 2 sample counts.
     assert_eq!(csv.lines().count(), 1 + 14 * 2, "{csv}");
@@ -708,6 +707,7 @@ fn trade_measures_every_sweep_and_redraws_reports() {
         "{summary}"
     );
     let o = out_dir.to_str().unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.gltf");
     assert_one_line_errors(&[
         (&["trade", "-o", o], "needs a SCENE"),
         (&["trade", scene, "-o", o, "--spp", "0"], "--spp"),
