@@ -71,4 +71,4 @@ pub use film::Film;
 pub use filter::Filter;
 pub use image::{DisplaySettings, ExrMetadata, encode_exr, encode_png};
 pub use render::{RenderStats, Renderer, render, render_into};
-pub use settings::{LambdaSampler, RenderSettings};
+pub use settings::{LambdaSampler, MAX_THREADS, RenderSettings};

@@ -13,10 +13,10 @@ use super::LoadError;
 /// bit), and far fewer already exceed any machine's memory.
 pub(super) const MAX_INSTANCED: u64 = (1 << 31) - 1;
 
-/// What `scene` instances: the sum over its root nodes of each subtree's triangles,
-/// primitives, punctual lights and cameras, each shared subtree counted once per use.
-/// Errors when that exceeds [`MAX_INSTANCED`], or when a node is its own ancestor.
-pub(super) fn check(document: &gltf::Document, scene: &gltf::Scene) -> Result<u64, LoadError> {
+/// Checks what `scene` instances: the sum over its root nodes of each subtree's
+/// triangles, primitives, punctual lights and cameras, each shared subtree counted once
+/// per use. Errors when that exceeds [`MAX_INSTANCED`], or when a node is its own ancestor.
+pub(super) fn check(document: &gltf::Document, scene: &gltf::Scene) -> Result<(), LoadError> {
     let nodes: Vec<gltf::Node> = document.nodes().collect();
     let mut subtree: Vec<Option<u64>> = vec![None; nodes.len()];
     let mut open = vec![false; nodes.len()];
@@ -38,11 +38,8 @@ pub(super) fn check(document: &gltf::Document, scene: &gltf::Scene) -> Result<u6
                 open[n] = false;
                 continue;
             }
-            if open[n] {
-                return Err(LoadError::Scene(format!(
-                    "node {n} is its own ancestor (the node hierarchy has a cycle)"
-                )));
-            }
+            // A node is open while its descendants are on the stack; one of them naming it
+            // as a child is a cycle, caught below before the child is pushed.
             open[n] = true;
             stack.push((n, true));
             for child in nodes[n].children() {
@@ -71,7 +68,7 @@ pub(super) fn check(document: &gltf::Document, scene: &gltf::Scene) -> Result<u6
             MAX_INSTANCED
         )));
     }
-    Ok(total)
+    Ok(())
 }
 
 /// What one node instances itself: its mesh's primitives and their triangles (from the
