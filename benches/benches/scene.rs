@@ -2,13 +2,15 @@
 //! (scenes/cornell-bunny.gltf, 69 451 bunny triangles plus walls) and the Cornell box (36
 //! triangles): closest hits of coherent rays (a 256 x 256 pinhole camera) and incoherent
 //! ones (random points and directions inside the box), and shadow rays (random segments
-//! inside the box).
+//! inside the box); then what a path tracer traces from its first vertex, in pixel order:
+//! bounce rays (from where the camera rays hit, in random directions) and shadow rays
+//! (from there to random points of the ceiling light).
 
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec3;
-use prism_scene::geometry::{Bvh, BvhQuality, Ray};
+use prism_scene::geometry::{Bvh, BvhQuality, Ray, triangle_normal};
 use prism_scene::load::load_geometry;
 
 fn triangles(scene: &str) -> Vec<[Vec3; 3]> {
@@ -59,6 +61,36 @@ fn rays() -> (Vec<Ray>, Vec<Ray>, Vec<Ray>) {
     (coherent, incoherent, segments)
 }
 
+/// Bounce rays and shadow rays from where `camera` rays hit `bvh`, in their order.
+fn first_vertex(bvh: &Bvh, camera: &[Ray]) -> (Vec<Ray>, Vec<Ray>) {
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f32 / (1u64 << 53) as f32
+    };
+    let mut bounces = Vec::new();
+    let mut shadows = Vec::new();
+    for ray in camera {
+        let Some(hit) = bvh.intersect(ray) else {
+            continue;
+        };
+        let n = triangle_normal(hit.vertices);
+        let n = if n.dot(ray.direction) > 0.0 { -n } else { n };
+        let p = ray.at(hit.hit.t) + n * 1e-4;
+        let mut d = Vec3::new(next() * 2.0 - 1.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0);
+        if d.dot(n) < 0.0 {
+            d = -d;
+        }
+        bounces.push(Ray::new(p, d, f32::INFINITY));
+        // The ceiling light of both scenes spans x -0.24..0.23, z -0.22..0.16 at y 0.99.
+        let light = Vec3::new(next() * 0.47 - 0.24, 0.98, next() * 0.38 - 0.22);
+        shadows.push(Ray::new(p, light - p, 1.0 - 1e-4));
+    }
+    (bounces, shadows)
+}
+
 fn scene(c: &mut Criterion) {
     let bunny = triangles("cornell-bunny.gltf");
     let mut group = c.benchmark_group("bvh build (bunny box)");
@@ -85,6 +117,11 @@ fn scene(c: &mut Criterion) {
         });
         group.bench_function("occluded, segments 65536", |b| {
             b.iter(|| segments.iter().filter(|r| bvh.occluded(r)).count())
+        });
+        let (bounces, shadows) = first_vertex(&bvh, &coherent);
+        group.bench_function("closest, bounces", |b| b.iter(|| closest(&bounces)));
+        group.bench_function("occluded, shadows", |b| {
+            b.iter(|| shadows.iter().filter(|r| bvh.occluded(r)).count())
         });
         group.finish();
     }
