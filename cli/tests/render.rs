@@ -234,6 +234,7 @@ fn compare_measures_and_thresholds() {
     let path = |n: &str| dir.join(n).to_str().unwrap().to_string();
     for (name, spp, seed) in [
         ("a.exr", "8", "1"),
+        ("a.png", "8", "1"),
         ("b.exr", "8", "2"),
         ("c.exr", "128", "3"),
     ] {
@@ -328,6 +329,10 @@ fn compare_measures_and_thresholds() {
             "prism merge",
         ),
         (&["compare", &path("a.exr"), &path("none.exr")], "none.exr"),
+        (
+            &["compare", &path("a.png"), &path("a.exr")],
+            "is not an OpenEXR file",
+        ),
         (
             &[
                 "compare",

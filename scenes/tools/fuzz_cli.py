@@ -7,6 +7,9 @@ exit code 1 or 2; a good one in a finite image.
   python3 scenes/tools/fuzz_cli.py toml 600             # overlay material descriptions
   python3 scenes/tools/fuzz_cli.py glb 1500             # GLB headers, chunk lengths, bytes
   python3 scenes/tools/fuzz_cli.py args 400             # command-line options
+  python3 scenes/tools/fuzz_cli.py files 1000           # the other files prism reads:
+      # coefficient tables (table info), accumulation files (merge, render --resume),
+      # images (compare), spectrum and camera-response CSVs (color, --camera-response)
 
 Failing inputs are kept in the work directory (printed at the end). Checking pixels needs
 numpy and mitsuba (to read EXR); without them only exit codes are checked. The same
@@ -160,6 +163,96 @@ def case_args(work, rng, i):
     return args + [f for f in ["--energy", "--no-light-paths", "--stats"] if rng.random() < 0.2]
 
 
+def mutate_bytes(data, rng):
+    """A few edits of a binary file: 32-bit words overwritten with extreme floats or
+    integers, bytes flipped, the file cut short or a run repeated."""
+    b = bytearray(data)
+    for _ in range(rng.randint(1, 6)):
+        r = rng.random()
+        if r < 0.45 and len(b) >= 4:
+            k = rng.randrange(len(b) - 3)
+            if rng.random() < 0.6:
+                b[k:k + 4] = struct.pack("<f", rng.choice(WORDS))
+            else:
+                b[k:k + 4] = struct.pack("<I", rng.choice([0, 1, 0xFFFFFFFF, 1 << 31, len(b), rng.randrange(1 << 32)]))
+        elif r < 0.6 and len(b) > 1:
+            b = b[: rng.randrange(len(b))]
+        elif r < 0.7 and b:
+            k = rng.randrange(len(b))
+            b[k:k] = b[k:k + rng.randint(1, 64)]
+        elif b:
+            b[rng.randrange(len(b))] ^= 1 << rng.randrange(8)
+    return bytes(b)
+
+
+def mutate_csv(text, rng):
+    """A few edits of a CSV: values replaced by extreme or broken ones, rows dropped,
+    repeated or cut."""
+    rows = text.splitlines()
+    for _ in range(rng.randint(1, 4)):
+        if not rows:
+            break
+        k = rng.randrange(len(rows))
+        r = rng.random()
+        cells = rows[k].split(",")
+        if r < 0.6:
+            cells[rng.randrange(len(cells))] = rng.choice(["nan", "inf", "-1", "0", "1e300", "-1e300", "1e-45", "", "x", "360", "830", "1e39"])
+            rows[k] = ",".join(cells)
+        elif r < 0.75:
+            del rows[k]
+        elif r < 0.9:
+            rows.insert(k, rows[k])
+        else:
+            rows[k] = rows[k][: rng.randrange(len(rows[k]) + 1)]
+    return "\n".join(rows) + ("\n" if rng.random() < 0.8 else "")
+
+
+def file_bases(work):
+    """Valid files to mutate, made once with prism itself."""
+    def run(*args):
+        subprocess.run([PRISM, *args], check=True, capture_output=True, cwd=work)
+    run("table", "fit", "--res", "3", "-o", "table.bin")
+    box = os.path.join(work, "cornell-box.gltf")
+    run("render", box, "--width", "6", "--height", "4", "--sample-range", "0..2", "-o", "part0.exr", "-q")
+    run("render", box, "--width", "6", "--height", "4", "--sample-range", "2..4", "-o", "part1.exr", "-q")
+    run("render", box, "--width", "6", "--height", "4", "--spp", "2", "-o", "image.exr", "-o", "image.png", "-q")
+    run("render", box, "--width", "6", "--height", "4", "--spp", "2", "--energy", "--spectral-bands", "4", "-o", "bands.exr", "-q")
+    with open(os.path.join(work, "spectrum.csv"), "w") as f:
+        f.write("nm,value\n" + "".join(f"{400 + 10 * k},{0.1 + 0.02 * k}\n" for k in range(31)))
+    return {n: open(os.path.join(work, n), "rb").read() for n in
+            ["table.bin", "part0.exr", "part1.exr", "image.exr", "image.png", "bands.exr", "nir-camera.csv", "spectrum.csv"]}
+
+
+def case_files(work, rng, i, bases={}):
+    """(arguments after `prism`, the output file to check or None)."""
+    if not bases:
+        bases.update(file_bases(work))
+    kind = rng.choice(["table", "merge", "resume", "compare", "compare-png", "color", "response"])
+    def write(base, data):
+        path = os.path.join(work, f"case{i}{os.path.splitext(base)[1]}")
+        open(path, "wb").write(data)
+        return path
+    out = os.path.join(work, "out.exr")
+    small = ["--width", "6", "--height", "4", "--spp", "2", "-o", out, "-q"]
+    box = os.path.join(work, "cornell-box.gltf")
+    if kind == "table":
+        return ["table", "info", write("t.bin", mutate_bytes(bases["table.bin"], rng))], None
+    if kind == "merge":
+        part = rng.choice(["part0.exr", "part1.exr"])
+        other = "part1.exr" if part == "part0.exr" else "part0.exr"
+        return ["merge", write(part, mutate_bytes(bases[part], rng)), os.path.join(work, other), "-o", out], out
+    if kind == "resume":
+        return ["render", box, "--resume", write("c.exr", mutate_bytes(bases["part0.exr"], rng))] + small, out
+    if kind == "compare":
+        name = rng.choice(["image.exr", "bands.exr"])
+        return ["compare", write(name, mutate_bytes(bases[name], rng)), os.path.join(work, name), "--json"], None
+    if kind == "compare-png":
+        return ["compare", write("i.png", mutate_bytes(bases["image.png"], rng)), os.path.join(work, "image.png")], None
+    if kind == "color":
+        return ["color", write("s.csv", mutate_csv(bases["spectrum.csv"].decode(), rng).encode())], None
+    return ["render", box, "--camera-response", write("r.csv", mutate_csv(bases["nir-camera.csv"].decode(), rng).encode())] + small, out
+
+
 def finite_exr(path):
     try:
         import numpy as np, mitsuba as mi
@@ -171,7 +264,7 @@ def finite_exr(path):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("kind", choices=["gltf", "toml", "glb", "args"])
+    ap.add_argument("kind", choices=["gltf", "toml", "glb", "args", "files"])
     ap.add_argument("cases", type=int)
     ap.add_argument("--seed", type=int, default=1)
     a = ap.parse_args()
@@ -180,16 +273,21 @@ def main():
     for f in os.listdir(SCENES):
         if os.path.isfile(os.path.join(SCENES, f)) and not f.endswith(".toml"):
             shutil.copy(os.path.join(SCENES, f), work)
-    make = {"gltf": case_gltf, "toml": case_toml, "glb": case_glb, "args": case_args}[a.kind]
+    make = {"gltf": case_gltf, "toml": case_toml, "glb": case_glb, "args": case_args}.get(a.kind)
     codes, bad = Counter(), 0
     for i in range(a.cases):
         out = os.path.join(work, "out.exr")
-        args = [PRISM, "render"] + make(work, rng, i) + ["--width", "8", "--height", "8", "--spp", "2", "-o", out, "-q"]
+        if make:
+            args = [PRISM, "render"] + make(work, rng, i) + ["--width", "8", "--height", "8", "--spp", "2", "-o", out, "-q"]
+        else:
+            rest, checked = case_files(work, rng, i)
+            args = [PRISM] + rest
+            out = checked or out
         try:
             r = subprocess.run(args, capture_output=True, text=True, timeout=120, cwd=work)
         except subprocess.TimeoutExpired:
             bad += 1
-            print("hang:", " ".join(args[2:]))
+            print("hang:", " ".join(args[1:]))
             continue
         codes[r.returncode] += 1
         failed = r.returncode not in (0, 1, 2) or "panicked" in r.stderr
@@ -199,7 +297,7 @@ def main():
             failed = True
         if failed:
             bad += 1
-            print(f"exit {r.returncode}:", " ".join(args[2:]), "|", r.stderr.strip()[-300:])
+            print(f"exit {r.returncode}:", " ".join(args[1:]), "|", r.stderr.strip()[-300:])
         if os.path.exists(out):
             os.remove(out)
     print(json.dumps({"cases": a.cases, "failed": bad, "exit_codes": dict(codes), "work": work}))

@@ -40,15 +40,11 @@ impl fmt::Display for SpectrumError {
                 what,
                 value,
                 expected,
-            } => {
-                // f64's Display writes every digit: 1e300 would be 301 of them.
-                let large_or_tiny = value.abs() >= 1e9 || (*value != 0.0 && value.abs() < 1e-6);
-                if value.is_finite() && large_or_tiny {
-                    write!(f, "invalid {what} {value:e}: expected {expected}")
-                } else {
-                    write!(f, "invalid {what} {value}: expected {expected}")
-                }
-            }
+            } => write!(
+                f,
+                "invalid {what} {}: expected {expected}",
+                Readable(*value)
+            ),
             SpectrumError::InvalidTable(msg) => write!(f, "invalid spectral table: {msg}"),
             SpectrumError::UnknownName { kind, name, valid } => {
                 write!(f, "unknown {kind} '{name}' (valid: {valid})")
@@ -59,6 +55,23 @@ impl fmt::Display for SpectrumError {
 }
 
 impl std::error::Error for SpectrumError {}
+
+/// A number as a message shows it: as f64's `Display` does, except that huge and tiny
+/// magnitudes are in scientific notation (`Display` writes every digit: 1e300 is 301 of
+/// them, 1e-45 is 46). For error messages that quote a user's input.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Readable(pub f64);
+
+impl fmt::Display for Readable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        if x.is_finite() && (x.abs() >= 1e6 || (x != 0.0 && x.abs() < 1e-6)) {
+            write!(f, "{x:e}")
+        } else {
+            write!(f, "{x}")
+        }
+    }
+}
 
 /// Checks that `value` is finite and strictly positive.
 pub(crate) fn require_positive(what: &'static str, value: f64) -> Result<f64, SpectrumError> {
@@ -110,5 +123,29 @@ mod tests {
         assert!(message(0.0).contains(" 0: "));
         assert!(message(f64::NAN).contains(" NaN: "));
         assert!(message(f64::INFINITY).contains(" inf: "));
+    }
+
+    #[test]
+    fn tables_quote_huge_and_tiny_wavelengths_short() {
+        let error = crate::spectra::PiecewiseLinear::from_csv_str(
+            "550,1\n1e-45,1\n",
+            crate::spectra::Extrapolation::Zero,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            error.ends_with("550 nm at row 1 is followed by 1e-45 nm"),
+            "{error}"
+        );
+        let error = crate::spectra::PiecewiseLinear::from_csv_str(
+            "400,1\n1e300,1\n1e200,2\n",
+            crate::spectra::Extrapolation::Zero,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            error.ends_with("1e300 nm at row 2 is followed by 1e200 nm"),
+            "{error}"
+        );
     }
 }

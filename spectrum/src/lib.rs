@@ -68,7 +68,7 @@ mod sampled;
 pub mod spectra;
 mod spectrum;
 
-pub use error::SpectrumError;
+pub use error::{Readable, SpectrumError};
 pub use sampled::{SampledSpectrum, SampledWavelengths, saturating_f32};
 pub use spectrum::Spectrum;
 

@@ -7,7 +7,7 @@ use prism_integrator::{ChannelImage, compare_images, decode_exr};
 
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  prism compare render.exr reference.exr\n  prism compare render.exr reference.exr --json --max-relmse 1e-3   # exits 1 above the threshold\n\nrelmse is the mean of (a - b)^2 / (b^2 + 0.01) over pixels and channels; psnr uses the\nreference's largest value as the peak."
+    after_help = "Examples:\n  prism compare render.exr reference.exr\n  prism compare render.exr reference.exr --json --max-relmse 1e-3   # exits 1 above the threshold\n\nrelmse is the mean of (a - b)^2 / (b^2 + 0.01) over pixels and channels; psnr uses the\nreference's largest value as the peak. Measures that are undefined (the psnr of equal\nimages, the mean ratio to a black channel) print as -, and as null with --json."
 )]
 pub struct CompareArgs {
     /// The image to judge (.exr).
@@ -25,6 +25,14 @@ pub struct CompareArgs {
 fn load(path: &Path) -> Result<ChannelImage, String> {
     let bytes =
         std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    // OpenEXR's magic number: without it the decoder's complaint ("file identifier
+    // missing") would not say that a PNG, say, is the wrong kind of file.
+    if !bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
+        return Err(format!(
+            "'{}' is not an OpenEXR file: prism compare reads .exr images",
+            path.display()
+        ));
+    }
     let image = decode_exr(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
     if image.channels.iter().any(|(name, _)| name.ends_with(".hi")) {
         return Err(format!(
@@ -39,7 +47,10 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     if let Some(t) = args.max_relmse
         && !(t.is_finite() && t >= 0.0)
     {
-        return Err(format!("--max-relmse {t} must be finite and >= 0"));
+        return Err(format!(
+            "--max-relmse {} must be finite and >= 0",
+            prism_spectrum::Readable(t)
+        ));
     }
     let (image, reference) = (load(&args.image)?, load(&args.reference)?);
     let c = compare_images(&image, &reference).map_err(|e| e.to_string())?;

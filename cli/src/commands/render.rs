@@ -14,6 +14,7 @@ use prism_integrator::{
 use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, load_geometry};
 use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
+use prism_spectrum::Readable;
 use prism_spectrum::color::RgbSpaceId;
 
 use crate::output::{check_writable, write_atomically};
@@ -190,7 +191,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     {
         return Err(format!(
             "--environment {} must be >= 0 and at most f32's largest value, 3.4e38",
-            shown(e)
+            Readable(e)
         ));
     }
     let samples_only = args.sample_range.as_deref().map(parse_range).transpose()?;
@@ -283,7 +284,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             Duration::try_from_secs_f64(s).map_err(|_| {
                 format!(
                     "--{name} {} must be a finite number of seconds >= 0",
-                    shown(s)
+                    Readable(s)
                 )
             })
         })
@@ -393,7 +394,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
 
 /// `A:B` in nm, 0 < A < B.
 fn parse_nm_range(flag: &str, text: &str) -> Result<(f32, f32), String> {
-    let bad = || format!("{flag} '{text}': expected A:B in nm with 0 < A < B");
+    // The renderer's wavelengths are f32: 1e-300 reads as 0 and 1e300 as infinity.
+    let bad = || {
+        format!("{flag} '{text}': expected A:B in nm with 0 < A < B, both from 1.2e-38 to 3.4e38")
+    };
     let (a, b) = text.split_once(':').ok_or_else(bad)?;
     let (a, b): (f32, f32) = (
         a.trim().parse().map_err(|_| bad())?,
@@ -567,13 +571,4 @@ pub fn write_images(
         write_atomically(out, &bytes)?;
     }
     Ok(())
-}
-
-/// A number as an error message shows it: f64's Display writes every digit of 1e300.
-fn shown(x: f64) -> String {
-    if x.is_finite() && x.abs() >= 1e6 {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
 }

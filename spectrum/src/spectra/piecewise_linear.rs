@@ -1,5 +1,5 @@
 use crate::Spectrum;
-use crate::error::SpectrumError;
+use crate::error::{Readable, SpectrumError};
 
 /// What a tabulated spectrum is outside its first and last wavelength.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -47,23 +47,23 @@ impl PiecewiseLinear {
         if let Some(i) = lambdas.iter().position(|l| !l.is_finite()) {
             return Err(SpectrumError::InvalidTable(format!(
                 "wavelength {} at row {} is not finite",
-                lambdas[i],
+                Readable(lambdas[i]),
                 i + 1
             )));
         }
         if let Some(i) = values.iter().position(|v| !v.is_finite()) {
             return Err(SpectrumError::InvalidTable(format!(
                 "value {} at row {} is not finite",
-                values[i],
+                Readable(values[i]),
                 i + 1
             )));
         }
         if let Some(i) = lambdas.windows(2).position(|w| w[0] >= w[1]) {
             return Err(SpectrumError::InvalidTable(format!(
                 "wavelengths must increase strictly: {} nm at row {} is followed by {} nm",
-                lambdas[i],
+                Readable(lambdas[i]),
                 i + 1,
-                lambdas[i + 1]
+                Readable(lambdas[i + 1])
             )));
         }
         // An upper bound that includes 0, the value at NaN wavelengths (and outside the
