@@ -25,6 +25,16 @@ fn triangles(scene: &str) -> Vec<[Vec3; 3]> {
     .triangles
 }
 
+/// Uniform numbers in [0, 1) from a xorshift generator seeded with `seed`.
+fn uniform(mut s: u64) -> impl FnMut() -> f32 {
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f32 / (1u64 << 53) as f32
+    }
+}
+
 /// Camera rays, random rays and random segments (shadow rays).
 fn rays() -> (Vec<Ray>, Vec<Ray>, Vec<Ray>) {
     let n = 256;
@@ -38,13 +48,8 @@ fn rays() -> (Vec<Ray>, Vec<Ray>, Vec<Ray>) {
             Ray::new(eye, Vec3::new(x * 0.7, y * 0.7, -1.0), f32::INFINITY)
         })
         .collect();
-    let mut s = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f32 / (1u64 << 53) as f32 * 2.0 - 1.0
-    };
+    let mut unit = uniform(0x9e37_79b9_7f4a_7c15);
+    let mut next = move || unit() * 2.0 - 1.0;
     let incoherent = (0..n * n)
         .map(|_| {
             let origin = Vec3::new(next(), next(), next()) * 0.95;
@@ -63,13 +68,7 @@ fn rays() -> (Vec<Ray>, Vec<Ray>, Vec<Ray>) {
 
 /// Bounce rays and shadow rays from where `camera` rays hit `bvh`, in their order.
 fn first_vertex(bvh: &Bvh, camera: &[Ray]) -> (Vec<Ray>, Vec<Ray>) {
-    let mut s = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f32 / (1u64 << 53) as f32
-    };
+    let mut next = uniform(0x2545_f491_4f6c_dd1d);
     let mut bounces = Vec::new();
     let mut shadows = Vec::new();
     for ray in camera {

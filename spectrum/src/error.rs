@@ -127,25 +127,20 @@ mod tests {
 
     #[test]
     fn tables_quote_huge_and_tiny_wavelengths_short() {
-        let error = crate::spectra::PiecewiseLinear::from_csv_str(
-            "550,1\n1e-45,1\n",
-            crate::spectra::Extrapolation::Zero,
-        )
-        .unwrap_err()
-        .to_string();
+        let error = |csv: &str| {
+            crate::spectra::PiecewiseLinear::from_csv_str(csv, crate::spectra::Extrapolation::Zero)
+                .unwrap_err()
+                .to_string()
+        };
+        let tiny = error("550,1\n1e-45,1\n");
         assert!(
-            error.ends_with("550 nm at row 1 is followed by 1e-45 nm"),
-            "{error}"
+            tiny.ends_with("550 nm at row 1 is followed by 1e-45 nm"),
+            "{tiny}"
         );
-        let error = crate::spectra::PiecewiseLinear::from_csv_str(
-            "400,1\n1e300,1\n1e200,2\n",
-            crate::spectra::Extrapolation::Zero,
-        )
-        .unwrap_err()
-        .to_string();
+        let huge = error("400,1\n1e300,1\n1e200,2\n");
         assert!(
-            error.ends_with("1e300 nm at row 2 is followed by 1e200 nm"),
-            "{error}"
+            huge.ends_with("1e300 nm at row 2 is followed by 1e200 nm"),
+            "{huge}"
         );
     }
 }
