@@ -454,6 +454,11 @@ fn spectral_output_has_the_layout_channels() {
             ],
             "A:B",
         ),
+        // Without bands the range is unused, and a mistyped one is still an error.
+        (
+            &["render", "--spectral-range", "1e300:1e301", "-o", o],
+            "--spectral-range '1e300:1e301'",
+        ),
     ]);
 }
 

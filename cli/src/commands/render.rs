@@ -451,10 +451,11 @@ fn energy_stats(film: &Film, range: (f32, f32)) -> serde_json::Value {
 
 /// The bands of `--spectral-bands N --spectral-range A:B`.
 fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
+    // Checked even without bands: a mistyped range is an error, not silently unused.
+    let range = parse_nm_range("--spectral-range", &args.spectral_range)?;
     let Some(count) = args.spectral_bands else {
         return Ok(None);
     };
-    let range = parse_nm_range("--spectral-range", &args.spectral_range)?;
     SpectralBands::new(range.0, range.1, count)
         .map(Some)
         .map_err(|e| e.to_string())
