@@ -7,6 +7,7 @@ exit code 1 or 2; a good one in a finite image.
   python3 scenes/tools/fuzz_cli.py toml 600             # overlay material descriptions
   python3 scenes/tools/fuzz_cli.py glb 1500             # GLB headers, chunk lengths, bytes
   python3 scenes/tools/fuzz_cli.py args 400             # command-line options
+  python3 scenes/tools/fuzz_cli.py specs 1000           # prism color and upsample inputs
   python3 scenes/tools/fuzz_cli.py files 1000           # the other files prism reads:
       # coefficient tables (table info), accumulation files (merge, render --resume),
       # images (compare), spectrum and camera-response CSVs (color, --camera-response)
@@ -253,6 +254,32 @@ def case_files(work, rng, i, bases={}):
     return ["render", box, "--camera-response", write("r.csv", mutate_csv(bases["nir-camera.csv"].decode(), rng).encode())] + small, out
 
 
+def case_specs(work, rng, i):
+    """(arguments after `prism`, None): spectrum specifications for `color` and colours,
+    spaces and options for `upsample`."""
+    numbers = ["0", "1", "-1", "0.5", "1e-45", "1e-300", "1e300", "-1e300", "nan", "inf", "-inf", "", "x", "1e39", "3e38", "0x10"]
+    def num():
+        return rng.choice(numbers + [repr(rng.uniform(-2, 2))])
+    if rng.random() < 0.5:
+        kind = rng.choice(["blackbody", "illuminant", "daylight", "gaussian", "constant", "csv", "", "x"])
+        spec = {"blackbody": lambda: f"blackbody:{num()}", "illuminant": lambda: f"illuminant:{rng.choice(['A', 'D65', 'F12', 'F13', '', 'x'])}",
+                "daylight": lambda: f"daylight:{num()}", "gaussian": lambda: f"gaussian:{num()}:{num()}",
+                "constant": lambda: f"constant:{num()}", "csv": lambda: rng.choice(["/nonexistent.csv", os.path.join(work, "cornell-box.bin"), os.path.join(work, "nir-camera.csv")]),
+                "": lambda: "", "x": lambda: rng.choice([":", "::", "blackbody", "gaussian:1", "a:b:c:d"])}[kind]()
+        args = ["color", spec]
+        if rng.random() < 0.3:
+            args += ["--observer", rng.choice(["cie1931", "cie1964", "x"])]
+        if rng.random() < 0.3:
+            args += ["--space", rng.choice(["srgb", "rec2020", "x", "0.7,0.3,0.2,0.75,0.12,0.05@illuminant:D50", "0,0,0,0,0,0", "1,1,1,1,1,1@x"])]
+        return args + (["--json"] if rng.random() < 0.5 else []), None
+    args = ["upsample"] + [num() for _ in range(rng.choice([0, 1, 2, 3, 3, 3, 6]))]
+    if rng.random() < 0.3:
+        args += ["--space", rng.choice(["srgb", "prophoto", "aces2065-1", "x", "0.7,0.3,0.2,0.75,0.12,0.05@illuminant:D50", "0,0,1,1,0.5,0.5", "nan,0,0,0,0,0"])]
+    if rng.random() < 0.2:
+        args += ["--table", rng.choice([os.path.join(work, "cornell-box.bin"), "/nonexistent.bin"])]
+    return args + [f for f in ["--exact", "--refine", "--json"] if rng.random() < 0.2], None
+
+
 def finite_exr(path):
     try:
         import numpy as np, mitsuba as mi
@@ -264,7 +291,7 @@ def finite_exr(path):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("kind", choices=["gltf", "toml", "glb", "args", "files"])
+    ap.add_argument("kind", choices=["gltf", "toml", "glb", "args", "files", "specs"])
     ap.add_argument("cases", type=int)
     ap.add_argument("--seed", type=int, default=1)
     a = ap.parse_args()
@@ -280,7 +307,7 @@ def main():
         if make:
             args = [PRISM, "render"] + make(work, rng, i) + ["--width", "8", "--height", "8", "--spp", "2", "-o", out, "-q"]
         else:
-            rest, checked = case_files(work, rng, i)
+            rest, checked = (case_files if a.kind == "files" else case_specs)(work, rng, i)
             args = [PRISM] + rest
             out = checked or out
         try:
