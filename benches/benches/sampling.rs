@@ -51,6 +51,7 @@ fn package<const N: usize>(c: &mut Criterion, group_name: &str) {
 fn packages(c: &mut Criterion) {
     package::<1>(c, "wavelength package C=1");
     package::<4>(c, "wavelength package C=4");
+    package::<8>(c, "wavelength package C=8");
     package::<16>(c, "wavelength package C=16");
 }
 
