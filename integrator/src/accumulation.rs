@@ -173,7 +173,7 @@ fn fact<'a>(facts: &'a str, key: &str) -> Option<&'a str> {
 /// EXR, a truncated or corrupted file, missing channels or facts, non-finite sums.
 pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
     let bad = |m: String| RenderError::Encode(format!("not a prism accumulation file: {m}"));
-    let image = read_flat(bytes).map_err(|e| bad(e.to_string()))?;
+    let image = read_flat(bytes).map_err(bad)?;
     // Written as an image attribute; a reader may file it under the (only) layer.
     let key = Text::from(FACTS);
     let stored =

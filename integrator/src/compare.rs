@@ -21,7 +21,12 @@ pub struct ChannelImage {
 pub(crate) type FlatImage = Image<Layer<AnyChannels<FlatSamples>>>;
 
 /// Reads an EXR's first valid layer from bytes: every channel as stored, all attributes.
-pub(crate) fn read_flat(bytes: &[u8]) -> exr::error::Result<FlatImage> {
+pub(crate) fn read_flat(bytes: &[u8]) -> Result<FlatImage, String> {
+    // OpenEXR's magic number first: the reader's own complaint ("file identifier
+    // missing") would not say that a PNG, say, is the wrong kind of file.
+    if !bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
+        return Err("not an OpenEXR file".into());
+    }
     read()
         .no_deep_data()
         .largest_resolution_level()
@@ -29,6 +34,7 @@ pub(crate) fn read_flat(bytes: &[u8]) -> exr::error::Result<FlatImage> {
         .first_valid_layer()
         .all_attributes()
         .from_buffered(Cursor::new(bytes))
+        .map_err(|e| e.to_string())
 }
 
 /// Reads every channel of an EXR's first layer as f32 (f16 and u32 samples converted).
