@@ -47,14 +47,14 @@ impl PiecewiseLinear {
         if let Some(i) = lambdas.iter().position(|l| !l.is_finite()) {
             return Err(SpectrumError::InvalidTable(format!(
                 "wavelength {} at row {} is not finite",
-                Readable(lambdas[i]),
+                lambdas[i],
                 i + 1
             )));
         }
         if let Some(i) = values.iter().position(|v| !v.is_finite()) {
             return Err(SpectrumError::InvalidTable(format!(
                 "value {} at row {} is not finite",
-                Readable(values[i]),
+                values[i],
                 i + 1
             )));
         }
