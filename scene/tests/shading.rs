@@ -144,3 +144,43 @@ fn only_meshes_without_a_material_get_the_default() {
     let scene = Scene::from_loaded(&named, &SceneOptions::default()).unwrap();
     assert_eq!(scene.materials().len(), 1);
 }
+
+/// `doc`'s triangle twice: first as a primitive with positions only, then (if `both`) as
+/// the primitive with normals and UVs.
+fn bare_then_full(both: bool) -> LoadedGeometry {
+    let (mut doc, bin) = doc(json!({"mesh": 0}));
+    let bare = json!({"attributes": {"POSITION": 0}});
+    let full = doc["meshes"][0]["primitives"][0].clone();
+    doc["meshes"][0]["primitives"] = if both {
+        json!([bare, full])
+    } else {
+        json!([bare])
+    };
+    load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &move |_| Ok(bin.clone()),
+        None,
+    )
+    .unwrap()
+}
+
+#[test]
+fn attributes_are_kept_only_where_a_primitive_has_them() {
+    // No primitive has normals or UVs: no lists, flat shading and uv 0 at hits.
+    let bare = bare_then_full(false);
+    assert_eq!(bare.triangles.len(), 1);
+    assert!(bare.normals.is_empty() && bare.uvs.is_empty());
+    let scene = Scene::from_loaded(&bare, &SceneOptions::default()).unwrap();
+    let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z, f32::INFINITY);
+    let hit = scene.intersect(&ray).unwrap();
+    assert_eq!((hit.normal, hit.shading_normal, hit.uv), (Vec3::Z, Vec3::Z, Vec2::ZERO));
+
+    // A later primitive with them: the earlier triangle gets the face normal and uv 0.
+    let mixed = bare_then_full(true);
+    assert_eq!(mixed.triangles.len(), 2);
+    assert_eq!(mixed.normals[0], [Vec3::Z; 3]);
+    assert_eq!(mixed.uvs[0], [Vec2::ZERO; 3]);
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    assert!((mixed.normals[1][0] - Vec3::new(-h, 0.0, h)).length() < 1e-6);
+    assert_eq!(mixed.uvs[1], [Vec2::ZERO, Vec2::X, Vec2::Y]);
+}

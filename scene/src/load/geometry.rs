@@ -27,10 +27,11 @@ pub struct LoadedGeometry {
     /// Triangles in world space, instance after instance.
     pub triangles: Vec<[Vec3; 3]>,
     /// Unit shading normals at each triangle's vertices, world space (the geometric
-    /// normal where the file gives none), one entry per triangle.
+    /// normal where the file gives none), one entry per triangle; empty when no primitive
+    /// of the scene has normals (flat shading everywhere).
     pub normals: Vec<[Vec3; 3]>,
     /// `TEXCOORD_0` at each triangle's vertices (zero where the file gives none), one
-    /// entry per triangle.
+    /// entry per triangle; empty when no primitive of the scene has them.
     pub uvs: Vec<[Vec2; 3]>,
     /// Which node and primitive each range of triangles came from.
     pub instances: Vec<MeshInstance>,
@@ -487,25 +488,44 @@ fn add_primitive(
     let mirrored = world.determinant() < 0.0;
     let order = |t: [usize; 3]| if mirrored { [t[0], t[2], t[1]] } else { t };
     let first = out.triangles.len();
+    // Attribute lists stay empty until a primitive has the attribute; the triangles before
+    // it then get the defaults. Most scenes have no texture coordinates and many no
+    // normals: 60 bytes a triangle that would be kept and interpolated at every hit.
+    let keep_normals = normals.is_some() || !out.normals.is_empty();
+    if keep_normals {
+        let from = out.normals.len();
+        let flat = |t: &[Vec3; 3]| [triangle_normal(*t); 3];
+        out.normals.extend(out.triangles[from..].iter().map(flat));
+    }
+    let keep_uvs = uvs.is_some() || !out.uvs.is_empty();
+    if keep_uvs {
+        out.uvs.resize(first, [Vec2::ZERO; 3]);
+    }
+    let triangles = indices.len() / 3;
+    out.triangles.reserve(triangles);
+    out.normals.reserve(if keep_normals { triangles } else { 0 });
+    out.uvs.reserve(if keep_uvs { triangles } else { 0 });
     for tri in indices.chunks_exact(3) {
         let t = order([tri[0] as usize, tri[1] as usize, tri[2] as usize]);
         let v = t.map(|i| world.transform_point3(positions[i]));
-        let geometric = triangle_normal(v);
-        let shading = match &normals {
-            // Unusable normals (zero, non-finite) fall back to the face's own.
-            Some(n) => t.map(|i| {
-                let w = (normal_matrix * n[i]).normalize_or_zero();
-                if w == Vec3::ZERO { geometric } else { w }
-            }),
-            None => [geometric; 3],
-        };
-        let uv = match &uvs {
-            Some(uv) => t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }),
-            None => [Vec2::ZERO; 3],
-        };
         out.triangles.push(v);
-        out.normals.push(shading);
-        out.uvs.push(uv);
+        if keep_normals {
+            let geometric = triangle_normal(v);
+            out.normals.push(match &normals {
+                // Unusable normals (zero, non-finite) fall back to the face's own.
+                Some(n) => t.map(|i| {
+                    let w = (normal_matrix * n[i]).normalize_or_zero();
+                    if w == Vec3::ZERO { geometric } else { w }
+                }),
+                None => [geometric; 3],
+            });
+        }
+        if keep_uvs {
+            out.uvs.push(match &uvs {
+                Some(uv) => t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }),
+                None => [Vec2::ZERO; 3],
+            });
+        }
     }
     out.instances.push(MeshInstance {
         node: name,
