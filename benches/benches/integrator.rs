@@ -19,7 +19,7 @@ fn scene(name: &str) -> Scene {
         None,
     )
     .expect("the scene loads");
-    Scene::from_loaded(&loaded, &Default::default()).expect("the scene builds")
+    Scene::from_loaded(loaded, &Default::default()).expect("the scene builds")
 }
 
 fn integrator(c: &mut Criterion) {

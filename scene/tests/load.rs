@@ -474,7 +474,7 @@ fn dispersion_extension_is_read_from_raw_json_even_when_required() {
     let loaded = load_json(&doc, &bin).unwrap();
     assert_eq!(loaded.materials[1].dispersion, 0.5);
     assert!(loaded.summary().uses_dispersion);
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     assert!(scene.features().dispersion && scene.features().transmission);
     // Without the extension the same glass does not disperse.
     doc["materials"][1]["extensions"]
@@ -483,7 +483,7 @@ fn dispersion_extension_is_read_from_raw_json_even_when_required() {
         .remove("KHR_materials_dispersion");
     doc["extensionsRequired"] = json!([]);
     let plain =
-        Scene::from_loaded(&load_json(&doc, &bin).unwrap(), &SceneOptions::default()).unwrap();
+        Scene::from_loaded(load_json(&doc, &bin).unwrap(), &SceneOptions::default()).unwrap();
     assert!(!plain.features().dispersion && plain.features().transmission);
     // A negative dispersion is an error naming the material.
     doc["materials"][1]["extensions"]["KHR_materials_dispersion"] = json!({"dispersion": -1.0});

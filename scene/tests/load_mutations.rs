@@ -104,7 +104,7 @@ fn word() -> impl Strategy<Value = u32> {
 fn load_and_build(doc: &Value, bin: Vec<u8>) {
     let text = serde_json::to_vec(doc).unwrap();
     if let Ok(loaded) = load_geometry(&text, &move |_| Ok(bin.clone()), None) {
-        let _ = Scene::from_loaded(&loaded, &SceneOptions::default());
+        let _ = Scene::from_loaded(loaded, &SceneOptions::default());
     }
 }
 

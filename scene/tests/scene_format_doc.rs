@@ -82,7 +82,7 @@ fn every_documented_example_loads() {
             }
         }
         let loaded = load(&doc, None).unwrap_or_else(|e| panic!("{e}:\n{example}"));
-        Scene::from_loaded(&loaded, &SceneOptions::default())
+        Scene::from_loaded(loaded, &SceneOptions::default())
             .unwrap_or_else(|e| panic!("{e}:\n{example}"));
     }
     let overlays = blocks(&text, "toml");
@@ -90,7 +90,7 @@ fn every_documented_example_loads() {
     for example in &overlays {
         let overlay = Overlay::parse(example).unwrap_or_else(|e| panic!("{e}:\n{example}"));
         let loaded = load(&cornell, Some(&overlay)).unwrap_or_else(|e| panic!("{e}:\n{example}"));
-        Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+        Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     }
 }
 
@@ -115,7 +115,7 @@ fn the_repository_overlays_load() {
                 },
             )
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+            Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
         }
     }
 }

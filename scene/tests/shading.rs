@@ -82,7 +82,7 @@ fn normals_follow_the_inverse_transpose() {
 #[test]
 fn hits_interpolate_normals_and_uvs() {
     let loaded = load(json!({"mesh": 0}));
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(loaded.clone(), &SceneOptions::default()).unwrap();
     // Barycentrics (0.5, 0.25, 0.25) at (0.25, 0.25).
     let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z, f32::INFINITY);
     let hit = scene.intersect(&ray).unwrap();
@@ -119,7 +119,7 @@ fn only_meshes_without_a_material_get_the_default() {
     use prism_scene::world::Material;
     // The triangle names no material: glTF's default (white, metallic 1, roughness 1).
     let loaded = load(json!({"mesh": 0}));
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     let hit = scene
         .intersect(&Ray::new(
             Vec3::new(0.25, 0.25, 1.0),
@@ -141,7 +141,7 @@ fn only_meshes_without_a_material_get_the_default() {
         None,
     )
     .unwrap();
-    let scene = Scene::from_loaded(&named, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(named, &SceneOptions::default()).unwrap();
     assert_eq!(scene.materials().len(), 1);
 }
 
@@ -170,10 +170,13 @@ fn attributes_are_kept_only_where_a_primitive_has_them() {
     let bare = bare_then_full(false);
     assert_eq!(bare.triangles.len(), 1);
     assert!(bare.normals.is_empty() && bare.uvs.is_empty());
-    let scene = Scene::from_loaded(&bare, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(bare, &SceneOptions::default()).unwrap();
     let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z, f32::INFINITY);
     let hit = scene.intersect(&ray).unwrap();
-    assert_eq!((hit.normal, hit.shading_normal, hit.uv), (Vec3::Z, Vec3::Z, Vec2::ZERO));
+    assert_eq!(
+        (hit.normal, hit.shading_normal, hit.uv),
+        (Vec3::Z, Vec3::Z, Vec2::ZERO)
+    );
 
     // A later primitive with them: the earlier triangle gets the face normal and uv 0.
     let mixed = bare_then_full(true);

@@ -169,11 +169,11 @@ fn fluorescent_materials_conserve_energy_and_mark_the_scene() {
     );
     let loaded = load(&doc, None, &[]).unwrap();
     assert!(surface(&loaded, "white").fluorescent());
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     assert!(scene.features().fluorescence);
     let plain = load(&cornell_json(), None, &[]).unwrap();
     assert!(
-        !Scene::from_loaded(&plain, &SceneOptions::default())
+        !Scene::from_loaded(plain, &SceneOptions::default())
             .unwrap()
             .features()
             .fluorescence
@@ -211,12 +211,12 @@ fn spectral_emission_and_environment() {
     );
     doc["extensions"] = json!({"PRISM_spectral": {"environment": "illuminant:D65"}});
     let loaded = load(&doc, None, &[]).unwrap();
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    assert!(loaded.spectral.environment.is_some());
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     let emitter = scene.emission_spectra().first().unwrap();
     // Peak-normalized 3000 K blackbody times 4: its peak (966 nm) is 4, 560 nm much less.
     assert!((emitter.max_value() - 4.0).abs() < 1e-6);
     assert!(scene.lights().environment().is_some());
-    assert!(loaded.spectral.environment.is_some());
 }
 
 #[test]
@@ -403,7 +403,7 @@ fn gltf_volumes_absorb_by_beer_lambert() {
         }
     }
     let loaded = load(&doc, None, &[]).unwrap();
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     let Material::Dielectric {
         absorption: Some(sigma),
         ..

@@ -175,7 +175,7 @@ fn gltf_base_colour_textures_become_spectra() {
     )
     .unwrap();
     assert!(loaded.materials[0].base_color_texture.is_some());
-    let scene = Scene::from_loaded(&loaded, &SceneOptions::default()).unwrap();
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     let Material::Diffuse { reflectance } = &scene.materials()[0] else {
         panic!("a rough non-metal is Lambertian")
     };

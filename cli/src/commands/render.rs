@@ -215,8 +215,6 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         environment: args.environment.map(SceneSpectrum::Constant),
         quality,
     };
-    let scene = Scene::from_loaded(&loaded, &options).map_err(|e| e.to_string())?;
-    let (width, height) = image_size(args.width, args.height, scene.camera().aspect_ratio);
     let camera = args
         .camera_response
         .as_deref()
@@ -231,6 +229,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         Some(c) => Some(c),
         None => scene_camera(&loaded)?,
     };
+    let scene = Scene::from_loaded(loaded, &options).map_err(|e| e.to_string())?;
+    let (width, height) = image_size(args.width, args.height, scene.camera().aspect_ratio);
     if camera.is_some() && args.white_balance.is_some() {
         return Err(
             "--white-balance applies to XYZ; with a camera response the channels are the camera's own"

@@ -215,7 +215,7 @@ fn load_once(scenes: &mut Scenes, path: &Path, mode: Upsampling) -> Result<(), S
     if let std::collections::hash_map::Entry::Vacant(slot) = scenes.entry(mode) {
         let t = Instant::now();
         let loaded = crate::scene_file::load_with(path, None, mode)?;
-        let scene = Scene::from_loaded(&loaded, &SceneOptions::default())
+        let scene = Scene::from_loaded(loaded, &SceneOptions::default())
             .map_err(|e| format!("'{}': {e}", path.display()))?;
         slot.insert((scene, t.elapsed().as_secs_f64()));
     }

@@ -29,7 +29,7 @@ pub fn repository_scene(
     .unwrap();
     let mut loaded = loaded;
     edit(&mut loaded);
-    Scene::from_loaded(&loaded, &Default::default()).unwrap()
+    Scene::from_loaded(loaded, &Default::default()).unwrap()
 }
 
 /// Refraction of unit `d` at a surface with unit normal `n` facing against `d`, relative

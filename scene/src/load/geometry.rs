@@ -503,7 +503,8 @@ fn add_primitive(
     }
     let triangles = indices.len() / 3;
     out.triangles.reserve(triangles);
-    out.normals.reserve(if keep_normals { triangles } else { 0 });
+    out.normals
+        .reserve(if keep_normals { triangles } else { 0 });
     out.uvs.reserve(if keep_uvs { triangles } else { 0 });
     for tri in indices.chunks_exact(3) {
         let t = order([tri[0] as usize, tri[1] as usize, tri[2] as usize]);

@@ -19,6 +19,7 @@ use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::node::Bvh2Node;
 
 use super::packet::{LANES, Packet};
+use super::padded_bounds;
 
 /// A child reference: a node index, a leaf packet index with [`LEAF`] set, or [`EMPTY`].
 pub(super) type ChildRef = u32;
@@ -66,13 +67,21 @@ pub(super) struct WideBvh {
     pub(super) depth: usize,
 }
 
-/// What the collapse reads: the binary tree, the bounds and vertices of the triangles it
-/// was built over, and their indices in the caller's slice.
+/// What the collapse reads: the binary tree, the vertices of the triangles it was built
+/// over, and their indices in the caller's slice (None: the same indices, nothing was
+/// left out). The triangles' bounds are not needed: the caller frees them before the
+/// collapse allocates the wide tree.
 pub(super) struct Source<'a> {
     pub(super) binary: &'a Bvh2,
-    pub(super) bounds: &'a [Aabb],
     pub(super) vertices: &'a [[Vec3; 3]],
-    pub(super) original: &'a [usize],
+    pub(super) original: Option<&'a [u32]>,
+}
+
+impl Source<'_> {
+    /// The caller's index of triangle `m`.
+    fn original(&self, m: u32) -> u32 {
+        self.original.map_or(m, |o| o[m as usize])
+    }
 }
 
 /// The cost of visiting a wide node (one slab test of four boxes) and a leaf packet (the
@@ -234,6 +243,9 @@ impl WideBvh {
                 wide.nodes[slot].set(lane, &nodes[c].aabb, child);
             }
         }
+        // The lists grew by doubling; the tree is kept for the whole render.
+        wide.nodes.shrink_to_fit();
+        wide.packets.shrink_to_fit();
         wide
     }
 
@@ -244,12 +256,7 @@ impl WideBvh {
         if members.len() <= LANES {
             let lanes: Vec<(u32, [Vec3; 3])> = members
                 .iter()
-                .map(|&m| {
-                    (
-                        source.original[m as usize] as u32,
-                        source.vertices[m as usize],
-                    )
-                })
+                .map(|&m| (source.original(m), source.vertices[m as usize]))
                 .collect();
             self.packets.push(Packet::new(&lanes));
             return LEAF | (self.packets.len() - 1) as ChildRef;
@@ -258,9 +265,9 @@ impl WideBvh {
         self.nodes.push(Node::UNUSED);
         let slot = self.nodes.len() - 1;
         for (lane, chunk) in members.chunks(members.len().div_ceil(LANES)).enumerate() {
-            let bounds = chunk
-                .iter()
-                .fold(Aabb::empty(), |b, &m| b.union(&source.bounds[m as usize]));
+            let bounds = chunk.iter().fold(Aabb::empty(), |b, &m| {
+                b.union(&padded_bounds(&source.vertices[m as usize]))
+            });
             let child = self.leaves(source, chunk, depth + 1);
             self.nodes[slot].set(lane, &bounds, child);
         }
@@ -356,12 +363,10 @@ mod tests {
                 ..BvhBuildParams::medium_build()
             };
             let binary = build_bvh2(&bounds, params, &mut Duration::default());
-            let original: Vec<usize> = (0..count).collect();
             let tree = WideBvh::collapse(&Source {
                 binary: &binary,
-                bounds: &bounds,
                 vertices: &triangles,
-                original: &original,
+                original: None,
             });
             let mut seen = vec![0u32; count];
             let mut built = 0.0f64;
