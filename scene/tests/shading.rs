@@ -43,8 +43,12 @@ fn doc(node: Value) -> (Value, Vec<u8>) {
 
 fn load(node: Value) -> LoadedGeometry {
     let (doc, bin) = doc(node);
+    load_doc(&doc, bin)
+}
+
+fn load_doc(doc: &Value, bin: Vec<u8>) -> LoadedGeometry {
     load_geometry(
-        &serde_json::to_vec(&doc).unwrap(),
+        &serde_json::to_vec(doc).unwrap(),
         &move |_| Ok(bin.clone()),
         None,
     )
@@ -156,12 +160,7 @@ fn bare_then_full(both: bool) -> LoadedGeometry {
     } else {
         json!([bare])
     };
-    load_geometry(
-        &serde_json::to_vec(&doc).unwrap(),
-        &move |_| Ok(bin.clone()),
-        None,
-    )
-    .unwrap()
+    load_doc(&doc, bin)
 }
 
 #[test]
