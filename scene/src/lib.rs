@@ -7,11 +7,12 @@
 //! conductors, dielectrics with per-wavelength IOR, glTF metallic-roughness, fluorescent
 //! diffuse), spectral descriptions (`spectral`: the `PRISM_spectral` extension and TOML
 //! overlays, see docs/scene-format.md), and the render-ready scene (`world`) the
-//! integrator consumes, with shading normals and base colour textures (RGB filtered, then
+//! integrator consumes, with shading normals, base colour textures (RGB filtered, then
 //! upsampled per lookup through a coefficient table fitted at load when a texture needs
-//! it), and absorbing volumes (`KHR_materials_volume`, spectral Beer-Lambert absorption
-//! applied by the integrator when a ray leaves through a boundary's inside). Emissive,
-//! metallic-roughness and normal textures are not built yet (see the issue tracker).
+//! it), metallic-roughness textures (linear data, read per hit), and absorbing volumes
+//! (`KHR_materials_volume`, spectral Beer-Lambert absorption applied by the integrator when
+//! a ray leaves through a boundary's inside). Emissive and normal textures are not built
+//! yet.
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit

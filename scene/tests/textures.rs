@@ -3,10 +3,11 @@
 
 use std::sync::Arc;
 
-use glam::Vec2;
-use prism_scene::load::{decode_image, load_geometry};
+use glam::{Vec2, Vec3};
+use prism_scene::bsdf::MetallicRoughness;
+use prism_scene::load::{LoadedGeometry, decode_image, load_geometry};
 use prism_scene::world::{
-    Material, RgbTexture, Scene, SceneOptions, SceneSpectrum, UvTransform, Wrap,
+    Encoding, Material, RgbTexture, Scene, SceneOptions, SceneSpectrum, UvTransform, Wrap,
 };
 use prism_spectrum::SampledWavelengths;
 use proptest::prelude::*;
@@ -127,11 +128,9 @@ fn broken_images_are_errors_not_panics() {
     }
 }
 
-/// A glTF quad whose base colour is a 2 x 1 PNG (red | green) in the binary buffer: the
-/// loaded material's reflectance follows the texture, red at the left, green at the right.
-#[test]
-fn gltf_base_colour_textures_become_spectra() {
-    let image = png(2, 1, &[[255, 0, 0], [0, 255, 0]]);
+/// A glTF quad (u from 0 at the left to 1 at the right) with material 0 `material`, whose
+/// texture 0 is `image` (a PNG) in the binary buffer.
+fn textured_quad(image: &[u8], material: serde_json::Value) -> (serde_json::Value, Vec<u8>) {
     let mut bin: Vec<u8> = [
         0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0,
     ]
@@ -147,14 +146,14 @@ fn gltf_base_colour_textures_become_spectra() {
         .flat_map(|f| f.to_le_bytes()),
     );
     let image_offset = bin.len();
-    bin.extend(&image);
+    bin.extend(image);
     let doc = json!({
         "asset": {"version": "2.0"},
         "scene": 0,
         "scenes": [{"nodes": [0]}],
         "nodes": [{"mesh": 0}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
-        "materials": [{"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}],
+        "materials": [material],
         "textures": [{"source": 0}],
         "images": [{"bufferView": 2, "mimeType": "image/png"}],
         "accessors": [
@@ -168,12 +167,28 @@ fn gltf_base_colour_textures_become_spectra() {
         ],
         "buffers": [{"byteLength": bin.len(), "uri": "quad.bin"}]
     });
-    let loaded = load_geometry(
-        &serde_json::to_vec(&doc).unwrap(),
+    (doc, bin)
+}
+
+fn load_quad(doc: &serde_json::Value, bin: Vec<u8>) -> LoadedGeometry {
+    load_geometry(
+        &serde_json::to_vec(doc).unwrap(),
         &move |_| Ok(bin.clone()),
         None,
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// A glTF quad whose base colour is a 2 x 1 PNG (red | green) in the binary buffer: the
+/// loaded material's reflectance follows the texture, red at the left, green at the right.
+#[test]
+fn gltf_base_colour_textures_become_spectra() {
+    let image = png(2, 1, &[[255, 0, 0], [0, 255, 0]]);
+    let (doc, bin) = textured_quad(
+        &image,
+        json!({"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}),
+    );
+    let loaded = load_quad(&doc, bin);
     assert!(loaded.materials[0].base_color_texture.is_some());
     let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
     let Material::Diffuse { reflectance } = &scene.materials()[0] else {
@@ -203,4 +218,89 @@ fn gltf_base_colour_textures_become_spectra() {
         panic!("should fail")
     };
     assert!(e.to_string().contains("image 0"), "{e}");
+}
+
+/// Metallic-roughness textures hold data, not colour: bytes read linearly.
+#[test]
+fn linear_textures_read_bytes_as_fractions() {
+    let grey = RgbTexture::new(
+        1,
+        1,
+        Arc::new(vec![[128, 51, 255]]),
+        [Wrap::Repeat; 2],
+        UvTransform::default(),
+        [1.0; 3],
+    )
+    .unwrap()
+    .encoded(Encoding::Linear);
+    assert!(close(grey.sample(Vec2::ZERO), [128.0 / 255.0, 0.2, 1.0]));
+    assert!(close(grey.mean(), [128.0 / 255.0, 0.2, 1.0]));
+}
+
+/// A quad whose metallic-roughness texture is matte dielectric at the left (green 255:
+/// roughness 1, blue 0: metallic 0) and polished metal at the right (green 51, blue 255),
+/// under factors metallic 1, roughness 0.5: each hit's BSDF is the glTF BSDF of the
+/// texel's values times the factors, and the rough non-metal shortcut to Lambertian is
+/// not taken.
+#[test]
+fn gltf_metallic_roughness_textures_vary_the_bsdf_across_the_surface() {
+    let image = png(2, 1, &[[0, 255, 0], [0, 51, 255]]);
+    let (doc, bin) = textured_quad(
+        &image,
+        json!({"pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.6, 0.4, 1.0],
+            "metallicFactor": 1.0,
+            "roughnessFactor": 0.5,
+            "metallicRoughnessTexture": {"index": 0}
+        }}),
+    );
+    let loaded = load_quad(&doc, bin.clone());
+    let texture = loaded.materials[0]
+        .metallic_roughness_texture
+        .clone()
+        .unwrap();
+    assert!(close(texture.sample(Vec2::new(0.25, 0.5)), [0.0, 0.5, 0.0]));
+    assert!(close(texture.sample(Vec2::new(0.75, 0.5)), [0.0, 0.1, 1.0]));
+    let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
+    let material = &scene.materials()[0];
+    let Material::MetallicRoughness {
+        base,
+        texture: Some(_),
+        coating,
+        ..
+    } = material
+    else {
+        panic!("a textured metallic-roughness material: {material:?}")
+    };
+    let lambdas = SampledWavelengths::new([450.0, 550.0, 650.0], [1.0; 3]).unwrap();
+    let (wo, wi) = (
+        Vec3::new(0.3, 0.1, 0.95).normalize(),
+        Vec3::new(-0.2, 0.25, 0.9).normalize(),
+    );
+    for (u, metallic, roughness) in [(0.25, 0.0, 0.5), (0.75, 1.0, 0.1)] {
+        let uv = Vec2::new(u, 0.5);
+        let expected =
+            MetallicRoughness::new(base.at_uv(uv, &lambdas), metallic, roughness, coating);
+        let got = material.bsdf(uv, &lambdas);
+        for k in 0..3 {
+            let (g, e) = (got.f(wo, wi)[k], expected.f(wo, wi)[k]);
+            assert!(
+                (g - e).abs() <= 1e-5 * e.abs().max(1.0),
+                "u {u}, lane {k}: {g} vs {e}"
+            );
+        }
+        assert!((got.pdf(wo, wi) - expected.pdf(wo, wi)).abs() <= 1e-5 * expected.pdf(wo, wi));
+    }
+    // The polished metal reflects far more near the mirror direction than the matte side.
+    let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
+    let f = |u: f32| material.bsdf(Vec2::new(u, 0.5), &lambdas).f(wo, mirror)[1];
+    assert!(f(0.75) > 10.0 * f(0.25), "{} vs {}", f(0.75), f(0.25));
+    // Without the texture the same factors make one BSDF everywhere.
+    let mut plain = doc.clone();
+    plain["materials"][0]["pbrMetallicRoughness"]
+        .as_object_mut()
+        .unwrap()
+        .remove("metallicRoughnessTexture");
+    let plain = load_quad(&plain, bin);
+    assert!(plain.materials[0].metallic_roughness_texture.is_none());
 }

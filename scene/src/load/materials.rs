@@ -9,7 +9,7 @@ use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
-use crate::world::SceneSpectrum;
+use crate::world::{RgbTexture, SceneSpectrum};
 
 use super::textures::TextureLoader;
 
@@ -39,6 +39,11 @@ pub struct MaterialDesc {
     /// The base colour texture times baseColorFactor, as reflectance spectra (replaces
     /// `base_color` where present).
     pub base_color_texture: Option<SceneSpectrum>,
+    /// The metallic-roughness texture with the two factors folded in (see
+    /// [`crate::world::Material::MetallicRoughness`]); it replaces `metallic` and
+    /// `roughness` where present, except for transmissive materials (glass keeps the
+    /// roughness factor).
+    pub metallic_roughness_texture: Option<Arc<RgbTexture>>,
     /// `KHR_materials_dispersion`'s dispersion, 20 / V_d (0: none), for transmissive
     /// materials.
     pub dispersion: f32,
@@ -289,6 +294,15 @@ pub(crate) fn material(
         .map(|info| textures.base_color(&info, [base[0], base[1], base[2]]))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let metallic_roughness_texture = pbr
+        .metallic_roughness_texture()
+        .map(|info| {
+            textures
+                .metallic_roughness(&info, unit(metallic), unit(roughness))
+                .map(Arc::new)
+        })
+        .transpose()
+        .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     Ok(MaterialDesc {
         name,
         base_color,
@@ -300,6 +314,7 @@ pub(crate) fn material(
         double_sided: material.double_sided(),
         has_base_color_texture: pbr.base_color_texture().is_some(),
         base_color_texture,
+        metallic_roughness_texture,
         absorption,
         dispersion,
         spectral,

@@ -1,6 +1,6 @@
-//! glTF base colour textures: images decoded once each, sampler wrap modes,
-//! `KHR_texture_transform`, upsampled through the loader's sRGB coefficient table (fitted
-//! once per load, only when needed).
+//! glTF textures: images decoded once each, sampler wrap modes, `KHR_texture_transform`;
+//! base colours upsampled through the loader's sRGB coefficient table (fitted once per
+//! load, only when needed), metallic-roughness read as linear data.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -11,7 +11,7 @@ use gltf::texture::WrappingMode;
 
 use super::base64;
 use super::images::decode_image;
-use crate::world::{RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap};
+use crate::world::{Encoding, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap};
 
 /// A decoded image shared by the textures that use it: width, height, texels.
 type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>);
@@ -44,6 +44,28 @@ impl<'a> TextureLoader<'a> {
         info: &gltf::texture::Info,
         factor: [f32; 3],
     ) -> Result<SceneSpectrum, String> {
+        let rgb = self.rgb(info, factor)?;
+        Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::new(
+            rgb,
+            self.upsampler.table()?,
+        ))))
+    }
+
+    /// A metallic-roughness texture (linear; green is roughness, blue metallic) times the
+    /// material's factors.
+    pub(crate) fn metallic_roughness(
+        &self,
+        info: &gltf::texture::Info,
+        metallic: f32,
+        roughness: f32,
+    ) -> Result<RgbTexture, String> {
+        Ok(self
+            .rgb(info, [1.0, roughness, metallic])?
+            .encoded(Encoding::Linear))
+    }
+
+    /// The texture `info` refers to, with its sampler and transform, times `factor`.
+    fn rgb(&self, info: &gltf::texture::Info, factor: [f32; 3]) -> Result<RgbTexture, String> {
         let transform = info.texture_transform();
         let tex_coord = transform
             .as_ref()
@@ -68,11 +90,7 @@ impl<'a> TextureLoader<'a> {
             WrappingMode::Repeat => Wrap::Repeat,
         });
         let (width, height, texels) = self.image(&texture.source())?;
-        let rgb = RgbTexture::new(width, height, texels, wrap, uv, factor)?;
-        Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::new(
-            rgb,
-            self.upsampler.table()?,
-        ))))
+        RgbTexture::new(width, height, texels, wrap, uv, factor)
     }
 
     fn image(&self, image: &gltf::Image) -> Result<SharedImage, String> {

@@ -53,13 +53,15 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
             absorption: desc.absorption.clone(),
         };
     }
-    if desc.metallic == 0.0 && desc.roughness == 1.0 {
+    let texture = desc.metallic_roughness_texture.clone();
+    if desc.metallic == 0.0 && desc.roughness == 1.0 && texture.is_none() {
         return Material::Diffuse { reflectance: base };
     }
     Material::MetallicRoughness {
         base,
         metallic: desc.metallic,
         roughness: desc.roughness,
+        texture,
         coating: coating_for(desc.ior, coatings),
     }
 }
@@ -93,6 +95,7 @@ impl Scene {
                 base: SceneSpectrum::Constant(1.0),
                 metallic: 1.0,
                 roughness: 1.0,
+                texture: None,
                 coating: coating_for(1.5, &mut coatings),
             });
         }

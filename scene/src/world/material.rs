@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 use prism_sampling::wavelength::ReradiationSampler;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::SceneSpectrum;
+use super::{RgbTexture, SceneSpectrum};
 use crate::bsdf::{
     BsdfSample, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, RoughConductor, RoughDielectric,
     TransportMode,
@@ -28,6 +28,10 @@ pub enum Material {
         metallic: f32,
         /// Perceptual roughness in [0, 1].
         roughness: f32,
+        /// glTF's metallic-roughness texture, linear, with the factors folded into its own
+        /// (1, roughness, metallic): at a hit its green channel is the roughness and its
+        /// blue the metallic, replacing the two numbers above (None: they hold everywhere).
+        texture: Option<Arc<RgbTexture>>,
         /// The coating's albedo table for its index.
         coating: Arc<CoatingAlbedo>,
     },
@@ -122,13 +126,23 @@ impl Material {
                 base,
                 metallic,
                 roughness,
+                texture,
                 coating,
-            } => Bsdf::MetallicRoughness(MetallicRoughness::new(
-                base.at_uv(uv, wavelengths),
-                *metallic,
-                *roughness,
-                coating,
-            )),
+            } => {
+                let (metallic, roughness) = match texture {
+                    Some(t) => {
+                        let [_, roughness, metallic] = t.sample(uv);
+                        (metallic, roughness)
+                    }
+                    None => (*metallic, *roughness),
+                };
+                Bsdf::MetallicRoughness(MetallicRoughness::new(
+                    base.at_uv(uv, wavelengths),
+                    metallic,
+                    roughness,
+                    coating,
+                ))
+            }
             Material::Dielectric { ior, roughness, .. } => {
                 let alpha = roughness * roughness;
                 let eta = ior.at(wavelengths).0.map(|e| e.max(1e-3));

@@ -18,7 +18,7 @@ pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
 pub use spectrum::SceneSpectrum;
-pub use texture::{RgbTexture, SpectralTexture, UvTransform, Wrap};
+pub use texture::{Encoding, RgbTexture, SpectralTexture, UvTransform, Wrap};
 
 use glam::{Vec2, Vec3};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};

@@ -2,7 +2,7 @@
 //! reflectance spectrum per lookup (Jakob and Hanika's table), as pbrt-v4 does for RGB
 //! textures: RGB is filtered first, then turned into a spectrum.
 
-use std::sync::Arc;
+use std::sync::{Arc, LazyLock};
 
 use glam::Vec2;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
@@ -65,7 +65,39 @@ impl UvTransform {
     }
 }
 
-/// An sRGB-encoded 8-bit RGB texture, times a linear factor.
+/// How a texture's bytes map to linear values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Encoding {
+    /// The sRGB transfer curve (IEC 61966-2-1): glTF's colour textures.
+    #[default]
+    Srgb,
+    /// Linear, byte / 255: glTF's data textures (metallic-roughness).
+    Linear,
+}
+
+impl Encoding {
+    /// Every byte's linear value: a lookup per texel where the sRGB curve was a `powf`.
+    fn table(self) -> &'static [f32; 256] {
+        static SRGB: LazyLock<[f32; 256]> = LazyLock::new(|| {
+            std::array::from_fn(|v| {
+                let c = v as f32 / 255.0;
+                if c <= 0.04045 {
+                    c / 12.92
+                } else {
+                    ((c + 0.055) / 1.055).powf(2.4)
+                }
+            })
+        });
+        static LINEAR: LazyLock<[f32; 256]> =
+            LazyLock::new(|| std::array::from_fn(|v| v as f32 / 255.0));
+        match self {
+            Encoding::Srgb => &SRGB,
+            Encoding::Linear => &LINEAR,
+        }
+    }
+}
+
+/// An 8-bit RGB texture (sRGB-encoded unless said otherwise), times a linear factor.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RgbTexture {
     width: u32,
@@ -74,16 +106,7 @@ pub struct RgbTexture {
     wrap: [Wrap; 2],
     transform: UvTransform,
     factor: [f32; 3],
-}
-
-/// sRGB-encoded byte to linear, the IEC 61966-2-1 curve.
-fn srgb_to_linear(v: u8) -> f32 {
-    let c = f32::from(v) / 255.0;
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
+    encoding: Encoding,
 }
 
 impl RgbTexture {
@@ -118,13 +141,20 @@ impl RgbTexture {
             wrap,
             transform,
             factor,
+            encoding: Encoding::Srgb,
         })
+    }
+
+    /// The same texture with its bytes read as `encoding`.
+    pub fn encoded(self, encoding: Encoding) -> Self {
+        Self { encoding, ..self }
     }
 
     fn linear(&self, x: i64, y: i64) -> [f32; 3] {
         let i = self.wrap[1].texel(y, self.height) * self.width as usize
             + self.wrap[0].texel(x, self.width);
-        self.texels[i].map(srgb_to_linear)
+        let table = self.encoding.table();
+        self.texels[i].map(|v| table[usize::from(v)])
     }
 
     /// Linear RGB at `uv` (glTF: u right, v down from the top-left), bilinearly filtered
@@ -155,9 +185,10 @@ impl RgbTexture {
     /// The mean linear colour over the texels, times the factor.
     pub fn mean(&self) -> [f32; 3] {
         let mut sum = [0.0f64; 3];
+        let table = self.encoding.table();
         for t in self.texels.iter() {
             for k in 0..3 {
-                sum[k] += f64::from(srgb_to_linear(t[k]));
+                sum[k] += f64::from(table[usize::from(t[k])]);
             }
         }
         let n = self.texels.len() as f64;
