@@ -9,10 +9,12 @@
 //! overlays, see docs/scene-format.md), and the render-ready scene (`world`) the
 //! integrator consumes, with shading normals, base colour textures (RGB filtered, then
 //! upsampled per lookup through a coefficient table fitted at load when a texture needs
-//! it), metallic-roughness textures (linear data, read per hit), and absorbing volumes
-//! (`KHR_materials_volume`, spectral Beer-Lambert absorption applied by the integrator when
-//! a ray leaves through a boundary's inside). Emissive and normal textures are not built
-//! yet.
+//! it), metallic-roughness textures (linear data, read per hit), normal textures (in the
+//! mesh's tangent frame, or one derived from its texture coordinates), and absorbing
+//! volumes (`KHR_materials_volume`, spectral Beer-Lambert absorption applied by the
+//! integrator when a ray leaves through a boundary's inside). Emissive and occlusion
+//! textures are not built yet: emission varying across a light needs light sampling by
+//! texel power, and occlusion maps fake what a path tracer computes.
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit

@@ -304,3 +304,84 @@ fn gltf_metallic_roughness_textures_vary_the_bsdf_across_the_surface() {
     let plain = load_quad(&plain, bin);
     assert!(plain.materials[0].metallic_roughness_texture.is_none());
 }
+
+/// The textured quad with a normal texture of one texel `texel` (scale `scale`), placed by
+/// `node`, with per-vertex `tangents` in the file if given.
+fn normal_mapped_quad(
+    texel: [u8; 3],
+    scale: f32,
+    node: serde_json::Value,
+    tangents: Option<[f32; 4]>,
+) -> Scene {
+    let image = png(1, 1, &[texel]);
+    let (mut doc, mut bin) = textured_quad(
+        &image,
+        json!({"normalTexture": {"index": 0, "scale": scale}, "pbrMetallicRoughness": {"metallicFactor": 0.0}}),
+    );
+    doc["nodes"][0] = node;
+    if let Some(t) = tangents {
+        let offset = bin.len();
+        bin.extend((0..6).flat_map(|_| t).flat_map(f32::to_le_bytes));
+        doc["bufferViews"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": 96}));
+        doc["accessors"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"bufferView": 3, "componentType": 5126, "count": 6, "type": "VEC4"}));
+        doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = json!(3 - 1);
+        doc["buffers"][0]["byteLength"] = json!(bin.len());
+    }
+    let loaded = load_quad(&doc, bin);
+    assert_eq!(loaded.tangents.len(), loaded.triangles.len());
+    Scene::from_loaded(loaded, &SceneOptions::default()).unwrap()
+}
+
+fn shading_normal_at(scene: &Scene, x: f32) -> Vec3 {
+    let ray = prism_scene::geometry::Ray::new(Vec3::new(x, 0.5, 1.0), -Vec3::Z, f32::INFINITY);
+    scene.intersect(&ray).unwrap().shading_normal
+}
+
+/// A texel tilted 45 degrees toward +u tilts the quad's normal toward +x (where u grows),
+/// one tilted toward +y (green) toward the top of the image (+y: glTF's v runs down);
+/// mirroring the quad by its node moves u to -x but keeps the image's top up, whether the
+/// tangents come from the file or from the texture coordinates; scale 0 flattens the map.
+#[test]
+fn gltf_normal_textures_tilt_shading_normals_in_the_tangent_frame() {
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let close3 = |a: Vec3, b: Vec3| (a - b).length() < 0.02;
+    let plain = json!({"mesh": 0});
+    let mirror = json!({"mesh": 0, "scale": [-1, 1, 1]});
+    let (toward_u, toward_top) = ([218, 128, 218], [128, 218, 218]);
+
+    let n = shading_normal_at(&normal_mapped_quad(toward_u, 1.0, plain.clone(), None), 0.5);
+    assert!(close3(n, Vec3::new(s, 0.0, s)), "{n}");
+    let n = shading_normal_at(
+        &normal_mapped_quad(toward_top, 1.0, plain.clone(), None),
+        0.5,
+    );
+    assert!(close3(n, Vec3::new(0.0, s, s)), "{n}");
+    let n = shading_normal_at(&normal_mapped_quad(toward_u, 0.0, plain.clone(), None), 0.5);
+    assert!(close3(n, Vec3::Z), "{n}");
+
+    for tangents in [None, Some([1.0, 0.0, 0.0, 1.0])] {
+        let n = shading_normal_at(
+            &normal_mapped_quad(toward_u, 1.0, mirror.clone(), tangents),
+            -0.5,
+        );
+        assert!(close3(n, Vec3::new(-s, 0.0, s)), "{tangents:?}: {n}");
+        let n = shading_normal_at(
+            &normal_mapped_quad(toward_top, 1.0, mirror.clone(), tangents),
+            -0.5,
+        );
+        assert!(close3(n, Vec3::new(0.0, s, s)), "{tangents:?}: {n}");
+    }
+    // Without a normal texture no tangents are kept.
+    let image = png(1, 1, &[[255; 3]]);
+    let (doc, bin) = textured_quad(
+        &image,
+        json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}),
+    );
+    assert!(load_quad(&doc, bin).tangents.is_empty());
+}

@@ -1,9 +1,10 @@
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use super::lights::{LightDesc, punctual};
 use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
 use crate::geometry::triangle_normal;
+use crate::world::triangle_tangent;
 
 use super::{LoadError, accessor, base64};
 use crate::spectral::{self, Overlay, SpectralScene};
@@ -33,6 +34,12 @@ pub struct LoadedGeometry {
     /// `TEXCOORD_0` at each triangle's vertices (zero where the file gives none), one
     /// entry per triangle; empty when no primitive of the scene has them.
     pub uvs: Vec<[Vec2; 3]>,
+    /// Unit tangents at each triangle's vertices, world space, with glTF's handedness in
+    /// w: `TANGENT` where the file gives it, else derived from the triangle's positions
+    /// and texture coordinates (one tangent per triangle: a faceted frame on curved
+    /// meshes where MikkTSpace would smooth it); one entry per triangle, empty unless a
+    /// primitive's material has a normal texture (zero for the triangles of others).
+    pub tangents: Vec<[Vec4; 3]>,
     /// Which node and primitive each range of triangles came from.
     pub instances: Vec<MeshInstance>,
     /// The cameras placed by the scene's nodes, in traversal order.
@@ -480,9 +487,16 @@ fn add_primitive(
     {
         return Err(attribute("TEXCOORD_0", t.len()));
     }
+    let tangents: Option<Vec<Vec4>> = reader.read_tangents().map(|t| t.map(Vec4::from).collect());
+    if let Some(t) = &tangents
+        && t.len() != count
+    {
+        return Err(attribute("TANGENT", t.len()));
+    }
     // Normals transform by the inverse transpose (correct under non-uniform scale and
-    // mirroring).
-    let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+    // mirroring), tangents (directions in the surface) by the matrix itself.
+    let linear = Mat3::from_mat4(world);
+    let normal_matrix = linear.inverse().transpose();
     // A mirroring transform flips the winding; swapping two vertices restores it so that
     // front faces stay front faces.
     let mirrored = world.determinant() < 0.0;
@@ -501,11 +515,21 @@ fn add_primitive(
     if keep_uvs {
         out.uvs.resize(first, [Vec2::ZERO; 3]);
     }
+    // Tangents serve normal maps only.
+    let normal_mapped = primitive.material().normal_texture().is_some();
+    let keep_tangents = normal_mapped || !out.tangents.is_empty();
+    if keep_tangents {
+        out.tangents.resize(first, [Vec4::ZERO; 3]);
+    }
+    // Under mirroring the normal x tangent flips relative to the mirrored bitangent.
+    let handedness = if mirrored { -1.0 } else { 1.0 };
     let triangles = indices.len() / 3;
     out.triangles.reserve(triangles);
     out.normals
         .reserve(if keep_normals { triangles } else { 0 });
     out.uvs.reserve(if keep_uvs { triangles } else { 0 });
+    out.tangents
+        .reserve(if keep_tangents { triangles } else { 0 });
     for tri in indices.chunks_exact(3) {
         let t = order([tri[0] as usize, tri[1] as usize, tri[2] as usize]);
         let v = t.map(|i| world.transform_point3(positions[i]));
@@ -521,10 +545,31 @@ fn add_primitive(
                 None => [geometric; 3],
             });
         }
+        let uv = match &uvs {
+            Some(uv) => t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }),
+            None => [Vec2::ZERO; 3],
+        };
         if keep_uvs {
-            out.uvs.push(match &uvs {
-                Some(uv) => t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }),
-                None => [Vec2::ZERO; 3],
+            out.uvs.push(uv);
+        }
+        if keep_tangents {
+            out.tangents.push(if normal_mapped {
+                let derived = triangle_tangent(v, uv, triangle_normal(v));
+                t.map(|i| match &tangents {
+                    Some(tangent) => {
+                        // Unusable tangents (zero, non-finite) fall back to the derived one.
+                        let d = (linear * tangent[i].truncate()).normalize_or_zero();
+                        let sign = if tangent[i].w < 0.0 { -1.0 } else { 1.0 };
+                        if d == Vec3::ZERO {
+                            derived
+                        } else {
+                            d.extend(sign * handedness)
+                        }
+                    }
+                    None => derived,
+                })
+            } else {
+                [Vec4::ZERO; 3]
             });
         }
     }

@@ -9,7 +9,7 @@ use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
-use crate::world::{RgbTexture, SceneSpectrum};
+use crate::world::{NormalMap, RgbTexture, SceneSpectrum};
 
 use super::textures::TextureLoader;
 
@@ -44,6 +44,8 @@ pub struct MaterialDesc {
     /// `roughness` where present, except for transmissive materials (glass keeps the
     /// roughness factor).
     pub metallic_roughness_texture: Option<Arc<RgbTexture>>,
+    /// The normal texture, which tilts shading normals (the mesh's tangents orient it).
+    pub normal_texture: Option<Arc<NormalMap>>,
     /// `KHR_materials_dispersion`'s dispersion, 20 / V_d (0: none), for transmissive
     /// materials.
     pub dispersion: f32,
@@ -303,6 +305,11 @@ pub(crate) fn material(
         })
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let normal_texture = material
+        .normal_texture()
+        .map(|normal| textures.normal(&normal).map(Arc::new))
+        .transpose()
+        .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     Ok(MaterialDesc {
         name,
         base_color,
@@ -315,6 +322,7 @@ pub(crate) fn material(
         has_base_color_texture: pbr.base_color_texture().is_some(),
         base_color_texture,
         metallic_roughness_texture,
+        normal_texture,
         absorption,
         dispersion,
         spectral,

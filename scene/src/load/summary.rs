@@ -23,7 +23,7 @@ pub struct SceneSummary {
     pub bounds: ([f32; 3], [f32; 3]),
     /// Whether any material transmits (glass).
     pub uses_transmission: bool,
-    /// Whether any material has a base colour or metallic-roughness texture.
+    /// Whether any material has a base colour, metallic-roughness or normal texture.
     pub uses_textures: bool,
     /// Whether a transmissive material disperses (`KHR_materials_dispersion`, or a
     /// spectral IOR from `PRISM_spectral`).
@@ -105,10 +105,11 @@ impl LoadedGeometry {
                 Some(s) => matches!(s, Material::Dielectric { .. }),
                 None => m.transmission > 0.0,
             }),
-            uses_textures: self
-                .materials
-                .iter()
-                .any(|m| m.has_base_color_texture || m.metallic_roughness_texture.is_some()),
+            uses_textures: self.materials.iter().any(|m| {
+                m.has_base_color_texture
+                    || m.metallic_roughness_texture.is_some()
+                    || m.normal_texture.is_some()
+            }),
             uses_dispersion: self.materials.iter().any(|m| match surface(m) {
                 Some(s) => s.dispersive(),
                 None => m.transmission > 0.0 && m.dispersion > 0.0,

@@ -1,6 +1,6 @@
 //! glTF textures: images decoded once each, sampler wrap modes, `KHR_texture_transform`;
 //! base colours upsampled through the loader's sRGB coefficient table (fitted once per
-//! load, only when needed), metallic-roughness read as linear data.
+//! load, only when needed), metallic-roughness and normal textures read as linear data.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -11,7 +11,9 @@ use gltf::texture::WrappingMode;
 
 use super::base64;
 use super::images::decode_image;
-use crate::world::{Encoding, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap};
+use crate::world::{
+    Encoding, NormalMap, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap,
+};
 
 /// A decoded image shared by the textures that use it: width, height, texels.
 type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>);
@@ -44,7 +46,7 @@ impl<'a> TextureLoader<'a> {
         info: &gltf::texture::Info,
         factor: [f32; 3],
     ) -> Result<SceneSpectrum, String> {
-        let rgb = self.rgb(info, factor)?;
+        let rgb = self.info(info, factor)?;
         Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::new(
             rgb,
             self.upsampler.table()?,
@@ -60,29 +62,76 @@ impl<'a> TextureLoader<'a> {
         roughness: f32,
     ) -> Result<RgbTexture, String> {
         Ok(self
-            .rgb(info, [1.0, roughness, metallic])?
+            .info(info, [1.0, roughness, metallic])?
             .encoded(Encoding::Linear))
     }
 
+    /// A normal texture (linear; tangent-space normals encoded as (n + 1) / 2) with its
+    /// scale of the x and y components.
+    pub(crate) fn normal(
+        &self,
+        normal: &gltf::material::NormalTexture,
+    ) -> Result<NormalMap, String> {
+        // The gltf crate offers KHR_texture_transform on texture infos only; a normal
+        // texture's is read from its JSON.
+        let transform = match normal.extension_value("KHR_texture_transform") {
+            Some(v) => Some(
+                serde_json::from_value::<gltf::json::extensions::texture::TextureTransform>(
+                    v.clone(),
+                )
+                .map_err(|e| format!("normal texture: KHR_texture_transform: {e}"))?,
+            ),
+            None => None,
+        };
+        let (uv, tex_coord) = match transform {
+            Some(t) => (
+                Some(UvTransform {
+                    offset: Vec2::from(t.offset.0),
+                    rotation: t.rotation.0,
+                    scale: Vec2::from(t.scale.0),
+                }),
+                t.tex_coord,
+            ),
+            None => (None, None),
+        };
+        let texture = self.rgb(
+            normal.texture(),
+            tex_coord.unwrap_or(normal.tex_coord()),
+            uv,
+            [1.0; 3],
+        )?;
+        NormalMap::new(texture.encoded(Encoding::Linear), normal.scale())
+    }
+
     /// The texture `info` refers to, with its sampler and transform, times `factor`.
-    fn rgb(&self, info: &gltf::texture::Info, factor: [f32; 3]) -> Result<RgbTexture, String> {
+    fn info(&self, info: &gltf::texture::Info, factor: [f32; 3]) -> Result<RgbTexture, String> {
         let transform = info.texture_transform();
         let tex_coord = transform
             .as_ref()
             .and_then(|t| t.tex_coord())
             .unwrap_or(info.tex_coord());
-        if tex_coord != 0 {
-            return Err(format!(
-                "texture {} uses TEXCOORD_{tex_coord}; prism reads TEXCOORD_0 only",
-                info.texture().index()
-            ));
-        }
-        let uv = transform.map_or_else(UvTransform::default, |t| UvTransform {
+        let uv = transform.map(|t| UvTransform {
             offset: Vec2::from(t.offset()),
             rotation: t.rotation(),
             scale: Vec2::from(t.scale()),
         });
-        let texture = info.texture();
+        self.rgb(info.texture(), tex_coord, uv, factor)
+    }
+
+    /// `texture`, read at TEXCOORD_`tex_coord` transformed by `uv`, times `factor`.
+    fn rgb(
+        &self,
+        texture: gltf::texture::Texture,
+        tex_coord: u32,
+        uv: Option<UvTransform>,
+        factor: [f32; 3],
+    ) -> Result<RgbTexture, String> {
+        if tex_coord != 0 {
+            return Err(format!(
+                "texture {} uses TEXCOORD_{tex_coord}; prism reads TEXCOORD_0 only",
+                texture.index()
+            ));
+        }
         let sampler = texture.sampler();
         let wrap = [sampler.wrap_s(), sampler.wrap_t()].map(|w| match w {
             WrappingMode::ClampToEdge => Wrap::Clamp,
@@ -90,7 +139,7 @@ impl<'a> TextureLoader<'a> {
             WrappingMode::Repeat => Wrap::Repeat,
         });
         let (width, height, texels) = self.image(&texture.source())?;
-        RgbTexture::new(width, height, texels, wrap, uv, factor)
+        RgbTexture::new(width, height, texels, wrap, uv.unwrap_or_default(), factor)
     }
 
     fn image(&self, image: &gltf::Image) -> Result<SharedImage, String> {

@@ -177,12 +177,27 @@ impl Scene {
                 radiance: radiance.clone(),
             });
         }
+        // Normal maps per material, the default material's none; no list when no
+        // material has one (hits then never look).
+        let normal_maps = if loaded.materials.iter().any(|m| m.normal_texture.is_some()) {
+            let mut maps: Vec<_> = loaded
+                .materials
+                .iter()
+                .map(|m| m.normal_texture.clone())
+                .collect();
+            maps.resize(materials.len(), None);
+            maps
+        } else {
+            Vec::new()
+        };
         let camera = loaded.camera(options.camera.as_deref())?;
         Scene::new(SceneParts {
             triangles: loaded.triangles,
             attributes: super::VertexAttributes {
                 normals: loaded.normals,
                 uvs: loaded.uvs,
+                tangents: loaded.tangents,
+                normal_maps,
             },
             triangle_material,
             materials,

@@ -9,6 +9,7 @@ mod guide;
 mod light;
 mod light_choice;
 mod material;
+mod normal_map;
 mod spectrum;
 mod texture;
 
@@ -17,8 +18,12 @@ pub use from_gltf::SceneOptions;
 pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
+pub use normal_map::NormalMap;
+pub(crate) use normal_map::triangle_tangent;
 pub use spectrum::SceneSpectrum;
 pub use texture::{Encoding, RgbTexture, SpectralTexture, UvTransform, Wrap};
+
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
@@ -65,13 +70,20 @@ pub struct SceneParts {
 }
 
 /// Per-vertex attributes of the triangles, each list parallel to the triangles or empty
-/// (empty normals: flat shading; empty UVs: texture coordinates 0).
+/// (empty normals: flat shading; empty UVs: texture coordinates 0), and the normal maps
+/// that read them.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct VertexAttributes {
     /// Unit shading normals at the vertices.
     pub normals: Vec<[Vec3; 3]>,
     /// Texture coordinates at the vertices.
     pub uvs: Vec<[glam::Vec2; 3]>,
+    /// Unit tangents at the vertices, with glTF's handedness sign in w (bitangent =
+    /// normal x tangent times w): only normal maps read them.
+    pub tangents: Vec<[glam::Vec4; 3]>,
+    /// Per material (parallel to the materials, or empty: no normal maps), its normal
+    /// map. A material with one needs `tangents`.
+    pub normal_maps: Vec<Option<Arc<NormalMap>>>,
 }
 
 /// Where a ray meets the scene.
@@ -155,6 +167,7 @@ impl Scene {
         for (what, n) in [
             ("shading normals", attributes.normals.len()),
             ("texture coordinates", attributes.uvs.len()),
+            ("tangents", attributes.tangents.len()),
         ] {
             if n != 0 && n != triangles.len() {
                 return Err(format!(
@@ -162,6 +175,16 @@ impl Scene {
                     triangles.len()
                 ));
             }
+        }
+        let normal_maps = attributes.normal_maps.len();
+        if normal_maps != 0 && normal_maps != materials.len() {
+            return Err(format!(
+                "{normal_maps} materials' normal maps for {} materials",
+                materials.len()
+            ));
+        }
+        if attributes.normal_maps.iter().any(Option::is_some) && attributes.tangents.is_empty() {
+            return Err("normal maps without tangents".into());
         }
         if let Some(m) = triangle_material
             .iter()
@@ -327,6 +350,11 @@ impl Scene {
             .map_or(glam::Vec2::ZERO, |t| {
                 b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
             });
+        let shading_normal = if self.attributes.normal_maps.is_empty() {
+            shading_normal
+        } else {
+            self.normal_mapped(hit.triangle, b, shading_normal, normal, uv)
+        };
         Some(Hit {
             p,
             error: triangle_point_error(v, b),
@@ -336,6 +364,32 @@ impl Scene {
             t: hit.hit.t,
             triangle: hit.triangle as u32,
         })
+    }
+
+    /// The shading normal `n` of triangle `triangle` at barycentrics `b` tilted by its
+    /// material's normal map, if it has one; `n` where the map would tilt it to or past the
+    /// surface (behind the geometric normal `geometric`), or has no frame. Out of line:
+    /// inlined, it cost scenes without normal maps 0.7% more instructions per path.
+    #[inline(never)]
+    fn normal_mapped(
+        &self,
+        triangle: usize,
+        b: [f32; 3],
+        n: Vec3,
+        geometric: Vec3,
+        uv: glam::Vec2,
+    ) -> Vec3 {
+        let material = self.triangle_material[triangle] as usize;
+        let (Some(Some(map)), Some(t)) = (
+            self.attributes.normal_maps.get(material),
+            self.attributes.tangents.get(triangle),
+        ) else {
+            return n;
+        };
+        let tangent = b[0] * t[0] + b[1] * t[1] + b[2] * t[2];
+        map.perturb(n, tangent, uv)
+            .filter(|p| p.dot(geometric) > 0.0)
+            .unwrap_or(n)
     }
 
     /// Whether anything blocks `ray`.

@@ -1,0 +1,136 @@
+//! Normal textures (glTF `normalTexture`): tangent-space normals, one per texel, that tilt
+//! the interpolated shading normal. The tangent frame is glTF's: the tangent from the
+//! mesh (or derived from its texture coordinates), the bitangent normal x tangent times
+//! the tangent's handedness sign, the normal map's +y pointing up the image.
+
+use glam::{Vec2, Vec3, Vec4};
+
+use super::RgbTexture;
+use crate::geometry::unit_or_zero;
+
+/// A normal texture and its scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalMap {
+    texture: RgbTexture,
+    scale: f32,
+}
+
+impl NormalMap {
+    /// `texture` (linear bytes: a texel c encodes the normal 2c - 1) whose normals' x and
+    /// y are multiplied by `scale` (glTF's `normalTexture.scale`). Errors for a non-finite
+    /// scale.
+    pub fn new(texture: RgbTexture, scale: f32) -> Result<Self, String> {
+        if !scale.is_finite() {
+            return Err(format!("normal texture scale {scale} is not finite"));
+        }
+        Ok(Self { texture, scale })
+    }
+
+    /// The unit shading normal `n` tilted by the texel at `uv`, in the frame of `tangent`
+    /// (xyz, interpolated; w: the sign of the bitangent). None where the frame or the
+    /// tilted normal degenerates (a tangent along `n`, a texel encoding zero): the caller
+    /// keeps `n`.
+    pub fn perturb(&self, n: Vec3, tangent: Vec4, uv: Vec2) -> Option<Vec3> {
+        let [x, y, z] = self.texture.sample(uv).map(|c| 2.0 * c - 1.0);
+        let t = tangent.truncate();
+        let t = unit_or_zero(t - n * n.dot(t));
+        if t == Vec3::ZERO {
+            return None;
+        }
+        let sign = if tangent.w < 0.0 { -1.0 } else { 1.0 };
+        let b = n.cross(t) * sign;
+        let tilted = unit_or_zero(t * (x * self.scale) + b * (y * self.scale) + n * z);
+        (tilted != Vec3::ZERO).then_some(tilted)
+    }
+}
+
+/// A tangent for a triangle from its world-space vertices `p` and texture coordinates
+/// `uv` (the direction in which u grows, in the plane), with glTF's handedness: w is 1
+/// where normal x tangent points up the image (v decreasing, glTF's v runs down), else
+/// -1. Where the texture coordinates do not span the triangle, any tangent of the plane.
+pub(crate) fn triangle_tangent(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> Vec4 {
+    let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+    let (d1, d2) = (uv[1] - uv[0], uv[2] - uv[0]);
+    let det = d1.x * d2.y - d2.x * d1.y;
+    let dpdu = (e1 * d2.y - e2 * d1.y) / det;
+    let dpdv = (e2 * d1.x - e1 * d2.x) / det;
+    let t = unit_or_zero(dpdu);
+    if t == Vec3::ZERO || !dpdv.is_finite() {
+        return normal.any_orthonormal_vector().extend(1.0);
+    }
+    let up = -dpdv;
+    t.extend(if normal.cross(t).dot(up) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::world::{Encoding, UvTransform, Wrap};
+
+    fn map(texel: [u8; 3], scale: f32) -> NormalMap {
+        let texture = RgbTexture::new(
+            1,
+            1,
+            Arc::new(vec![texel]),
+            [Wrap::Repeat; 2],
+            UvTransform::default(),
+            [1.0; 3],
+        )
+        .unwrap()
+        .encoded(Encoding::Linear);
+        NormalMap::new(texture, scale).unwrap()
+    }
+
+    /// A flat texel (0.5, 0.5, 1) keeps the normal; one tilted toward +x in tangent space
+    /// tilts toward the tangent, toward +y toward the bitangent, whose side the handedness
+    /// picks; the scale shrinks the tilt.
+    #[test]
+    fn texels_tilt_the_normal_in_the_tangent_frame() {
+        let (n, t) = (Vec3::Z, Vec4::new(1.0, 0.0, 0.0, 1.0));
+        let flat = map([128, 128, 255], 1.0).perturb(n, t, Vec2::ZERO).unwrap();
+        assert!((flat - n).length() < 1e-2, "{flat}");
+        let right = map([255, 128, 128], 1.0).perturb(n, t, Vec2::ZERO).unwrap();
+        assert!(right.x > 0.99, "{right}");
+        let up = map([128, 255, 128], 1.0).perturb(n, t, Vec2::ZERO).unwrap();
+        assert!(up.y > 0.99, "{up}");
+        let mirrored = map([128, 255, 128], 1.0)
+            .perturb(n, Vec4::new(1.0, 0.0, 0.0, -1.0), Vec2::ZERO)
+            .unwrap();
+        assert!(mirrored.y < -0.99, "{mirrored}");
+        let half = map([255, 128, 255], 0.5).perturb(n, t, Vec2::ZERO).unwrap();
+        let full = map([255, 128, 255], 1.0).perturb(n, t, Vec2::ZERO).unwrap();
+        assert!(
+            half.x > 0.0 && half.x < full.x && half.z > full.z,
+            "{half} {full}"
+        );
+        // A tangent along the normal leaves no frame.
+        assert!(
+            map([255, 128, 128], 1.0)
+                .perturb(n, Vec4::new(0.0, 0.0, 1.0, 1.0), Vec2::ZERO)
+                .is_none()
+        );
+        assert!(NormalMap::new(map([0; 3], 1.0).texture, f32::NAN).is_err());
+    }
+
+    /// The tangent follows u; the handedness is +1 where v runs down the image as glTF
+    /// lays textures out, -1 where the texture is mirrored.
+    #[test]
+    fn triangle_tangents_follow_u_with_gltf_handedness() {
+        let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        // u along +x, v growing along -y (down the image): standard.
+        let standard = triangle_tangent(p, [Vec2::ZERO, Vec2::X, -Vec2::Y], Vec3::Z);
+        assert_eq!(standard, Vec4::new(1.0, 0.0, 0.0, 1.0));
+        // v growing along +y: the image is mirrored vertically.
+        let mirrored = triangle_tangent(p, [Vec2::ZERO, Vec2::X, Vec2::Y], Vec3::Z);
+        assert_eq!(mirrored, Vec4::new(1.0, 0.0, 0.0, -1.0));
+        // No texture coordinates: some unit tangent in the plane.
+        let none = triangle_tangent(p, [Vec2::ZERO; 3], Vec3::Z);
+        assert!((none.truncate().length() - 1.0).abs() < 1e-6 && none.z.abs() < 1e-6);
+    }
+}
