@@ -12,9 +12,10 @@
 //! it), metallic-roughness textures (linear data, read per hit), normal textures (in the
 //! mesh's tangent frame, or one derived from its texture coordinates), and absorbing
 //! volumes (`KHR_materials_volume`, spectral Beer-Lambert absorption applied by the
-//! integrator when a ray leaves through a boundary's inside). Emissive and occlusion
-//! textures are not built yet: emission varying across a light needs light sampling by
-//! texel power, and occlusion maps fake what a path tracer computes.
+//! integrator when a ray leaves through a boundary's inside). Emissive textures make
+//! lights whose emission varies across them (read where a light is sampled and where a ray
+//! hits it; lights are chosen by their mean colour's power). Occlusion textures are
+//! ignored: they fake what a path tracer computes.
 //!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit

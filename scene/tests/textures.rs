@@ -5,11 +5,15 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 use prism_scene::bsdf::MetallicRoughness;
+use prism_scene::geometry::Ray;
 use prism_scene::load::{LoadedGeometry, decode_image, load_geometry};
 use prism_scene::world::{
-    Encoding, Material, RgbTexture, Scene, SceneOptions, SceneSpectrum, UvTransform, Wrap,
+    EmissionCache, Encoding, Hit, Material, RgbTexture, Scene, SceneOptions, SceneSpectrum,
+    UvTransform, Wrap,
 };
 use prism_spectrum::SampledWavelengths;
+use prism_spectrum::Spectrum;
+use prism_spectrum::color::RgbSpaceId;
 use proptest::prelude::*;
 use serde_json::json;
 
@@ -132,7 +136,7 @@ fn broken_images_are_errors_not_panics() {
 /// texture 0 is `image` (a PNG) in the binary buffer.
 fn textured_quad(image: &[u8], material: serde_json::Value) -> (serde_json::Value, Vec<u8>) {
     let mut bin: Vec<u8> = [
-        0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0,
+        0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0,
     ]
     .iter()
     .flat_map(|f| f.to_le_bytes())
@@ -339,7 +343,7 @@ fn normal_mapped_quad(
 }
 
 fn shading_normal_at(scene: &Scene, x: f32) -> Vec3 {
-    let ray = prism_scene::geometry::Ray::new(Vec3::new(x, 0.5, 1.0), -Vec3::Z, f32::INFINITY);
+    let ray = Ray::new(Vec3::new(x, 0.5, 1.0), -Vec3::Z, f32::INFINITY);
     scene.intersect(&ray).unwrap().shading_normal
 }
 
@@ -384,4 +388,100 @@ fn gltf_normal_textures_tilt_shading_normals_in_the_tangent_frame() {
         json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}),
     );
     assert!(load_quad(&doc, bin).tangents.is_empty());
+}
+
+/// An emissive quad (facing +z) whose emissive texture is black at the left and white at
+/// the right, under emissiveFactor 1 and strength 3: it emits three times the sRGB
+/// illuminant (D65, luminance 1) from its right half and nothing from its left, seen by
+/// rays that hit it and by light samples alike; as one spectrum (light choice, reports) it
+/// is its mean colour's.
+#[test]
+fn gltf_emissive_textures_emit_per_texel() {
+    let image = png(2, 1, &[[0, 0, 0], [255, 255, 255]]);
+    let (doc, bin) = textured_quad(
+        &image,
+        json!({
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": {"index": 0},
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3.0}},
+            "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]}
+        }),
+    );
+    let mut doc = doc;
+    doc["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
+    // Clamped at the edges: the outer quarters are the texels' own colours.
+    doc["samplers"] = json!([{"wrapS": 33071, "wrapT": 33071}]);
+    doc["textures"][0]["sampler"] = json!(0);
+    let scene = Scene::from_loaded(load_quad(&doc, bin), &SceneOptions::default()).unwrap();
+    assert!(matches!(
+        scene.emission_spectra(),
+        [SceneSpectrum::Texture(_)]
+    ));
+    let d65 = prism_upsample::normalized_illuminant(&RgbSpaceId::Srgb.illuminant()).unwrap();
+    let lambdas = SampledWavelengths::new([450.0, 550.0, 650.0], [1.0; 3]).unwrap();
+    let white = |k: usize| 3.0 * d65.evaluate(f64::from(lambdas.lambda(k)));
+    let mut cache = EmissionCache::new();
+
+    // Seen by rays from above.
+    let seen = |x: f32, cache: &mut EmissionCache<3>| {
+        let ray = Ray::new(Vec3::new(x, 0.5, 1.0), -Vec3::Z, f32::INFINITY);
+        let hit = scene.intersect(&ray).unwrap();
+        scene.emitted(&hit, Vec3::Z, &lambdas, cache)
+    };
+    assert!(seen(0.25, &mut cache).is_black());
+    let right = seen(0.75, &mut cache);
+    for k in 0..3 {
+        assert!(
+            (f64::from(right[k]) - white(k)).abs() < 1e-3 * white(k),
+            "lane {k}: {}",
+            right[k]
+        );
+    }
+    // The cache must not hand the right half's value to the left half.
+    assert!(seen(0.25, &mut cache).is_black());
+
+    // Sampled from points above the quad's centre, near (by solid angle) and far (by
+    // area): dark exactly where the sampled point lies on the left half.
+    for height in [0.3, 30.0] {
+        let above = Hit {
+            p: Vec3::new(0.5, 0.5, height),
+            error: Vec3::ZERO,
+            normal: -Vec3::Z,
+            shading_normal: -Vec3::Z,
+            uv: Vec2::ZERO,
+            t: 1.0,
+            triangle: 0,
+        };
+        let (mut dark, mut lit) = (0, 0);
+        for i in 0..16 {
+            for j in 0..16 {
+                let u = Vec2::new((i as f32 + 0.5) / 16.0, (j as f32 + 0.5) / 16.0);
+                let Some(s) = scene.sample_light(&above, u, &lambdas, &mut cache) else {
+                    continue;
+                };
+                let x = above.p.x + s.wi.x * s.distance;
+                if (x - 0.5).abs() < 0.25 {
+                    continue; // the texels blend between their centres
+                }
+                if x < 0.5 {
+                    assert!(s.radiance.is_black(), "x {x}: {:?}", s.radiance);
+                    dark += 1;
+                } else {
+                    assert!(
+                        (f64::from(s.radiance[1]) - white(1)).abs() < 1e-3 * white(1),
+                        "x {x}"
+                    );
+                    lit += 1;
+                }
+            }
+        }
+        assert!(dark > 20 && lit > 20, "{dark} {lit}");
+    }
+
+    // As one spectrum: the mean colour, grey 0.5 of 255 after sRGB decoding (0.5 x 3 x D65).
+    let mean = scene.emission_spectra()[0].evaluate(550.0);
+    assert!(
+        (mean - 0.5 * 3.0 * d65.evaluate(550.0)).abs() < 1e-3 * mean,
+        "{mean}"
+    );
 }

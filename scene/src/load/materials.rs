@@ -46,6 +46,9 @@ pub struct MaterialDesc {
     pub metallic_roughness_texture: Option<Arc<RgbTexture>>,
     /// The normal texture, which tilts shading normals (the mesh's tangents orient it).
     pub normal_texture: Option<Arc<NormalMap>>,
+    /// The emissive texture times emissiveFactor and the strength, as emission spectra
+    /// (replaces `emission` where present; None when the factor is black).
+    pub emissive_texture: Option<SceneSpectrum>,
     /// `KHR_materials_dispersion`'s dispersion, 20 / V_d (0: none), for transmissive
     /// materials.
     pub dispersion: f32,
@@ -163,8 +166,8 @@ const TEXTURE_TABLE_RESOLUTION: usize = 32;
 
 /// Everything upsampling needs, built once per load: glTF colours are linear sRGB.
 pub(crate) struct Upsampler {
-    pub(crate) context: FitContext,
-    illuminant: Arc<DenselySampled>,
+    pub(crate) context: Arc<FitContext>,
+    pub(crate) illuminant: Arc<DenselySampled>,
     mode: Upsampling,
     table: std::cell::OnceCell<Arc<prism_upsample::CoefficientTable>>,
 }
@@ -188,7 +191,7 @@ impl Upsampler {
             LoadError::Geometry(format!("upsampling setup: {e}"))
         };
         Ok(Self {
-            context: FitContext::new(id.space(), &id.illuminant()).map_err(to_error)?,
+            context: Arc::new(FitContext::new(id.space(), &id.illuminant()).map_err(to_error)?),
             illuminant: normalized_illuminant(&id.illuminant()).map_err(to_error)?,
             mode,
             table: std::cell::OnceCell::new(),
@@ -305,6 +308,14 @@ pub(crate) fn material(
         })
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let emissive_texture = match (&emission, material.emissive_texture()) {
+        (Some(_), Some(info)) => Some(
+            textures
+                .emission(&info, emitted.map(|c| c as f32))
+                .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?,
+        ),
+        _ => None,
+    };
     let normal_texture = material
         .normal_texture()
         .map(|normal| textures.normal(&normal).map(Arc::new))
@@ -323,6 +334,7 @@ pub(crate) fn material(
         base_color_texture,
         metallic_roughness_texture,
         normal_texture,
+        emissive_texture,
         absorption,
         dispersion,
         spectral,

@@ -23,7 +23,8 @@ pub struct SceneSummary {
     pub bounds: ([f32; 3], [f32; 3]),
     /// Whether any material transmits (glass).
     pub uses_transmission: bool,
-    /// Whether any material has a base colour, metallic-roughness or normal texture.
+    /// Whether any material has a base colour, metallic-roughness, normal or emissive
+    /// texture.
     pub uses_textures: bool,
     /// Whether a transmissive material disperses (`KHR_materials_dispersion`, or a
     /// spectral IOR from `PRISM_spectral`).

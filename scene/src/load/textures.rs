@@ -53,6 +53,22 @@ impl<'a> TextureLoader<'a> {
         ))))
     }
 
+    /// The emission spectra of an emissive texture times `factor` (emissiveFactor times
+    /// the strength).
+    pub(crate) fn emission(
+        &self,
+        info: &gltf::texture::Info,
+        factor: [f32; 3],
+    ) -> Result<SceneSpectrum, String> {
+        let rgb = self.info(info, factor)?;
+        Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::emission(
+            rgb,
+            self.upsampler.table()?,
+            self.upsampler.context.clone(),
+            self.upsampler.illuminant.clone(),
+        )?)))
+    }
+
     /// A metallic-roughness texture (linear; green is roughness, blue metallic) times the
     /// material's factors.
     pub(crate) fn metallic_roughness(

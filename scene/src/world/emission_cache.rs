@@ -1,3 +1,4 @@
+use glam::Vec2;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::SceneSpectrum;
@@ -51,15 +52,21 @@ impl<const N: usize> EmissionCache<N> {
         }
     }
 
-    /// Emission spectrum number `index` of the scene's `spectra`, at `wavelengths`.
+    /// Emission spectrum number `index` of the scene's `spectra`, at `wavelengths`, at
+    /// texture coordinate `uv` of the emitter (an emissive texture varies with it, and is
+    /// looked up every time).
     pub(crate) fn get(
         &mut self,
         spectra: &[SceneSpectrum],
         index: u32,
         wavelengths: &SampledWavelengths<N>,
+        uv: Vec2,
     ) -> SampledSpectrum<N> {
         let slot = index as usize;
         let spectrum = &spectra[slot];
+        if let SceneSpectrum::Texture(texture) = spectrum {
+            return texture.at(uv, wavelengths);
+        }
         if slot >= SLOTS {
             return spectrum.at(wavelengths);
         }
@@ -92,7 +99,7 @@ mod tests {
         for _ in 0..2 {
             for wavelengths in [&a, &b, &a] {
                 for (k, s) in spectra.iter().enumerate() {
-                    let cached = cache.get(&spectra, k as u32, wavelengths);
+                    let cached = cache.get(&spectra, k as u32, wavelengths, Vec2::ZERO);
                     assert_eq!(cached, s.at(wavelengths), "spectrum {k}");
                 }
             }

@@ -119,9 +119,10 @@ impl Scene {
                     // A spectral emission replaces the RGB one.
                     let spectrum = match desc.spectral.as_ref().and_then(|s| s.emission.clone()) {
                         Some(s) => s,
-                        None => match &desc.emission {
-                            Some(rgb) => SceneSpectrum::Rgb(Arc::new(rgb.clone())),
-                            None => continue,
+                        None => match (&desc.emissive_texture, &desc.emission) {
+                            (Some(texture), _) => texture.clone(),
+                            (None, Some(rgb)) => SceneSpectrum::Rgb(Arc::new(rgb.clone())),
+                            (None, None) => continue,
                         },
                     };
                     let e = *emission_of_material[m].get_or_insert_with(|| {

@@ -119,17 +119,36 @@ pub(crate) struct TriangleShape {
     cross: Vec3,
     pub(crate) normal: Vec3,
     pub(crate) area: f32,
+    /// Texture coordinates at the vertices (an emissive texture is read at the point
+    /// sampled).
+    uvs: [Vec2; 3],
 }
 
 impl TriangleShape {
-    fn new(v: [Vec3; 3]) -> Self {
+    fn new(v: [Vec3; 3], uvs: [Vec2; 3]) -> Self {
         Self {
             vertices: v,
             centroid: (v[0] + v[1] + v[2]) / 3.0,
             cross: (v[1] - v[0]).cross(v[2] - v[0]),
             normal: triangle_normal(v),
             area: triangle_area(v),
+            uvs,
         }
+    }
+
+    /// The texture coordinates at barycentrics `b`.
+    fn uv(&self, b: [f32; 3]) -> Vec2 {
+        b[0] * self.uvs[0] + b[1] * self.uvs[1] + b[2] * self.uvs[2]
+    }
+
+    /// The texture coordinates at point `q` of the triangle's plane.
+    fn uv_at(&self, q: Vec3) -> Vec2 {
+        let [v0, v1, v2] = self.vertices;
+        let area2 = self.cross.length_squared();
+        let b1 = (q - v0).cross(v2 - v0).dot(self.cross) / area2;
+        let b2 = (v1 - v0).cross(q - v0).dot(self.cross) / area2;
+        let uv = self.uv([1.0 - b1 - b2, b1, b2]);
+        if uv.is_finite() { uv } else { self.uvs[0] }
     }
 }
 
@@ -204,13 +223,15 @@ impl Lights {
         extent: &[f64],
         emission: &[SceneSpectrum],
         triangles: &[[Vec3; 3]],
+        uvs: &[[Vec2; 3]],
     ) -> Self {
         let mut of_triangle = vec![u32::MAX; triangles.len()];
         let shapes = lights
             .iter()
             .map(|light| match light {
                 Light::Triangle { triangle, .. } => {
-                    TriangleShape::new(triangles[*triangle as usize])
+                    let t = *triangle as usize;
+                    TriangleShape::new(triangles[t], uvs.get(t).copied().unwrap_or_default())
                 }
                 _ => TriangleShape::default(),
             })
@@ -334,14 +355,22 @@ impl Lights {
             } => {
                 let shape = &self.shapes[index];
                 let (v, n) = (shape.vertices, shape.normal);
-                let (wi, distance, pdf) = match solid_angle_sampled(p, shape) {
+                // The emission's texture coordinates are found only if it varies.
+                let textured = matches!(emission[*e as usize], SceneSpectrum::Texture(_));
+                let (wi, distance, pdf, uv) = match solid_angle_sampled(p, shape) {
                     Some(omega) => {
                         // Uniform in the subtended solid angle; the point is where the
                         // direction meets the triangle's plane. A failure (a triangle
                         // degenerate as seen from p) is no sample: switching strategy
                         // here would break the density `Scene::light_pdf` reports.
                         let wi = spherical_triangle(p, v, u)?.direction;
-                        (wi, n.dot(v[0] - p) / n.dot(wi), 1.0 / omega)
+                        let distance = n.dot(v[0] - p) / n.dot(wi);
+                        let uv = if textured {
+                            shape.uv_at(p + wi * distance)
+                        } else {
+                            Vec2::ZERO
+                        };
+                        (wi, distance, 1.0 / omega, uv)
                     }
                     None => {
                         let b = uniform_triangle(u);
@@ -350,7 +379,7 @@ impl Lights {
                         let distance = d2.sqrt();
                         let wi = to / distance;
                         let cos = n.dot(wi).abs();
-                        (wi, distance, d2 / (cos * shape.area))
+                        (wi, distance, d2 / (cos * shape.area), shape.uv(b))
                     }
                 };
                 let cos = -n.dot(wi);
@@ -362,7 +391,7 @@ impl Lights {
                 LightSample {
                     wi,
                     distance,
-                    radiance: cache.get(emission, *e, wavelengths),
+                    radiance: cache.get(emission, *e, wavelengths, uv),
                     pdf: pmf * pdf,
                     delta: false,
                 }
@@ -468,7 +497,7 @@ impl Lights {
                 let scale = PI * shape.area * sides / pmf;
                 (
                     Ray::new(origin, direction, f32::INFINITY),
-                    emission[*e as usize].at(wavelengths) * scale,
+                    emission[*e as usize].at_uv(shape.uv(b), wavelengths) * scale,
                 )
             }
             Light::Point {

@@ -254,7 +254,14 @@ impl Scene {
             .collect();
         let light_wavelengths =
             guide::light_wavelengths(&materials, &lights, &triangles, &emission, radius);
-        let lights = Lights::new(lights, &power, &extent, &emission, &triangles);
+        let lights = Lights::new(
+            lights,
+            &power,
+            &extent,
+            &emission,
+            &triangles,
+            &attributes.uvs,
+        );
         Ok(Self {
             bvh,
             triangles,
@@ -421,7 +428,7 @@ impl Scene {
                 two_sided,
                 ..
             } if *two_sided || hit.normal.dot(wo) > 0.0 => {
-                cache.get(&self.emission, *emission, wavelengths)
+                cache.get(&self.emission, *emission, wavelengths, hit.uv)
             }
             _ => SampledSpectrum::splat(0.0),
         }

@@ -1,12 +1,13 @@
 //! Colour textures: 8-bit sRGB texels sampled bilinearly in linear RGB, upsampled to a
-//! reflectance spectrum per lookup (Jakob and Hanika's table), as pbrt-v4 does for RGB
-//! textures: RGB is filtered first, then turned into a spectrum.
+//! reflectance or an emission spectrum per lookup (Jakob and Hanika's table), as pbrt-v4
+//! does for RGB textures: RGB is filtered first, then turned into a spectrum.
 
 use std::sync::{Arc, LazyLock};
 
 use glam::Vec2;
+use prism_spectrum::spectra::DenselySampled;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
-use prism_upsample::{CoefficientTable, SigmoidPolynomial};
+use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum, SigmoidPolynomial};
 
 /// How texture coordinates outside [0, 1] wrap (glTF sampler modes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -196,14 +197,29 @@ impl RgbTexture {
     }
 }
 
-/// A reflectance texture: RGB texels upsampled through a coefficient table at every
-/// lookup. As a function of wavelength alone (the [`Spectrum`] impl) it is the spectrum
-/// of its mean colour, which is what light selection and reports need.
+/// A colour texture upsampled through a coefficient table at every lookup: a reflectance
+/// (base colour), or an emission (an illuminant-kind spectrum, as the scene's constant
+/// emissive colours are). As a function of wavelength alone (the [`Spectrum`] impl) it is
+/// the spectrum of its mean colour, which is what light selection and reports need.
 #[derive(Debug, Clone)]
 pub struct SpectralTexture {
     rgb: RgbTexture,
     table: Arc<CoefficientTable>,
-    mean: Reflectance,
+    kind: TextureKind,
+}
+
+#[derive(Debug, Clone)]
+enum TextureKind {
+    Reflectance {
+        mean: Reflectance,
+    },
+    Emission {
+        context: Arc<FitContext>,
+        illuminant: Arc<DenselySampled>,
+        mean: RgbSpectrum,
+        /// An upper bound of every texel's spectrum.
+        max: f64,
+    },
 }
 
 /// The spectrum of one linear RGB reflectance: exact for black and greys (the table is
@@ -237,26 +253,105 @@ impl SpectralTexture {
     /// space, sRGB for glTF).
     pub fn new(rgb: RgbTexture, table: Arc<CoefficientTable>) -> Self {
         let mean = Reflectance::of(rgb.mean(), &table);
-        Self { rgb, table, mean }
+        Self {
+            rgb,
+            table,
+            kind: TextureKind::Reflectance { mean },
+        }
     }
 
-    /// The reflectance at `uv`, at the package's wavelengths.
+    /// Emission spectra of `rgb` (its factor may exceed 1: emissive strength) through
+    /// `table` (fitted in `context`'s space), times `illuminant` normalized to luminance 1
+    /// ([`prism_upsample::normalized_illuminant`]): a texel of RGB (1, 1, 1) emits the
+    /// illuminant. Errors for a non-finite mean colour.
+    pub fn emission(
+        rgb: RgbTexture,
+        table: Arc<CoefficientTable>,
+        context: Arc<FitContext>,
+        illuminant: Arc<DenselySampled>,
+    ) -> Result<Self, String> {
+        let mean = Self::illuminant_of(rgb.mean(), &table, &context, &illuminant)
+            .map_err(|e| format!("emissive texture: {e}"))?;
+        // Illuminant spectra are 2 max(r, g, b) times a sigmoid (at most 1) times the
+        // illuminant: bounded by the brightest texel channel.
+        let brightest = rgb
+            .texels
+            .iter()
+            .flat_map(|t| {
+                (0..3).map(move |k| rgb.encoding.table()[usize::from(t[k])] * rgb.factor[k])
+            })
+            .fold(0.0f32, f32::max);
+        let max = 2.0 * f64::from(brightest) * illuminant.max_value();
+        Ok(Self {
+            rgb,
+            table,
+            kind: TextureKind::Emission {
+                context,
+                illuminant,
+                mean,
+                max,
+            },
+        })
+    }
+
+    fn illuminant_of(
+        rgb: [f32; 3],
+        table: &CoefficientTable,
+        context: &FitContext,
+        illuminant: &Arc<DenselySampled>,
+    ) -> Result<RgbSpectrum, prism_upsample::UpsampleError> {
+        RgbSpectrum::from_table(
+            table,
+            context,
+            rgb.map(f64::from),
+            RgbKind::Illuminant,
+            Some(illuminant.clone()),
+            0,
+        )
+    }
+
+    /// Whether the texture is an emission.
+    pub fn emits(&self) -> bool {
+        matches!(self.kind, TextureKind::Emission { .. })
+    }
+
+    /// The spectrum at `uv`, at the package's wavelengths.
     pub fn at<const N: usize>(
         &self,
         uv: Vec2,
         wavelengths: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let r = Reflectance::of(self.rgb.sample(uv), &self.table);
-        SampledSpectrum::from_fn(|i| r.evaluate(f64::from(wavelengths.lambda(i))) as f32)
+        let rgb = self.rgb.sample(uv);
+        match &self.kind {
+            TextureKind::Reflectance { .. } => {
+                let r = Reflectance::of(rgb, &self.table);
+                SampledSpectrum::from_fn(|i| r.evaluate(f64::from(wavelengths.lambda(i))) as f32)
+            }
+            TextureKind::Emission {
+                context,
+                illuminant,
+                ..
+            } => match Self::illuminant_of(rgb, &self.table, context, illuminant) {
+                Ok(s) => SampledSpectrum(s.evaluate_lanes(wavelengths.lambdas())),
+                // Texels are finite: unreachable, and dark rather than a panic.
+                Err(_) => SampledSpectrum::splat(0.0),
+            },
+        }
     }
 }
 
 impl Spectrum for SpectralTexture {
     fn evaluate(&self, lambda_nm: f64) -> f64 {
-        self.mean.evaluate(lambda_nm)
+        match &self.kind {
+            TextureKind::Reflectance { mean } => mean.evaluate(lambda_nm),
+            TextureKind::Emission { mean, .. } => mean.evaluate(lambda_nm),
+        }
     }
 
     fn max_value(&self) -> f64 {
-        1.0
+        match &self.kind {
+            TextureKind::Reflectance { .. } => 1.0,
+            TextureKind::Emission { max, .. } => *max,
+        }
     }
 }
