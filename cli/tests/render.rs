@@ -783,3 +783,41 @@ fn the_complete_spectral_example_renders_and_scene_options_work() {
         ),
     ]);
 }
+
+/// The textured example (base colour, metallic-roughness, normal and emissive textures)
+/// reports its textures and renders the same file on one thread and on two.
+#[test]
+fn the_textured_example_renders_deterministically() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/textured.gltf");
+    let info = prism(&["info", scene]);
+    assert_success(&info);
+    let text = String::from_utf8_lossy(&info.stdout);
+    assert!(
+        text.contains("textures: yes") && text.contains("emissive texture"),
+        "{text}"
+    );
+    let dir = temp_dir("textured");
+    let files: Vec<_> = ["1", "2"]
+        .iter()
+        .map(|t| {
+            let path = dir.join(format!("t{t}.exr"));
+            let out = prism(&[
+                "render",
+                scene,
+                "--spp",
+                "2",
+                "--width",
+                "16",
+                "--height",
+                "12",
+                "--threads",
+                t,
+                "-o",
+                path.to_str().unwrap(),
+            ]);
+            assert_success(&out);
+            std::fs::read(&path).unwrap()
+        })
+        .collect();
+    assert_eq!(files[0], files[1]);
+}

@@ -23,7 +23,7 @@ from collections import Counter
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = os.path.join(ROOT, "scenes")
 PRISM = os.path.join(ROOT, "target", "release", "prism")
-GLTF = ["cornell-box.gltf", "cornell-spectral.gltf", "cornell-bunny.gltf", "effects.gltf", "prism.gltf", "rainbow.gltf"]
+GLTF = ["cornell-box.gltf", "cornell-spectral.gltf", "cornell-bunny.gltf", "effects.gltf", "prism.gltf", "rainbow.gltf", "textured.gltf"]
 NUMBERS = [0, -0.0, 1, -1, 2, 3, 7, 100, 65535, 4294967295, 2**53, 0.5, 1e-45, 1e-39, 1e6, 1e30, 3e38, -3e38, 1e300]
 STRINGS = ["", "x", "data:", "blackbody:-5", "blackbody:1e30", "gaussian:550:0", "csv:missing.csv", "D65", "nan", "1e40"]
 WORDS = [3e38, -3e38, 1e30, 1e-40, 0.0, float("inf"), float("nan")]

@@ -8,6 +8,7 @@ import base64
 import json
 import math
 import struct
+import zlib
 
 
 def quad(a, b, c, d):
@@ -97,6 +98,20 @@ def looking_along(forward):
     return quaternion_mul(qy, qx)
 
 
+def png(width, height, texel):
+    """An 8-bit RGB PNG of width x height whose texel (x, y) (y down) is texel(x, y)."""
+    raw = b"".join(
+        b"\x00" + bytes(c for x in range(width) for c in texel(x, y)) for y in range(height)
+    )
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+
+
 class Document:
     """A glTF 2.0 document under construction: meshes with one material each, nodes,
     punctual lights and cameras, written with its buffer embedded."""
@@ -106,32 +121,49 @@ class Document:
         self.blob = b""
         self.buffer_views, self.accessors, self.meshes, self.nodes = [], [], [], []
         self.materials, self.lights, self.cameras = [], [], []
+        self.images, self.textures, self.samplers = [], [], []
         self.root_extension = {}
+        self.extensions_used = ["KHR_lights_punctual", "PRISM_spectral"]
+
+    def texture(self, png_bytes, wrap=10497):
+        """A texture of an embedded PNG with one wrap mode for both axes (glTF's enums:
+        10497 repeat, 33071 clamp, 33648 mirror); its index for material texture infos."""
+        self.buffer_views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(png_bytes)})
+        self.blob += png_bytes
+        # Keep later views aligned to 4 bytes (accessors of floats need it).
+        self.blob += b"\x00" * (-len(self.blob) % 4)
+        self.images.append({"bufferView": len(self.buffer_views) - 1, "mimeType": "image/png"})
+        self.samplers.append({"wrapS": wrap, "wrapT": wrap})
+        self.textures.append({"source": len(self.images) - 1, "sampler": len(self.samplers) - 1})
+        return len(self.textures) - 1
 
     def material(self, name, **fields):
         self.materials.append({"name": name, **fields})
         return len(self.materials) - 1
 
     def _accessor(self, vectors):
-        data = b"".join(struct.pack("<3f", *v) for v in vectors)
+        n = len(vectors[0])
+        data = b"".join(struct.pack(f"<{n}f", *v) for v in vectors)
         self.buffer_views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data)})
         self.accessors.append(
             {
                 "bufferView": len(self.buffer_views) - 1,
                 "componentType": 5126,
                 "count": len(vectors),
-                "type": "VEC3",
-                "min": [min(v[i] for v in vectors) for i in range(3)],
-                "max": [max(v[i] for v in vectors) for i in range(3)],
+                "type": f"VEC{n}",
+                "min": [min(v[i] for v in vectors) for i in range(n)],
+                "max": [max(v[i] for v in vectors) for i in range(n)],
             }
         )
         self.blob += data
         return len(self.accessors) - 1
 
-    def mesh(self, name, positions, material, normals=None, indices=None):
+    def mesh(self, name, positions, material, normals=None, indices=None, uvs=None):
         attributes = {"POSITION": self._accessor(positions)}
         if normals is not None:
             attributes["NORMAL"] = self._accessor(normals)
+        if uvs is not None:
+            attributes["TEXCOORD_0"] = self._accessor(uvs)
         primitive = {"attributes": attributes, "material": material}
         if indices is not None:
             data = struct.pack(f"<{len(indices)}I", *indices)
@@ -167,7 +199,7 @@ class Document:
             extensions["PRISM_spectral"] = self.root_extension
         doc = {
             "asset": {"version": "2.0", "generator": self.generator},
-            "extensionsUsed": ["KHR_lights_punctual", "PRISM_spectral"],
+            "extensionsUsed": self.extensions_used,
             "extensions": extensions,
             "scene": 0,
             "scenes": [{"nodes": list(range(len(self.nodes)))}],
@@ -175,6 +207,7 @@ class Document:
             "cameras": self.cameras,
             "meshes": self.meshes,
             "materials": self.materials,
+            **({"images": self.images, "samplers": self.samplers, "textures": self.textures} if self.textures else {}),
             "accessors": self.accessors,
             "bufferViews": self.buffer_views,
             "buffers": [

@@ -65,6 +65,19 @@ impl MaterialDesc {
     pub fn emits(&self) -> bool {
         self.emission.is_some() || self.spectral.as_ref().is_some_and(|s| s.emission.is_some())
     }
+
+    /// What the material emits: its `PRISM_spectral` emission, else its emissive texture,
+    /// else its emissive colour (None where it does not emit).
+    pub fn emission_spectrum(&self) -> Option<SceneSpectrum> {
+        if let Some(s) = self.spectral.as_ref().and_then(|s| s.emission.clone()) {
+            return Some(s);
+        }
+        match (&self.emissive_texture, &self.emission) {
+            (Some(texture), _) => Some(texture.clone()),
+            (None, Some(rgb)) => Some(SceneSpectrum::Rgb(Arc::new(rgb.clone()))),
+            (None, None) => None,
+        }
+    }
 }
 
 /// `KHR_materials_dispersion`'s `dispersion` (the gltf crate does not know the extension, so

@@ -52,16 +52,7 @@ impl LoadedGeometry {
         let mut spectra: Vec<SceneSpectrum> = Vec::new();
         for i in self.instances.iter().filter(|i| emits(i)) {
             let m = &self.materials[i.material.unwrap_or_default()];
-            match (
-                m.spectral.as_ref().and_then(|s| s.emission.clone()),
-                &m.emission,
-            ) {
-                (Some(s), _) => spectra.push(s),
-                (None, Some(rgb)) => {
-                    spectra.push(SceneSpectrum::Rgb(std::sync::Arc::new(rgb.clone())))
-                }
-                (None, None) => {}
-            }
+            spectra.extend(m.emission_spectrum());
         }
         for light in &self.lights {
             if let LightDesc::Point { spectrum, .. }

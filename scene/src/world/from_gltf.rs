@@ -116,14 +116,8 @@ impl Scene {
                     let instance = &loaded.instances[*instance];
                     let Some(m) = instance.material else { continue };
                     let desc = &loaded.materials[m];
-                    // A spectral emission replaces the RGB one.
-                    let spectrum = match desc.spectral.as_ref().and_then(|s| s.emission.clone()) {
-                        Some(s) => s,
-                        None => match (&desc.emissive_texture, &desc.emission) {
-                            (Some(texture), _) => texture.clone(),
-                            (None, Some(rgb)) => SceneSpectrum::Rgb(Arc::new(rgb.clone())),
-                            (None, None) => continue,
-                        },
+                    let Some(spectrum) = desc.emission_spectrum() else {
+                        continue;
                     };
                     let e = *emission_of_material[m].get_or_insert_with(|| {
                         emission.push(spectrum);

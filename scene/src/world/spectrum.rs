@@ -135,6 +135,7 @@ impl SceneSpectrum {
             SceneSpectrum::Cauchy(_) => "Cauchy index".into(),
             SceneSpectrum::Sellmeier(_) => "Sellmeier index".into(),
             SceneSpectrum::Scaled(s, _) => s.describe(),
+            SceneSpectrum::Texture(t) if t.emits() => "emissive texture (upsampled RGB)".into(),
             SceneSpectrum::Texture(_) => "texture".into(),
         }
     }
