@@ -92,31 +92,33 @@ fn output_size_follows_the_camera_aspect_ratio() {
     );
 }
 
+/// The EXR of a small render of `scene` (None: the default stage) on `threads` threads.
+fn render_on_threads(dir: &std::path::Path, scene: Option<&str>, threads: &str) -> Vec<u8> {
+    let path = dir.join(format!("t{threads}.exr"));
+    let mut args = vec!["render"];
+    args.extend(scene);
+    args.extend([
+        "--spp",
+        "2",
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--threads",
+        threads,
+    ]);
+    args.extend(["-o", path.to_str().unwrap()]);
+    assert_success(&prism(&args));
+    std::fs::read(&path).unwrap()
+}
+
 #[test]
 fn thread_count_does_not_change_the_file() {
     let dir = temp_dir("threads");
-    let files: Vec<_> = ["1", "2"]
-        .iter()
-        .map(|t| {
-            let path = dir.join(format!("t{t}.exr"));
-            let out = prism(&[
-                "render",
-                "--spp",
-                "2",
-                "--width",
-                "16",
-                "--height",
-                "16",
-                "--threads",
-                t,
-                "-o",
-                path.to_str().unwrap(),
-            ]);
-            assert!(out.status.success());
-            std::fs::read(&path).unwrap()
-        })
-        .collect();
-    assert_eq!(files[0], files[1]);
+    assert_eq!(
+        render_on_threads(&dir, None, "1"),
+        render_on_threads(&dir, None, "2")
+    );
 }
 
 #[test]
@@ -797,27 +799,8 @@ fn the_textured_example_renders_deterministically() {
         "{text}"
     );
     let dir = temp_dir("textured");
-    let files: Vec<_> = ["1", "2"]
-        .iter()
-        .map(|t| {
-            let path = dir.join(format!("t{t}.exr"));
-            let out = prism(&[
-                "render",
-                scene,
-                "--spp",
-                "2",
-                "--width",
-                "16",
-                "--height",
-                "12",
-                "--threads",
-                t,
-                "-o",
-                path.to_str().unwrap(),
-            ]);
-            assert_success(&out);
-            std::fs::read(&path).unwrap()
-        })
-        .collect();
-    assert_eq!(files[0], files[1]);
+    assert_eq!(
+        render_on_threads(&dir, Some(scene), "1"),
+        render_on_threads(&dir, Some(scene), "2")
+    );
 }
