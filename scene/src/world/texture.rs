@@ -7,6 +7,7 @@ use std::sync::{Arc, LazyLock};
 use glam::Vec2;
 use prism_spectrum::spectra::DenselySampled;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use prism_upsample::sigmoid::sigmoid_polynomial_lanes;
 use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum, SigmoidPolynomial};
 
 /// How texture coordinates outside [0, 1] wrap (glTF sampler modes).
@@ -24,6 +25,11 @@ impl Wrap {
     /// The texel index for integer coordinate `i` of a side of `n` texels.
     fn texel(self, i: i64, n: u32) -> usize {
         let n = i64::from(n);
+        // Inside the texture every mode is the identity; the wrap's division (an i64
+        // remainder, two per filtered lookup) is left to coordinates outside it.
+        if (0..n).contains(&i) {
+            return i as usize;
+        }
         (match self {
             Wrap::Repeat => i.rem_euclid(n),
             Wrap::Clamp => i.clamp(0, n - 1),
@@ -60,8 +66,12 @@ impl UvTransform {
     /// The transformed coordinates (the extension's matrix T R S, with R's rows
     /// (cos, sin) and (-sin, cos)).
     pub fn apply(&self, uv: Vec2) -> Vec2 {
+        self.apply_rotated(self.rotation.sin_cos(), uv)
+    }
+
+    /// [`UvTransform::apply`] with the rotation's (sin, cos) computed once by the caller.
+    fn apply_rotated(&self, (sin, cos): (f32, f32), uv: Vec2) -> Vec2 {
         let s = uv * self.scale;
-        let (sin, cos) = self.rotation.sin_cos();
         self.offset + Vec2::new(cos * s.x + sin * s.y, -sin * s.x + cos * s.y)
     }
 }
@@ -108,6 +118,9 @@ pub struct RgbTexture {
     transform: UvTransform,
     factor: [f32; 3],
     encoding: Encoding,
+    /// The transform's rotation as (sin, cos): a lookup's sine and cosine were a tenth of
+    /// its instructions.
+    rotation: (f32, f32),
 }
 
 impl RgbTexture {
@@ -143,6 +156,7 @@ impl RgbTexture {
             transform,
             factor,
             encoding: Encoding::Srgb,
+            rotation: transform.rotation.sin_cos(),
         })
     }
 
@@ -161,7 +175,7 @@ impl RgbTexture {
     /// Linear RGB at `uv` (glTF: u right, v down from the top-left), bilinearly filtered
     /// between texel centres, times the factor. Finite for every input.
     pub fn sample(&self, uv: Vec2) -> [f32; 3] {
-        let uv = self.transform.apply(uv);
+        let uv = self.transform.apply_rotated(self.rotation, uv);
         let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
         // Texel centres sit at half-integers; keep the integer part within i64 even for
         // absurd coordinates (wrapping makes the exact multiple irrelevant).
@@ -323,10 +337,14 @@ impl SpectralTexture {
     ) -> SampledSpectrum<N> {
         let rgb = self.rgb.sample(uv);
         match &self.kind {
-            TextureKind::Reflectance { .. } => {
-                let r = Reflectance::of(rgb, &self.table);
-                SampledSpectrum::from_fn(|i| r.evaluate(f64::from(wavelengths.lambda(i))) as f32)
-            }
+            // In f32 lanes, as constant colours are evaluated (RgbSpectrum::evaluate_lanes).
+            TextureKind::Reflectance { .. } => match Reflectance::of(rgb, &self.table) {
+                Reflectance::Constant(v) => SampledSpectrum::splat(v),
+                Reflectance::Sigmoid(s) => SampledSpectrum(sigmoid_polynomial_lanes(
+                    s.coefficients.map(|c| c as f32),
+                    wavelengths.lambdas(),
+                )),
+            },
             TextureKind::Emission {
                 context,
                 illuminant,
