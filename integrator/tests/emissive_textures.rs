@@ -1,7 +1,8 @@
 //! Emissive textures in transport: a light whose texture is black on one half and white on
 //! the other lights a floor as a light of the white half alone does. Light sampling reads
 //! the texture where it samples the light, rays that hit the light where they hit it; MIS
-//! combines the two, so a mismatch between them would show as a difference.
+//! combines the two, so a mismatch between them would show as a difference; a mirror beside
+//! the light adds a caustic, which light paths leaving the textured light carry.
 
 use prism_integrator::{RenderSettings, render};
 use prism_scene::load::load_geometry;
@@ -42,9 +43,10 @@ fn square(x0: f32, y0: f32, x1: f32, y1: f32, z: f32, up: bool) -> (Vec<f32>, Ve
     (positions, uvs)
 }
 
-/// A grey floor under a ceiling light at z = 1 facing down, seen from an orthographic
-/// camera between them: the light is `light` (x0, x1 over y in [-0.5, 0.5]), emitting
-/// `emission` (a glTF material's emissive properties).
+/// A grey floor under a ceiling light at z = 1 facing down, seen from a pinhole camera
+/// between them (light paths connect to pinholes only), with a silver mirror beside them:
+/// the light is `light` (x0, x1 over y in [-0.5, 0.5]), emitting `emission` (a glTF
+/// material's emissive properties).
 fn scene(light: (f32, f32), emission: Value, image: Option<Vec<u8>>) -> Scene {
     let floor = square(-2.0, -2.0, 2.0, 2.0, 0.0, true);
     let lamp = square(light.0, -0.5, light.1, 0.5, 1.0, false);
@@ -56,7 +58,21 @@ fn scene(light: (f32, f32), emission: Value, image: Option<Vec<u8>>) -> Scene {
         views.len() - 1
     };
     let bytes = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
+    // A mirror standing on the floor beside the light, facing it: light it reflects onto
+    // the floor is a caustic, which light paths (leaving the light where its texture is
+    // read at the sampled point) carry.
+    let (x, z0, z1) = (1.2f32, 0.05f32, 1.2f32);
+    let mirror: Vec<f32> = [
+        [x, -1.0, z0],
+        [x, 1.0, z1],
+        [x, 1.0, z0],
+        [x, -1.0, z0],
+        [x, -1.0, z1],
+        [x, 1.0, z1],
+    ]
+    .concat();
     let floor_p = push(bytes(&floor.0), &mut bin);
+    let mirror_p = push(bytes(&mirror), &mut bin);
     let lamp_p = push(bytes(&lamp.0), &mut bin);
     let lamp_uv = push(bytes(&lamp.1), &mut bin);
     let image_view = image.map(|png| push(png, &mut bin));
@@ -79,22 +95,30 @@ fn scene(light: (f32, f32), emission: Value, image: Option<Vec<u8>>) -> Scene {
     let mut doc = json!({
         "asset": {"version": "2.0"},
         "scene": 0,
-        "scenes": [{"nodes": [0, 1, 2]}],
+        "scenes": [{"nodes": [0, 1, 2, 3]}],
         "nodes": [
             {"mesh": 0},
             {"mesh": 1},
-            {"camera": 0, "translation": [0, 0, 0.5]}
+            {"camera": 0, "translation": [0, 0, 0.8]},
+            {"mesh": 2}
         ],
-        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.01, "zfar": 10}}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 1.7, "znear": 0.01, "aspectRatio": 1.0}}],
         "meshes": [
             {"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]},
-            {"primitives": [{"attributes": {"POSITION": 1, "TEXCOORD_0": 2}, "material": 1}]}
+            {"primitives": [{"attributes": {"POSITION": 1, "TEXCOORD_0": 2}, "material": 1}]},
+            {"primitives": [{"attributes": {"POSITION": 3}, "material": 2}]}
         ],
         "materials": [
             {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0, "roughnessFactor": 1}},
-            lamp_material
+            lamp_material,
+            {"extensions": {"PRISM_spectral": {"type": "conductor", "metal": "ag"}}}
         ],
-        "accessors": [bounded(floor_p, &floor.0), bounded(lamp_p, &lamp.0), accessor(lamp_uv, "VEC2")],
+        "accessors": [
+            bounded(floor_p, &floor.0),
+            bounded(lamp_p, &lamp.0),
+            accessor(lamp_uv, "VEC2"),
+            bounded(mirror_p, &mirror)
+        ],
         "bufferViews": views,
         "buffers": [{"byteLength": bin.len(), "uri": "scene.bin"}]
     });
@@ -123,6 +147,10 @@ fn a_half_white_emissive_texture_lights_as_its_white_half() {
         textured.emission_spectra(),
         [SceneSpectrum::Texture(_)]
     ));
+    assert!(
+        textured.features().specular,
+        "the mirror's caustics go to light paths"
+    );
     let half = scene((0.0, 0.5), json!({"emissiveFactor": [1, 1, 1]}), None);
     let settings = RenderSettings {
         width: 16,
