@@ -485,3 +485,40 @@ fn gltf_emissive_textures_emit_per_texel() {
         "{mean}"
     );
 }
+
+/// Emission at the extremes of glTF's numbers stays finite: a strength of 3e38 saturates
+/// rather than overflowing to infinity (no NaN or inf leaves a spectrum).
+#[test]
+fn extreme_emissive_strengths_stay_finite() {
+    let image = png(2, 1, &[[0, 0, 0], [255, 128, 255]]);
+    for strength in [0.0f32, 1e-38, 1.0, 3e38] {
+        let (mut doc, bin) = textured_quad(
+            &image,
+            json!({
+                "emissiveFactor": [1.0, 1.0, 1.0],
+                "emissiveTexture": {"index": 0},
+                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
+            }),
+        );
+        doc["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
+        let Ok(loaded) = load_geometry(
+            &serde_json::to_vec(&doc).unwrap(),
+            &move |_| Ok(bin.clone()),
+            None,
+        ) else {
+            continue; // refused as an error: also fine
+        };
+        let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
+        let lambdas = SampledWavelengths::new([380.0, 550.0, 780.0], [1.0; 3]).unwrap();
+        for spectrum in scene.emission_spectra() {
+            for u in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                let e = spectrum.at_uv(Vec2::new(u, 0.5), &lambdas);
+                assert!(
+                    e.0.iter().all(|v| v.is_finite() && *v >= 0.0),
+                    "strength {strength}: {e:?}"
+                );
+            }
+            assert!(spectrum.evaluate(550.0).is_finite() && spectrum.max_value().is_finite());
+        }
+    }
+}

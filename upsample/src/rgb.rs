@@ -23,7 +23,8 @@ use crate::model::SigmoidPolynomial;
 pub enum RgbKind {
     /// A reflectance or transmittance: values in [0, 1].
     Albedo,
-    /// An unbounded positive quantity: scale times a sigmoid, scale = 2 max(r, g, b).
+    /// An unbounded positive quantity (components up to half of f64's range, so that the
+    /// scale stays finite): scale times a sigmoid, scale = 2 max(r, g, b).
     Unbounded,
     /// An emission: scale times a sigmoid times the space's illuminant (normalized to
     /// luminance 1), so RGB (1, 1, 1) emits exactly the illuminant.
@@ -93,10 +94,12 @@ impl RgbSpectrum {
         if rgb.iter().any(|c| !c.is_finite()) {
             return Err(UpsampleError::NonFinite(rgb));
         }
+        // Unbounded colours are scaled by 2 max(r, g, b): capped at half of f64's range
+        // so that the scale stays finite.
         let upper = if kind == RgbKind::Albedo {
             1.0
         } else {
-            f64::MAX
+            f64::MAX / 2.0
         };
         let clean = rgb.map(|c| c.clamp(0.0, upper));
         let clamped = clean != rgb;
@@ -168,13 +171,20 @@ impl RgbSpectrum {
         };
         let c = shape.coefficients.map(|c| c as f32);
         let s = crate::sigmoid::sigmoid_polynomial_lanes(c, lambda);
+        let white = match &self.illuminant {
+            Some(i) => i.evaluate_lanes(lambda),
+            None => [1.0; N],
+        };
         let scale = self.scale as f32;
-        match &self.illuminant {
-            Some(i) => {
-                let white = i.evaluate_lanes(lambda);
-                std::array::from_fn(|k| scale * s[k] * white[k])
-            }
-            None => s.map(|v| scale * v),
+        if scale.is_finite() {
+            // Saturated to f32's range: a spectrum never hands out infinity.
+            std::array::from_fn(|k| (scale * s[k] * white[k]).min(f32::MAX))
+        } else {
+            // A scale beyond f32 (emission strengths of 1e38 and more): the product in
+            // f64, which holds it, then saturated.
+            std::array::from_fn(|k| {
+                (self.scale * f64::from(s[k]) * f64::from(white[k])).min(f64::from(f32::MAX)) as f32
+            })
         }
     }
 }
