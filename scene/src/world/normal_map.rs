@@ -56,7 +56,13 @@ pub(crate) fn triangle_tangent(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> Vec
     let dpdv = (e2 * d1.x - e1 * d2.x) / det;
     let t = unit_or_zero(dpdu);
     if t == Vec3::ZERO || !dpdv.is_finite() {
-        return normal.any_orthonormal_vector().extend(1.0);
+        // Any unit tangent of the plane; of a degenerate triangle (no normal), x.
+        let any = if normal == Vec3::ZERO {
+            Vec3::X
+        } else {
+            normal.any_orthonormal_vector()
+        };
+        return any.extend(1.0);
     }
     let up = -dpdv;
     t.extend(if normal.cross(t).dot(up) < 0.0 {
@@ -69,6 +75,8 @@ pub(crate) fn triangle_tangent(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> Vec
 #[cfg(test)]
 mod tests {
     use std::sync::Arc;
+
+    use proptest::prelude::*;
 
     use super::*;
     use crate::world::{Encoding, UvTransform, Wrap};
@@ -116,6 +124,53 @@ mod tests {
                 .is_none()
         );
         assert!(NormalMap::new(map([0; 3], 1.0).texture, f32::NAN).is_err());
+    }
+
+    fn any_f32() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            Just(0.0f32),
+            Just(-0.0),
+            Just(1.0),
+            Just(-1.0),
+            Just(1e-45),
+            Just(3e38),
+            Just(f32::INFINITY),
+            Just(f32::NAN),
+            -2.0..2.0f32,
+        ]
+    }
+
+    proptest! {
+        /// Every input gives a unit normal or None (the caller keeps its own): nothing
+        /// non-finite leaves, whatever the tangent, texel or coordinates.
+        #[test]
+        fn perturbation_is_a_unit_vector_or_none(
+            n in prop::array::uniform3(-1.0..1.0f32),
+            t in prop::array::uniform4(any_f32()),
+            texel in prop::array::uniform3(any::<u8>()),
+            scale in prop_oneof![Just(0.0f32), Just(1.0), Just(-3.0), Just(3e38)],
+            uv in prop::array::uniform2(any_f32()),
+        ) {
+            let n = unit_or_zero(Vec3::from(n));
+            prop_assume!(n != Vec3::ZERO);
+            if let Some(p) = map(texel, scale).perturb(n, Vec4::from(t), Vec2::from(uv)) {
+                prop_assert!(p.is_finite() && (p.length() - 1.0).abs() < 1e-4, "{p}");
+            }
+        }
+
+        /// Derived tangents are unit vectors with a handedness of +-1 for any triangle,
+        /// degenerate ones and non-finite texture coordinates included.
+        #[test]
+        fn derived_tangents_are_unit(
+            p in prop::array::uniform9(any_f32()),
+            uv in prop::array::uniform6(any_f32()),
+        ) {
+            let v = [Vec3::new(p[0], p[1], p[2]), Vec3::new(p[3], p[4], p[5]), Vec3::new(p[6], p[7], p[8])];
+            let uv = [Vec2::new(uv[0], uv[1]), Vec2::new(uv[2], uv[3]), Vec2::new(uv[4], uv[5])];
+            let t = triangle_tangent(v, uv, crate::geometry::triangle_normal(v));
+            prop_assert!(t.is_finite() && (t.truncate().length() - 1.0).abs() < 1e-4, "{t}");
+            prop_assert!(t.w == 1.0 || t.w == -1.0);
+        }
     }
 
     /// The tangent follows u; the handedness is +1 where v runs down the image as glTF
