@@ -522,3 +522,29 @@ fn extreme_emissive_strengths_stay_finite() {
         }
     }
 }
+
+/// Light choice follows the texels: of a quad light whose emissive texture is white over
+/// one triangle and black over the other, the white triangle is chosen far more often, and
+/// the black one still sometimes (a tenth of the mean keeps every emitter in reach).
+#[test]
+fn textured_emitters_are_chosen_by_the_light_of_their_own_texels() {
+    // White where u + v > 1: the quad's first triangle (y <= x, v = 1 - y).
+    let texels: Vec<[u8; 3]> = (0..32 * 32)
+        .map(|k| {
+            if k % 32 + k / 32 + 1 > 32 {
+                [255; 3]
+            } else {
+                [0; 3]
+            }
+        })
+        .collect();
+    let image = png(32, 32, &texels);
+    let (doc, bin) = textured_quad(
+        &image,
+        json!({"emissiveFactor": [1.0, 1.0, 1.0], "emissiveTexture": {"index": 0}}),
+    );
+    let scene = Scene::from_loaded(load_quad(&doc, bin), &SceneOptions::default()).unwrap();
+    let (white, black) = (scene.lights().pmf(0), scene.lights().pmf(1));
+    assert!((white + black - 1.0).abs() < 1e-6);
+    assert!(black > 0.0 && white > 8.0 * black, "{white} vs {black}");
+}

@@ -3,9 +3,8 @@
 use prism_sampling::distribution::PiecewiseConstant1D;
 use prism_spectrum::Spectrum;
 
-use super::light::{light_extent, light_spectrum};
+use super::light::light_spectrum;
 use super::{Light, Material, SceneSpectrum};
-use glam::Vec3;
 
 /// Per material, for the fluorescent ones: the density, at 1 nm over the material's
 /// range, of the product of what the material re-radiates from each incident wavelength
@@ -18,17 +17,12 @@ use glam::Vec3;
 pub(crate) fn light_wavelengths(
     materials: &[Material],
     lights: &[Light],
-    triangles: &[[Vec3; 3]],
+    extents: &[f64],
     emission: &[SceneSpectrum],
-    scene_radius: f32,
 ) -> Vec<Option<PiecewiseConstant1D>> {
     if !materials.iter().any(Material::fluorescent) {
         return Vec::new();
     }
-    let extents: Vec<f64> = lights
-        .iter()
-        .map(|l| light_extent(l, triangles, scene_radius))
-        .collect();
     materials
         .iter()
         .map(|m| {
@@ -43,7 +37,7 @@ pub(crate) fn light_wavelengths(
                     let nm = lo + k as f64 + 0.5;
                     let flux: f64 = lights
                         .iter()
-                        .zip(&extents)
+                        .zip(extents)
                         .map(|(l, &e)| e * light_spectrum(l, emission).evaluate(nm).max(0.0))
                         .filter(|f| f.is_finite())
                         .sum();

@@ -568,6 +568,45 @@ pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius:
     }
 }
 
+/// The part of a textured emitter's light that triangle light `light` gives off, relative
+/// to its texture's mean colour (1 for every other light): its texels' mean luminance,
+/// estimated at 64 stratified points of the triangle, over the whole texture's. A tenth of
+/// the mean is kept for every triangle, so that a triangle whose light the estimate misses
+/// is still chosen sometimes (light choice must never rule out a triangle that emits).
+/// Chosen by this, the dark parts of a sign or a screen take few light samples.
+pub(crate) fn texture_coverage(
+    light: &Light,
+    uvs: &[[Vec2; 3]],
+    emission: &[SceneSpectrum],
+) -> f64 {
+    let Light::Triangle {
+        triangle,
+        emission: e,
+        ..
+    } = light
+    else {
+        return 1.0;
+    };
+    let (SceneSpectrum::Texture(texture), Some(uv)) =
+        (&emission[*e as usize], uvs.get(*triangle as usize))
+    else {
+        return 1.0;
+    };
+    let whole = texture.luminance(None);
+    if whole <= 0.0 || whole.is_nan() {
+        return 1.0;
+    }
+    const SIDE: u32 = 8;
+    let sum: f64 = (0..SIDE * SIDE)
+        .map(|k| {
+            let u = Vec2::new((k % SIDE) as f32 + 0.5, (k / SIDE) as f32 + 0.5) / SIDE as f32;
+            let b = uniform_triangle(u);
+            texture.luminance(Some(b[0] * uv[0] + b[1] * uv[1] + b[2] * uv[2]))
+        })
+        .sum();
+    0.1 + 0.9 * (sum / f64::from(SIDE * SIDE)) / whole
+}
+
 /// A light's spectrum (radiance, intensity or irradiance).
 pub(crate) fn light_spectrum<'a>(
     light: &'a Light,

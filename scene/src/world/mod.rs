@@ -243,7 +243,10 @@ impl Scene {
             });
         let extent: Vec<f64> = lights
             .iter()
-            .map(|l| light::light_extent(l, &triangles, radius))
+            .map(|l| {
+                light::light_extent(l, &triangles, radius)
+                    * light::texture_coverage(l, &attributes.uvs, &emission)
+            })
             .collect();
         let power: Vec<f64> = lights
             .iter()
@@ -252,8 +255,7 @@ impl Scene {
                 x * light::light_spectrum(l, &emission).mean_over(power_range.0, power_range.1)
             })
             .collect();
-        let light_wavelengths =
-            guide::light_wavelengths(&materials, &lights, &triangles, &emission, radius);
+        let light_wavelengths = guide::light_wavelengths(&materials, &lights, &extent, &emission);
         let lights = Lights::new(
             lights,
             &power,

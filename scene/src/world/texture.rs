@@ -324,6 +324,17 @@ impl SpectralTexture {
         )
     }
 
+    /// The relative luminance (Rec. 709 weights) of the texture's colour at `uv`, and
+    /// (None) of its mean colour: how light choice weighs emitters' parts.
+    pub(crate) fn luminance(&self, uv: Option<Vec2>) -> f64 {
+        let rgb = uv.map_or_else(|| self.rgb.mean(), |uv| self.rgb.sample(uv));
+        [0.2126, 0.7152, 0.0722]
+            .iter()
+            .zip(rgb)
+            .map(|(w, c)| w * f64::from(c))
+            .sum()
+    }
+
     /// Whether the texture is an emission.
     pub fn emits(&self) -> bool {
         matches!(self.kind, TextureKind::Emission { .. })
