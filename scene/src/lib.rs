@@ -14,7 +14,7 @@
 //! volumes (`KHR_materials_volume`, spectral Beer-Lambert absorption applied by the
 //! integrator when a ray leaves through a boundary's inside). Emissive textures make
 //! lights whose emission varies across them (read where a light is sampled and where a ray
-//! hits it; lights are chosen by their mean colour's power). Occlusion textures are
+//! hits it; each triangle is chosen by the light of its own texels). Occlusion textures are
 //! ignored: they fake what a path tracer computes.
 //!
 //! ## Why it is designed so
