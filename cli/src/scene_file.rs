@@ -52,5 +52,10 @@ pub fn load_with(
         overlay: overlay.as_ref(),
         upsampling,
     };
-    load_scene(&bytes, &resolve, &options).map_err(|e| format!("'{}': {e}", path.display()))
+    let loaded =
+        load_scene(&bytes, &resolve, &options).map_err(|e| format!("'{}': {e}", path.display()))?;
+    for warning in &loaded.warnings {
+        eprintln!("prism: warning: '{}': {warning}", path.display());
+    }
+    Ok(loaded)
 }

@@ -4,8 +4,8 @@
 //!
 //! EXR has no f64 channels, and f32 would lose the sums' low bits, so each sum is stored
 //! as its IEEE-754 bits split over two u32 channels (`X.hi`, `X.lo`, ...): lossless.
-//! Besides XYZ (or a camera's raw channels) a file holds whatever else the film
-//! accumulates: per-band spectral sums (`S0000.hi`, ...; the bands in the facts) and energy
+//! Besides XYZ (or a camera's raw channels) a file holds the coverage counts
+//! (`Coverage.*`, the alpha channel's) and whatever else the film accumulates: per-band spectral sums (`S0000.hi`, ...; the bands in the facts) and energy
 //! sums (`Energy.*` radiance, `Photons.*` photon radiance), so spectral and energy renders
 //! checkpoint, resume and merge like any other.
 
@@ -23,6 +23,8 @@ use crate::{Film, RenderError, SpectralBands};
 
 const XYZ: [&str; 3] = ["X", "Y", "Z"];
 const ENERGY: [&str; 2] = ["Energy", "Photons"];
+/// Per pixel, the camera rays that met geometry (the alpha channel's numerator).
+const COVERAGE: &str = "Coverage";
 const FACTS: &str = "prismAccumulation";
 
 /// The name of band `i`'s spectral sum channels (zero-padded: EXR sorts channels by name).
@@ -112,6 +114,7 @@ pub fn encode_accumulation(
     for (k, name) in XYZ.iter().enumerate() {
         list.extend(split_channels(name, film.sums().iter().map(move |s| s[k])));
     }
+    list.extend(split_channels(COVERAGE, film.coverage().iter().copied()));
     let mut extra = String::new();
     if let Some(bands) = film.bands() {
         let (n, sums) = (bands.count(), film.spectral_sums());
@@ -238,6 +241,17 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
     );
     let mut film = Film::from_parts(w, h, sums, samples, nonfinite)
         .ok_or_else(|| bad("non-finite sums".into()))?;
+    // Files written before coverage was recorded count every sample as covered.
+    if layer
+        .channel_data
+        .list
+        .iter()
+        .any(|c| c.name == *format!("{COVERAGE}.hi").as_str())
+    {
+        film = film
+            .with_coverage(values(COVERAGE)?)
+            .ok_or_else(|| bad("coverage counts that are negative or not finite".into()))?;
+    }
     if let Some(text) = fact(&facts, "bands") {
         let parse = || -> Option<SpectralBands> {
             let mut parts = text.split(':');

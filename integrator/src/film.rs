@@ -1,12 +1,21 @@
 //! The film: per-pixel sums of XYZ samples, in f64 so that a million samples per pixel
 //! lose nothing (the sum of 10^6 values near 1 keeps 10^-10 relative precision), with a
-//! count of the samples rejected as non-finite.
+//! count of the samples rejected as non-finite and each pixel's coverage (the camera rays
+//! that met geometry: the alpha channel).
 
 use prism_spectrum::color::RgbColorSpace;
 
 use crate::SpectralBands;
 use prism_spectrum::colorimetry::Xyz;
 use prism_spectrum::saturating_f32;
+
+/// Mutable views of every per-pixel sum of a film.
+pub(crate) struct FilmSums<'a> {
+    pub xyz: &'a mut [[f64; 3]],
+    pub spectral: &'a mut [f64],
+    pub energy: &'a mut [[f64; 2]],
+    pub coverage: &'a mut [f64],
+}
 
 /// Accumulated XYZ per pixel, row-major from the top-left.
 #[derive(Debug, Clone, PartialEq)]
@@ -15,6 +24,9 @@ pub struct Film {
     height: u32,
     /// Sum of the XYZ of every accepted sample.
     sums: Vec<[f64; 3]>,
+    /// Per pixel, how many of its camera rays met geometry (the rest escaped to the
+    /// environment or the void): its coverage, which EXR outputs write as alpha.
+    coverage: Vec<f64>,
     /// Samples taken per pixel (accepted or rejected: a rejected sample counts as zero,
     /// which keeps the estimator's normalization and so its expectation honest).
     samples: u64,
@@ -37,6 +49,7 @@ impl Film {
             width,
             height,
             sums: vec![[0.0; 3]; width as usize * height as usize],
+            coverage: vec![0.0; width as usize * height as usize],
             samples: 0,
             nonfinite: 0,
             spectral: None,
@@ -124,7 +137,8 @@ impl Film {
     }
 
     /// A film from its parts (merging and resuming): sums per pixel, samples per pixel,
-    /// non-finite count. None when the sums do not fit the size or are not finite.
+    /// non-finite count; every sample counted as covered (see [`Film::with_coverage`]).
+    /// None when the sums do not fit the size or are not finite.
     pub fn from_parts(
         width: u32,
         height: u32,
@@ -137,6 +151,7 @@ impl Film {
         .then_some(Self {
             width,
             height,
+            coverage: vec![samples as f64; sums.len()],
             sums,
             samples,
             nonfinite,
@@ -171,6 +186,40 @@ impl Film {
             self.spectral = Some((bands, sums));
             self
         })
+    }
+
+    /// This film with per-pixel coverage counts `coverage` (camera rays that met
+    /// geometry), or None when they do not fit its size or are not finite and
+    /// non-negative.
+    pub fn with_coverage(mut self, coverage: Vec<f64>) -> Option<Self> {
+        let fits = coverage.len() == self.sums.len();
+        (fits && coverage.iter().all(|v| v.is_finite() && *v >= 0.0)).then(|| {
+            self.coverage = coverage;
+            self
+        })
+    }
+
+    /// The per-pixel coverage counts (camera rays that met geometry).
+    pub fn coverage(&self) -> &[f64] {
+        &self.coverage
+    }
+
+    /// Pixel (x, y)'s alpha: the fraction of its camera rays that met geometry (0 before
+    /// any sample).
+    pub fn alpha(&self, x: u32, y: u32) -> f64 {
+        self.alpha_at((y * self.width + x) as usize)
+    }
+
+    fn alpha_at(&self, pixel: usize) -> f64 {
+        let n = self.samples.max(1) as f64;
+        (self.coverage[pixel] / n).clamp(0.0, 1.0)
+    }
+
+    /// Every pixel's alpha, row-major.
+    pub fn alphas(&self) -> Vec<f32> {
+        (0..self.coverage.len())
+            .map(|p| self.alpha_at(p) as f32)
+            .collect()
     }
 
     /// This film with energy sums `sums` (one pair per pixel), or None when they do not
@@ -214,9 +263,9 @@ impl Film {
         &self.sums
     }
 
-    /// The XYZ sums, the spectral sums (empty when not spectral) and the energy sums
-    /// (empty without energy), for filling by rows.
-    pub(crate) fn sums_mut(&mut self) -> (&mut [[f64; 3]], &mut [f64], &mut [[f64; 2]]) {
+    /// The XYZ sums, the spectral sums (empty when not spectral), the energy sums (empty
+    /// without energy) and the coverage counts, for filling by rows.
+    pub(crate) fn sums_mut(&mut self) -> FilmSums<'_> {
         let spectral: &mut [f64] = match &mut self.spectral {
             Some((_, s)) => s,
             None => &mut [],
@@ -225,7 +274,12 @@ impl Film {
             Some(e) => e,
             None => &mut [],
         };
-        (&mut self.sums, spectral, energy)
+        FilmSums {
+            xyz: &mut self.sums,
+            spectral,
+            energy,
+            coverage: &mut self.coverage,
+        }
     }
 
     pub(crate) fn finish_pass(&mut self, samples: u64, nonfinite: u64) {
@@ -301,6 +355,9 @@ impl Film {
             for (acc, v) in a.iter_mut().zip(b) {
                 *acc += v;
             }
+        }
+        for (a, b) in self.coverage.iter_mut().zip(&other.coverage) {
+            *a += b;
         }
         self.samples += other.samples;
         self.nonfinite += other.nonfinite;

@@ -162,14 +162,14 @@ impl<'a> Splatter<'a> {
     pub(crate) fn new(film: &'a mut crate::Film, filter: &'a FilterSampler) -> Self {
         let (width, height) = (film.width(), film.height());
         let band_count = film.bands().map_or(0, |b| b.count());
-        let (sums, spectral, energy) = film.sums_mut();
+        let sums = film.sums_mut();
         Self {
             width,
             height,
             band_count,
-            sums,
-            spectral,
-            energy,
+            sums: sums.xyz,
+            spectral: sums.spectral,
+            energy: sums.energy,
             filter,
         }
     }

@@ -24,7 +24,9 @@ pub struct ExrMetadata {
     pub strings: Vec<(String, String)>,
 }
 
-/// The film as a linear RGB EXR in `space`, f32 channels R, G, B; for a spectral film
+/// The film as a linear RGB EXR in `space`, f32 channels R, G, B, and A: each pixel's
+/// coverage, the fraction of its camera rays that met geometry (the environment or the
+/// void behind the rest still shows in R, G and B); for a spectral film
 /// also one channel per band in the spectral OpenEXR layout of Fichet, Pacanowski and
 /// Wilkie ("An OpenEXR layout for spectral images", JCGT 10(3), 2021): `S0.<nm>nm` with
 /// the wavelength written with a decimal comma (`S0.560,000000nm`), spectral radiance in
@@ -48,7 +50,12 @@ pub fn encode_exr(
     let channel = |name: &str, k: usize| {
         AnyChannel::new(name, FlatSamples::F32(rgb.iter().map(|p| p[k]).collect()))
     };
-    let mut list = vec![channel("R", 0), channel("G", 1), channel("B", 2)];
+    let mut list = vec![
+        channel("R", 0),
+        channel("G", 1),
+        channel("B", 2),
+        AnyChannel::new("A", FlatSamples::F32(film.alphas())),
+    ];
     if let Some(bands) = film.bands() {
         let n = film.samples().max(1) as f64;
         let count = bands.count();
@@ -135,37 +142,54 @@ pub struct DisplaySettings {
     pub exposure: f64,
     /// Tone map.
     pub tone_map: ToneMap,
+    /// Whether the PNG carries the film's alpha (RGBA, straight alpha: the film's
+    /// premultiplied colour divided by its coverage).
+    pub alpha: bool,
 }
 
 impl Default for DisplaySettings {
     fn default() -> Self {
         Self {
             exposure: 0.0,
-            tone_map: ToneMap::ReinhardExtended { white: 4.0 },
+            tone_map: ToneMap::PbrNeutral,
+            alpha: false,
         }
     }
 }
 
-/// The film as an 8-bit RGB PNG in `space` (encoded with the space's transfer function).
+/// The film as an 8-bit RGB PNG in `space` (encoded with the space's transfer function),
+/// or RGBA when `display.alpha`: the colour of each pixel is then its film colour over its
+/// coverage (PNG's alpha is straight), tone mapped, and the alpha its coverage.
 pub fn encode_png(film: &Film, space: &RgbColorSpace, display: DisplaySettings) -> Vec<u8> {
     let (w, h) = (film.width(), film.height());
     let weights = space.luminance_weights();
     let transfer = space.transfer();
     let rgb = film.to_rgb(space);
+    let alphas = film.alphas();
+    let channels = if display.alpha { 4 } else { 3 };
     // Each scanline starts with filter type 0 (none).
-    let mut raw = Vec::with_capacity((w as usize * 3 + 1) * h as usize);
-    for row in rgb.chunks(w as usize) {
+    let mut raw = Vec::with_capacity((w as usize * channels + 1) * h as usize);
+    for (y, row) in rgb.chunks(w as usize).enumerate() {
         raw.push(0u8);
-        for p in row {
+        for (x, p) in row.iter().enumerate() {
+            let alpha = f64::from(alphas[y * w as usize + x]);
+            let unpremultiply = if display.alpha && alpha > 0.0 {
+                1.0 / alpha
+            } else {
+                1.0
+            };
             let px = display_8bit(
-                p.map(f64::from),
+                p.map(|c| f64::from(c) * unpremultiply),
                 display.exposure,
                 display.tone_map,
                 weights,
                 transfer,
             );
             raw.extend_from_slice(&px);
+            if display.alpha {
+                raw.push((alpha.clamp(0.0, 1.0) * 255.0).round() as u8);
+            }
         }
     }
-    crate::png::encode_rgb8(w, h, &raw)
+    crate::png::encode_8bit(w, h, channels == 4, &raw)
 }

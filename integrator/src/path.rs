@@ -27,6 +27,8 @@ pub(crate) struct Tracer<'a> {
     /// delta bounces, then a non-delta, non-fluorescent surface the camera sees): camera
     /// paths then leave those to them, so that each path is counted by one estimator.
     pub light_caustics: bool,
+    /// Whether camera rays that leave the scene show nothing (a transparent background).
+    pub transparent: bool,
 }
 
 /// The sample-stream dimensions: the wavelength and the film position first, then a fixed
@@ -72,6 +74,8 @@ pub(crate) struct PathResult {
     pub valid: bool,
     /// Rays traced (camera, continuation and shadow rays).
     pub rays: u64,
+    /// Whether the camera ray met geometry (the pixel's coverage, its alpha).
+    pub covered: bool,
 }
 
 /// Beer-Lambert absorption of the segment `ray` just traced to `hit`, if it ran inside an
@@ -124,6 +128,7 @@ impl Tracer<'_> {
             return PathResult {
                 valid: false,
                 rays: 0,
+                covered: false,
             };
         };
         // The wavelengths light is evaluated at. They are the film's (`lambdas`, whose
@@ -147,10 +152,19 @@ impl Tracer<'_> {
         // neither a delta nor fluorescent, then only delta bounces (at least one).
         let mut caustic_prefix = false;
         let mut light_caustic = false;
+        let mut covered = false;
         loop {
             rays += 1;
-            let Some(hit) = self.scene.intersect(&ray) else {
-                if let Some((le, light_pdf)) = self.scene.escaped(&transport, &mut emission) {
+            let hit = self.scene.intersect(&ray);
+            covered |= depth == 0 && hit.is_some();
+            let Some(hit) = hit else {
+                if depth == 0 && self.transparent {
+                    break;
+                }
+                if let Some((le, light_pdf)) =
+                    self.scene
+                        .escaped(ray.direction.normalize(), &transport, &mut emission)
+                {
                     let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
@@ -315,6 +329,10 @@ impl Tracer<'_> {
             }
         }
         sink(&radiance, &lambdas);
-        PathResult { valid: true, rays }
+        PathResult {
+            valid: true,
+            rays,
+            covered,
+        }
     }
 }

@@ -54,8 +54,9 @@ fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
     out.extend_from_slice(&crc32(&[kind, data]).to_be_bytes());
 }
 
-/// A PNG of 8-bit RGB scanlines `raw`, each already prefixed by its filter byte.
-pub(crate) fn encode_rgb8(width: u32, height: u32, raw: &[u8]) -> Vec<u8> {
+/// A PNG of 8-bit RGB (RGBA when `alpha`) scanlines `raw`, each already prefixed by its
+/// filter byte.
+pub(crate) fn encode_8bit(width: u32, height: u32, alpha: bool, raw: &[u8]) -> Vec<u8> {
     let mut zlib = vec![0x78, 0x01];
     let blocks: Vec<&[u8]> = if raw.is_empty() {
         vec![&[]]
@@ -74,7 +75,8 @@ pub(crate) fn encode_rgb8(width: u32, height: u32, raw: &[u8]) -> Vec<u8> {
     let mut header = Vec::with_capacity(13);
     header.extend_from_slice(&width.to_be_bytes());
     header.extend_from_slice(&height.to_be_bytes());
-    header.extend_from_slice(&[8, 2, 0, 0, 0]);
+    // Colour type 2 is RGB, 6 RGBA.
+    header.extend_from_slice(&[8, if alpha { 6 } else { 2 }, 0, 0, 0]);
     chunk(&mut out, b"IHDR", &header);
     chunk(&mut out, b"IDAT", &zlib);
     chunk(&mut out, b"IEND", &[]);

@@ -12,6 +12,7 @@ use prism_scene::world::{Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
+use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
@@ -53,6 +54,7 @@ impl<'a> Renderer<'a> {
                 | Light::Spot { intensity: s, .. }
                 | Light::Directional { irradiance: s, .. }
                 | Light::Environment { radiance: s } => Some(s),
+                Light::EnvironmentMap { map } => Some(map.mean()),
                 Light::Triangle { .. } => None,
             })
             .chain(scene.emission_spectra())
@@ -123,6 +125,7 @@ impl<'a> Renderer<'a> {
             camera: settings.camera.as_deref(),
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
             light_caustics: self.light_caustics(),
+            transparent: settings.transparent,
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
@@ -152,7 +155,12 @@ impl<'a> Renderer<'a> {
         self.pool.install(|| {
             let width = settings.width as usize;
             let spectral_width = width * settings.bands.map_or(0, |b| b.count());
-            let (sums, spectral, energy) = pass.sums_mut();
+            let FilmSums {
+                xyz: sums,
+                spectral,
+                energy,
+                coverage,
+            } = pass.sums_mut();
             // Films without spectral or energy sums give each row an empty slice.
             let spectral_rows: Vec<&mut [f64]> = if spectral_width == 0 {
                 (0..settings.height)
@@ -171,8 +179,9 @@ impl<'a> Renderer<'a> {
             sums.par_chunks_mut(width)
                 .zip(spectral_rows)
                 .zip(energy_rows)
+                .zip(coverage.par_chunks_mut(width))
                 .enumerate()
-                .for_each(|(y, ((row, spectral_row), energy_row))| {
+                .for_each(|(y, (((row, spectral_row), energy_row), coverage_row))| {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
@@ -180,6 +189,7 @@ impl<'a> Renderer<'a> {
                         xyz: row,
                         spectral: spectral_row,
                         energy: energy_row,
+                        coverage: coverage_row,
                     };
                     let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
                     rays.fetch_add(r, Ordering::Relaxed);
@@ -265,12 +275,13 @@ pub fn render(
     Ok((film, stats))
 }
 
-/// One row's sums: XYZ, spectral bands (empty when not spectral) and energy (empty
-/// without energy output).
+/// One row's sums: XYZ, spectral bands (empty when not spectral), energy (empty
+/// without energy output) and coverage.
 struct RowOutput<'a> {
     xyz: &'a mut [[f64; 3]],
     spectral: &'a mut [f64],
     energy: &'a mut [[f64; 2]],
+    coverage: &'a mut [f64],
 }
 
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
@@ -285,6 +296,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
         xyz: row,
         spectral: spectral_row,
         energy: energy_row,
+        coverage,
     } = out;
     let (w, h) = (settings.width, settings.height);
     let aspect = w as f32 / h as f32;
@@ -311,6 +323,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 &mut |radiance, lambdas| value.add(tracer, settings.outputs, radiance, lambdas),
             );
             rays += result.rays;
+            coverage[x] += f64::from(u8::from(result.covered));
             if result.valid && value.finite() {
                 let spectral = spectral_row
                     .get_mut(x * band_count..(x + 1) * band_count)

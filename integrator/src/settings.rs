@@ -88,6 +88,9 @@ pub struct RenderSettings {
     /// surfaces (smooth glass or metal). Off, camera paths alone find them (unbiased, but
     /// a small light's caustic stays noise and a punctual light's is missing).
     pub light_paths: bool,
+    /// A transparent background: camera rays that leave the scene add nothing (the
+    /// environment still lights it), so the image is premultiplied by its alpha.
+    pub transparent: bool,
 }
 
 impl Default for RenderSettings {
@@ -110,6 +113,7 @@ impl Default for RenderSettings {
             bands: None,
             energy: false,
             light_paths: true,
+            transparent: false,
         }
     }
 }

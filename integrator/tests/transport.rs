@@ -702,7 +702,8 @@ fn spectral_film_recovers_a_blackbody_per_band() {
             assert!(text.contains(needle), "{needle} missing from the header");
         }
         let decoded = prism_integrator::decode_exr(&exr).unwrap();
-        assert_eq!(decoded.channels.len(), 3 + 16);
+        // R, G, B, A and the bands.
+        assert_eq!(decoded.channels.len(), 4 + 16);
     }
 }
 

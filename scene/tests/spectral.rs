@@ -3,7 +3,7 @@
 
 use prism_scene::load::{LightDesc, LoadError, LoadOptions, LoadedGeometry, load_scene};
 use prism_scene::spectral::Overlay;
-use prism_scene::world::{Material, Scene, SceneOptions, SceneSpectrum};
+use prism_scene::world::{Environment, Material, Scene, SceneOptions, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use serde_json::{Value, json};
 
@@ -252,7 +252,9 @@ emission = "gaussian:365:10"
         .as_ref()
         .unwrap();
     assert!((e.evaluate(365.0) - 1.0).abs() < 1e-9);
-    assert!(matches!(loaded.spectral.environment, Some(SceneSpectrum::Constant(v)) if v == 0.1));
+    assert!(
+        matches!(loaded.spectral.environment, Some(Environment::Uniform(SceneSpectrum::Constant(v))) if v == 0.1)
+    );
 }
 
 #[test]

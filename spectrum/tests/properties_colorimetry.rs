@@ -130,7 +130,7 @@ proptest! {
         white in prop_oneof![Just(0.0), Just(1e300), 0.1..100.0f64],
     ) {
         let weights = RgbSpaceId::Srgb.space().luminance_weights();
-        for tm in [ToneMap::Clamp, ToneMap::ReinhardExtended { white }, ToneMap::AcesFilmic] {
+        for tm in [ToneMap::Clamp, ToneMap::ReinhardExtended { white }, ToneMap::AcesFilmic, ToneMap::PbrNeutral] {
             let out = tm.apply(rgb, weights);
             prop_assert!(out.iter().all(|c| (0.0..=1.0).contains(c)), "{tm:?} {out:?}");
             let _ = display_8bit(rgb, exposure, tm, weights, TransferFunction::Srgb);

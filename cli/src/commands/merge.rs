@@ -3,8 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use prism_integrator::{decode_accumulation, encode_accumulation, merge_accumulations};
-use prism_spectrum::color::RgbSpaceId;
+use prism_integrator::{
+    DisplaySettings, decode_accumulation, encode_accumulation, merge_accumulations,
+};
+use prism_spectrum::color::{RgbSpaceId, ToneMap};
 
 use super::render::{check_outputs, write_images};
 use crate::output::write_atomically;
@@ -29,6 +31,12 @@ pub struct MergeArgs {
     /// PNG exposure in stops.
     #[arg(long, default_value_t = 0.0)]
     pub exposure: f64,
+    /// PNG tone mapping: neutral (Khronos PBR Neutral), aces, reinhard[:WHITE] or clamp.
+    #[arg(long, default_value = "neutral")]
+    pub tonemap: String,
+    /// PNG outputs carry the alpha channel (for parts rendered with --transparent).
+    #[arg(long)]
+    pub transparent: bool,
 }
 
 pub fn run(args: &MergeArgs) -> Result<(), String> {
@@ -62,5 +70,10 @@ pub fn run(args: &MergeArgs) -> Result<(), String> {
         "samples".to_string(),
         format!("{}..{}", merged.samples.start, merged.samples.end),
     )];
-    write_images(&merged.film, &args.outputs, space, args.exposure, facts)
+    let display = DisplaySettings {
+        exposure: args.exposure,
+        tone_map: ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?,
+        alpha: args.transparent,
+    };
+    write_images(&merged.film, &args.outputs, space, display, facts)
 }

@@ -12,10 +12,10 @@ use prism_integrator::{
     ResponseCurve, SpectralBands, decode_accumulation, encode_accumulation, encode_exr, encode_png,
 };
 use prism_scene::geometry::BvhQuality;
-use prism_scene::load::{LoadedGeometry, load_geometry};
-use prism_scene::world::{Scene, SceneOptions, SceneSpectrum};
+use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
+use prism_scene::world::{DEFAULT_ENVIRONMENT, Environment, Scene, SceneOptions, grey_environment};
 use prism_spectrum::Readable;
-use prism_spectrum::color::RgbSpaceId;
+use prism_spectrum::color::{RgbSpaceId, ToneMap};
 
 use crate::output::{check_writable, write_atomically};
 use crate::session::{self, Ending, Outcome, SessionOptions};
@@ -105,9 +105,30 @@ pub struct RenderArgs {
     /// BVH build effort: medium (default) or slow (a better tree for long renders).
     #[arg(long, default_value = "medium")]
     pub bvh: String,
-    /// A constant environment radiance (relative units, as emissive colours).
-    #[arg(long, allow_negative_numbers = true)]
-    pub environment: Option<f64>,
+    /// Light from infinity, replacing the scene's own: a number (a grey of that
+    /// emissive-colour value: 0.5 lights a white Lambertian plane to RGB 0.5) or an
+    /// equirectangular HDR image (.exr or .hdr; +y up, the top row the zenith, the centre
+    /// column towards +x), its texels read as emissive colours. A scene with no light at
+    /// all gets a grey of 1 (CIE D65), and prism says so.
+    #[arg(long, allow_negative_numbers = true, value_name = "VALUE|FILE")]
+    pub environment: Option<String>,
+    /// Turn the environment image by this many degrees about +y (counter-clockwise seen
+    /// from above).
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_negative_numbers = true,
+        value_name = "DEGREES"
+    )]
+    pub environment_rotation: f64,
+    /// Multiply the environment (number or image) by this factor.
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub environment_strength: f64,
     /// Leave caustics to camera paths alone: no light paths, even in scenes with smooth
     /// glass or metal (unbiased either way; without light paths a small light's caustic
     /// is noise and a punctual light's is missing).
@@ -120,6 +141,14 @@ pub struct RenderArgs {
     /// PNG exposure in stops.
     #[arg(long, default_value_t = 0.0)]
     pub exposure: f64,
+    /// PNG tone mapping: neutral (Khronos PBR Neutral, as glTF viewers show models: base
+    /// colours as authored, highlights compressed), aces, reinhard[:WHITE] or clamp.
+    #[arg(long, default_value = "neutral")]
+    pub tonemap: String,
+    /// A transparent background: rays that miss the scene show nothing (the environment
+    /// still lights it), and PNG outputs get the alpha channel too (EXR always has it).
+    #[arg(long)]
+    pub transparent: bool,
     /// Stop at the first whole sample per pixel after this many seconds.
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub time: Option<f64>,
@@ -179,21 +208,51 @@ fn scene_camera(loaded: &LoadedGeometry) -> Result<Option<CameraResponse>, Strin
         .map_err(|e| format!("the scene's {e}"))
 }
 
+/// The environment the command line asks for: a grey of an emissive-colour value, or an
+/// image file, either times --environment-strength.
+fn environment(args: &RenderArgs) -> Result<Option<Environment>, String> {
+    let (rotation, strength) = (args.environment_rotation, args.environment_strength);
+    if !rotation.is_finite() {
+        return Err(format!(
+            "--environment-rotation {} must be a finite number of degrees",
+            Readable(rotation)
+        ));
+    }
+    // Radiance is f32 in the renderer: beyond f32::MAX a value would saturate there.
+    let in_range = |v: f64| v >= 0.0 && v <= f64::from(f32::MAX);
+    if !in_range(strength) {
+        return Err(format!(
+            "--environment-strength {} must be >= 0 and at most f32's largest value, 3.4e38",
+            Readable(strength)
+        ));
+    }
+    let Some(text) = &args.environment else {
+        return Ok(None);
+    };
+    if let Ok(value) = text.parse::<f64>() {
+        let value = value * strength;
+        if !in_range(value) {
+            return Err(format!(
+                "--environment {} must be >= 0 and at most f32's largest value, 3.4e38",
+                Readable(value)
+            ));
+        }
+        return Ok(Some(Environment::Uniform(grey_environment(value))));
+    }
+    let path = Path::new(text);
+    let bytes =
+        std::fs::read(path).map_err(|e| format!("--environment '{}': {e}", path.display()))?;
+    let map = environment_map(&bytes, rotation, strength)
+        .map_err(|e| format!("--environment '{}': {e}", path.display()))?;
+    Ok(Some(Environment::Map(map)))
+}
+
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let space_id = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
     let lambda_sampler =
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
     let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
     check_outputs(&args.outputs)?;
-    // Radiance is f32 in the renderer: beyond f32::MAX a value would saturate there.
-    if let Some(e) = args.environment
-        && !(e >= 0.0 && e <= f64::from(f32::MAX))
-    {
-        return Err(format!(
-            "--environment {} must be >= 0 and at most f32's largest value, 3.4e38",
-            Readable(e)
-        ));
-    }
     let samples_only = args.sample_range.as_deref().map(parse_range).transpose()?;
     if samples_only.is_some()
         && let Some(out) = args.outputs.iter().find(|o| !has_extension(o, "exr"))
@@ -212,7 +271,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     let options = SceneOptions {
         camera: args.camera.clone(),
-        environment: args.environment.map(SceneSpectrum::Constant),
+        environment: environment(args)?,
         quality,
     };
     let camera = args
@@ -230,6 +289,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         None => scene_camera(&loaded)?,
     };
     let scene = Scene::from_loaded(loaded, &options).map_err(|e| e.to_string())?;
+    if scene.lit_by_default() {
+        eprintln!(
+            "prism: the scene has no light source; lighting it with a neutral environment \
+             (CIE D65, --environment {DEFAULT_ENVIRONMENT}); choose another with --environment VALUE|FILE"
+        );
+    }
     let (width, height) = image_size(args.width, args.height, scene.camera().aspect_ratio);
     if camera.is_some() && args.white_balance.is_some() {
         return Err(
@@ -256,6 +321,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         bands: spectral_bands(args)?,
         energy: args.energy,
         light_paths: !args.no_light_paths,
+        transparent: args.transparent,
         range,
         camera: camera.map(Arc::new),
         ..RenderSettings::default()
@@ -341,7 +407,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             Some(m) => film.adapted(m),
             None => film.clone(),
         };
-        write_images(&shown, &args.outputs, space_id, args.exposure, facts)?;
+        write_images(&shown, &args.outputs, space_id, display(args)?, facts)?;
     }
     if stats.nonfinite > 0 {
         eprintln!(
@@ -468,7 +534,7 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         .spectral_bands
         .map_or("none".into(), |n| format!("{n}@{}", args.spectral_range));
     format!(
-        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?};light_paths={};bands={bands};energy={};camera_response={:?}",
+        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?};light_paths={};bands={bands};energy={};camera_response={:?};transparent={}",
         args.scene
             .as_ref()
             .map_or("(default)".into(), |p| p.display().to_string()),
@@ -479,12 +545,16 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.lambda_sampler,
         args.filter,
         args.clamp,
-        args.environment,
+        args.environment.as_ref().map(|e| format!(
+            "{e}@{}deg*{}",
+            args.environment_rotation, args.environment_strength
+        )),
         args.wavelength_range.as_deref().unwrap_or("360:830"),
         args.scene_index,
         !args.no_light_paths,
         args.energy,
-        args.camera_response
+        args.camera_response,
+        args.transparent
     )
 }
 
@@ -545,13 +615,22 @@ pub fn check_outputs(outputs: &[PathBuf]) -> Result<(), String> {
     Ok(())
 }
 
-/// Writes `film` to every output: .exr as linear RGB in `space` with prism's facts, .png
-/// tone mapped with `exposure`.
+/// How --exposure, --tonemap and --transparent show a film in a PNG.
+fn display(args: &RenderArgs) -> Result<DisplaySettings, String> {
+    Ok(DisplaySettings {
+        exposure: args.exposure,
+        tone_map: ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?,
+        alpha: args.transparent,
+    })
+}
+
+/// Writes `film` to every output: .exr as linear RGB and alpha in `space` with prism's
+/// facts, .png as `display` says.
 pub fn write_images(
     film: &Film,
     outputs: &[PathBuf],
     space: RgbSpaceId,
-    exposure: f64,
+    display: DisplaySettings,
     facts: Vec<(String, String)>,
 ) -> Result<(), String> {
     let space = space.space();
@@ -563,10 +642,6 @@ pub fn write_images(
             };
             encode_exr(film, space, &metadata).map_err(|e| e.to_string())?
         } else {
-            let display = DisplaySettings {
-                exposure,
-                ..DisplaySettings::default()
-            };
             encode_png(film, space, display)
         };
         write_atomically(out, &bytes)?;

@@ -29,6 +29,24 @@ pub fn decode(text: &str) -> Option<Vec<u8>> {
     Some(out)
 }
 
+/// The bytes a URI names: a base64 `data:` URI decoded here, anything else through
+/// `resolve` (a path relative to the scene file).
+pub(crate) fn uri_bytes(
+    uri: &str,
+    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+) -> Result<Vec<u8>, String> {
+    match uri.strip_prefix("data:") {
+        Some(rest) => {
+            let payload = rest
+                .split_once(";base64,")
+                .map(|(_, p)| p)
+                .ok_or("only base64 data URIs are supported")?;
+            decode(payload).ok_or_else(|| "malformed base64 data URI".into())
+        }
+        None => resolve(uri).map_err(|e| format!("'{uri}': {e}")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::decode;

@@ -14,6 +14,8 @@ pub enum LoadError {
     Scene(String),
     /// A spectral description (`PRISM_spectral` or an overlay) that cannot be used.
     Spectral(String),
+    /// A glTF extension the file requires that prism does not read.
+    Unsupported(String),
 }
 
 impl fmt::Display for LoadError {
@@ -24,6 +26,7 @@ impl fmt::Display for LoadError {
             LoadError::Geometry(m) => write!(f, "geometry: {m}"),
             LoadError::Scene(m) => write!(f, "scene: {m}"),
             LoadError::Spectral(m) => write!(f, "spectral description: {m}"),
+            LoadError::Unsupported(m) => write!(f, "{m}"),
         }
     }
 }

@@ -50,6 +50,9 @@ pub struct LoadedGeometry {
     pub lights: Vec<LightDesc>,
     /// The scene-wide spectral description (the root's `PRISM_spectral`).
     pub spectral: SpectralScene,
+    /// What the caller should tell the user about the file: one line each, such as an
+    /// extension that prism ignores.
+    pub warnings: Vec<String>,
 }
 
 impl LoadedGeometry {
@@ -133,7 +136,7 @@ pub fn load_scene(
     options: &LoadOptions,
 ) -> Result<LoadedGeometry, LoadError> {
     let scene = options.scene;
-    let gltf = parse(bytes, options.overlay)?;
+    let (gltf, warnings) = parse(bytes, options.overlay)?;
     let buffers = gltf
         .buffers()
         .map(|buffer| {
@@ -189,7 +192,10 @@ pub fn load_scene(
             .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
     };
     super::instancing::check(&gltf, &scene)?;
-    let mut out = LoadedGeometry::default();
+    let mut out = LoadedGeometry {
+        warnings,
+        ..LoadedGeometry::default()
+    };
     // Fitting needs a context; scenes without colours never build one.
     let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
     let root_spectral = gltf.extension_value(spectral::EXTENSION);
@@ -303,10 +309,11 @@ pub fn load_scene(
 /// Extensions prism reads itself (from the raw JSON) that the gltf crate does not know.
 const EXTENSIONS_READ_RAW: &[&str] = &["KHR_materials_dispersion", spectral::EXTENSION];
 
-/// Parses and validates a glTF or GLB. The gltf crate rejects files that require an
-/// extension it does not know, so those prism reads itself are taken out of
+/// Parses and validates a glTF or GLB, with the warnings its extensions call for. A
+/// required extension prism does not read is an error. The gltf crate rejects files that
+/// require an extension it does not know, so those prism reads itself are taken out of
 /// `extensionsRequired` between parsing and the (otherwise unchanged) validation.
-fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<gltf::Gltf, LoadError> {
+fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<(gltf::Gltf, Vec<String>), LoadError> {
     // The gltf crate's validation errors begin with the words LoadError adds.
     let invalid = |e: gltf::Error| {
         let message = e.to_string();
@@ -318,11 +325,13 @@ fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<gltf::Gltf, LoadErro
     if let Some(overlay) = overlay {
         overlay.apply(&mut root)?;
     }
+    let warnings = super::extensions::check(&root.extensions_required, &root.extensions_used)
+        .map_err(LoadError::Unsupported)?;
     root.extensions_required
         .retain(|e| !EXTENSIONS_READ_RAW.contains(&e.as_str()));
     check_position_accessors(&root)?;
     let document = gltf::Document::from_json(root).map_err(invalid)?;
-    Ok(gltf::Gltf { document, blob })
+    Ok((gltf::Gltf { document, blob }, warnings))
 }
 
 /// The gltf crate's validation reads each primitive's `POSITION` accessor by indexing

@@ -3,7 +3,9 @@
 
 mod accessor;
 mod base64;
+mod environment;
 mod error;
+mod extensions;
 mod geometry;
 mod images;
 mod instancing;
@@ -12,6 +14,8 @@ mod materials;
 mod summary;
 mod textures;
 
+pub(crate) use base64::uri_bytes;
+pub use environment::{EnvironmentImage, HdrImage, decode_hdr_image, environment_map};
 pub use error::LoadError;
 pub use geometry::{LoadOptions, LoadedGeometry, MeshInstance, load_geometry, load_scene};
 pub use images::{DecodedImage, decode_image};

@@ -62,7 +62,12 @@ impl LoadedGeometry {
                 spectra.push(spectrum.clone());
             }
         }
-        spectra.extend(self.spectral.environment.clone());
+        spectra.extend(
+            self.spectral
+                .environment
+                .as_ref()
+                .map(|e| e.spectrum().clone()),
+        );
         let mut light_spectra: Vec<String> = spectra.iter().map(SceneSpectrum::describe).collect();
         light_spectra.sort();
         light_spectra.dedup();

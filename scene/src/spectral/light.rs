@@ -3,7 +3,7 @@
 use serde_json::Value;
 
 use super::value::{Context, Role, only_keys, spectrum};
-use crate::world::SceneSpectrum;
+use crate::world::{Environment, SceneSpectrum};
 
 /// A punctual light's spectrum.
 #[derive(Debug, Clone)]
@@ -43,8 +43,8 @@ pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String
 /// What the root's `PRISM_spectral` says about the whole scene.
 #[derive(Debug, Clone, Default)]
 pub struct SpectralScene {
-    /// Constant radiance arriving from every direction at infinity.
-    pub environment: Option<SceneSpectrum>,
+    /// Light arriving from infinity: a spectrum from every direction, or an image.
+    pub environment: Option<Environment>,
     /// The camera's response curves (channels shown as R, G, B) instead of the CIE 1931
     /// observer.
     pub camera_response: Option<[SceneSpectrum; 3]>,
@@ -76,8 +76,55 @@ pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String
     Ok(SpectralScene {
         environment: map
             .get("environment")
-            .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("environment: {e}")))
+            .map(|e| environment(e, cx).map_err(|e| format!("environment: {e}")))
             .transpose()?,
         camera_response,
     })
+}
+
+/// An environment: a spectrum (any emission form), or an image
+/// `{"image": URI, "rotation": DEGREES, "strength": S}` (rotation about +y, default 0;
+/// strength default 1), the URI relative to the glTF file or a data URI.
+fn environment(value: &Value, cx: &Context) -> Result<Environment, String> {
+    let Some(image) = value.as_object().and_then(|m| m.get("image")) else {
+        return spectrum(value, Role::Emission, cx).map(Environment::Uniform);
+    };
+    let map = value.as_object().ok_or("must be an object")?;
+    only_keys(map, &["image", "rotation", "strength"])?;
+    let uri = image
+        .as_str()
+        .ok_or("image must be a file name or data URI")?;
+    let number = |key: &str, default: f64| -> Result<f64, String> {
+        match map.get(key) {
+            None => Ok(default),
+            Some(v) => v
+                .as_f64()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("{key} must be a finite number")),
+        }
+    };
+    let (rotation, strength) = (number("rotation", 0.0)?, number("strength", 1.0)?);
+    if strength < 0.0 {
+        return Err(format!("strength {strength} must be >= 0"));
+    }
+    let bytes = crate::load::uri_bytes(uri, cx.resolve)?;
+    let image = crate::load::decode_hdr_image(&bytes)
+        .map_err(|e| format!("image '{}': {e}", short(uri)))?;
+    let map = cx
+        .upsampler
+        .environment_map(crate::load::EnvironmentImage {
+            image,
+            rotation,
+            strength,
+        })?;
+    Ok(Environment::Map(std::sync::Arc::new(map)))
+}
+
+/// A URI as an error names it: data URIs by their start.
+fn short(uri: &str) -> String {
+    if uri.starts_with("data:") {
+        format!("{}...", &uri[..uri.len().min(24)])
+    } else {
+        uri.to_string()
+    }
 }

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use prism_spectrum::optics::Cauchy;
 
-use super::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use super::{Environment, Light, Material, Scene, SceneParts, SceneSpectrum};
 use crate::bsdf::CoatingAlbedo;
 use crate::geometry::BvhQuality;
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
@@ -14,12 +14,15 @@ use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
 pub struct SceneOptions {
     /// The camera by name (default: the first, else one framing the scene).
     pub camera: Option<String>,
-    /// A constant environment radiance, replacing the file's own (`PRISM_spectral` on
-    /// the root), if any.
-    pub environment: Option<SceneSpectrum>,
+    /// An environment replacing the file's own (`PRISM_spectral` on the root), if any.
+    pub environment: Option<Environment>,
     /// BVH build effort.
     pub quality: BvhQuality,
 }
+
+/// The emissive-colour value of the environment that lights a scene without lights: a
+/// white Lambertian surface under it renders as RGB 1.
+pub const DEFAULT_ENVIRONMENT: f64 = 1.0;
 
 /// The material a glTF description becomes.
 ///
@@ -163,13 +166,19 @@ impl Scene {
                 }),
             }
         }
-        if let Some(radiance) = options
+        let environment = options
             .environment
             .as_ref()
-            .or(loaded.spectral.environment.as_ref())
-        {
+            .or(loaded.spectral.environment.as_ref());
+        if let Some(environment) = environment {
+            lights.push(environment.light());
+        }
+        // A file with no light at all (most real assets: viewers light them) is lit as a
+        // glTF viewer would, by a neutral environment: D65 of emissive-colour value 1.
+        let lit_by_default = lights.is_empty();
+        if lit_by_default {
             lights.push(Light::Environment {
-                radiance: radiance.clone(),
+                radiance: super::grey_environment(DEFAULT_ENVIRONMENT),
             });
         }
         // Normal maps per material, the default material's none; no list when no
@@ -200,6 +209,10 @@ impl Scene {
             lights,
             camera,
             quality: options.quality,
+        })
+        .map(|mut scene| {
+            scene.lit_by_default = lit_by_default;
+            scene
         })
         .map_err(LoadError::Scene)
     }

@@ -4,6 +4,7 @@
 //! wavelengths (`light_choice`).
 
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 use prism_sampling::distribution::{AliasTable, positive_finite};
@@ -14,7 +15,7 @@ use prism_sampling::warp::{
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::light_choice::SpectralChoice;
-use super::{EmissionCache, SceneSpectrum};
+use super::{EmissionCache, EnvironmentMap, SceneSpectrum};
 use crate::geometry::{
     Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
 };
@@ -65,6 +66,11 @@ pub enum Light {
     Environment {
         /// Radiance.
         radiance: SceneSpectrum,
+    },
+    /// Radiance from infinity that varies with direction: an environment image.
+    EnvironmentMap {
+        /// The image.
+        map: Arc<EnvironmentMap>,
     },
 }
 
@@ -240,7 +246,9 @@ impl Lights {
         for (i, light) in lights.iter().enumerate() {
             match light {
                 Light::Triangle { triangle, .. } => of_triangle[*triangle as usize] = i as u32,
-                Light::Environment { .. } => environment = Some(i as u32),
+                Light::Environment { .. } | Light::EnvironmentMap { .. } => {
+                    environment = Some(i as u32);
+                }
                 _ => {}
             }
         }
@@ -448,6 +456,16 @@ impl Lights {
                 pdf: pmf / (4.0 * PI),
                 delta: false,
             },
+            Light::EnvironmentMap { map } => {
+                let (wi, pdf, radiance) = map.sample(u, wavelengths)?;
+                LightSample {
+                    wi,
+                    distance: f32::INFINITY,
+                    radiance,
+                    pdf: pmf * pdf,
+                    delta: false,
+                }
+            }
         };
         (positive_finite(sample.pdf) && sample.wi.is_finite()).then_some(sample)
     }
@@ -535,7 +553,7 @@ impl Lights {
                     irradiance.at(wavelengths) * (PI * radius * radius / pmf),
                 )
             }
-            Light::Environment { .. } => return None,
+            Light::Environment { .. } | Light::EnvironmentMap { .. } => return None,
         };
         (ray.direction.is_finite() && ray.origin.is_finite() && !beta.is_black())
             .then_some(EmissionSample { ray, beta })
@@ -564,7 +582,7 @@ pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius:
             ..
         } => 2.0 * PI64 * (1.0 - 0.5 * f64::from(cos_inner + cos_outer)),
         Light::Directional { .. } => disk,
-        Light::Environment { .. } => PI64 * disk,
+        Light::Environment { .. } | Light::EnvironmentMap { .. } => PI64 * disk,
     }
 }
 
@@ -618,5 +636,6 @@ pub(crate) fn light_spectrum<'a>(
         | Light::Spot { intensity: s, .. }
         | Light::Directional { irradiance: s, .. }
         | Light::Environment { radiance: s } => s,
+        Light::EnvironmentMap { map } => map.mean(),
     }
 }

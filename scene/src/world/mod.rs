@@ -4,6 +4,7 @@
 //! evaluate, never RGB.
 
 mod emission_cache;
+mod environment;
 mod from_gltf;
 mod guide;
 mod light;
@@ -14,7 +15,8 @@ mod spectrum;
 mod texture;
 
 pub use emission_cache::EmissionCache;
-pub use from_gltf::SceneOptions;
+pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
+pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
 pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
@@ -140,6 +142,8 @@ pub struct Scene {
     radius: f32,
     /// Per material: where its re-radiated light comes from (fluorescent materials only).
     light_wavelengths: Vec<Option<prism_sampling::distribution::PiecewiseConstant1D>>,
+    /// Whether the scene had no light and is lit by the default environment.
+    lit_by_default: bool,
 }
 
 impl Scene {
@@ -277,7 +281,14 @@ impl Scene {
             centre,
             radius,
             light_wavelengths,
+            lit_by_default: false,
         })
+    }
+
+    /// Whether the scene's file had no light source and the scene is lit by the default
+    /// environment ([`from_gltf::DEFAULT_ENVIRONMENT`]) instead.
+    pub fn lit_by_default(&self) -> bool {
+        self.lit_by_default
     }
 
     /// The features the scene uses.
@@ -463,11 +474,12 @@ impl Scene {
         if pdf.is_finite() { pdf } else { 0.0 }
     }
 
-    /// Radiance arriving along a ray that leaves the scene, and the density with which
-    /// light sampling would have chosen its direction (`cache` as in
-    /// [`Scene::light_pdf`]).
+    /// Radiance arriving along unit direction `direction` from a ray that leaves the
+    /// scene, and the density with which light sampling would have chosen that direction
+    /// (`cache` as in [`Scene::light_pdf`]).
     pub fn escaped<const N: usize>(
         &self,
+        direction: Vec3,
         wavelengths: &SampledWavelengths<N>,
         cache: &mut EmissionCache<N>,
     ) -> Option<(SampledSpectrum<N>, f32)> {
@@ -476,6 +488,10 @@ impl Scene {
             Light::Environment { radiance } => Some((
                 radiance.at(wavelengths),
                 self.lights.pmf_at(l, wavelengths, cache) / (4.0 * std::f32::consts::PI),
+            )),
+            Light::EnvironmentMap { map } => Some((
+                map.radiance(direction, wavelengths),
+                self.lights.pmf_at(l, wavelengths, cache) * map.pdf(direction),
             )),
             _ => None,
         }

@@ -211,6 +211,25 @@ impl RgbTexture {
     }
 }
 
+/// The emission spectrum of linear RGB `rgb` through `table`: an illuminant-kind
+/// spectrum under `illuminant` (normalized to luminance 1), so that RGB (1, 1, 1) emits
+/// the illuminant itself. Emissive textures and environment images share it.
+pub(crate) fn illuminant_spectrum(
+    rgb: [f32; 3],
+    table: &CoefficientTable,
+    context: &FitContext,
+    illuminant: &Arc<DenselySampled>,
+) -> Result<RgbSpectrum, prism_upsample::UpsampleError> {
+    RgbSpectrum::from_table(
+        table,
+        context,
+        rgb.map(f64::from),
+        RgbKind::Illuminant,
+        Some(illuminant.clone()),
+        0,
+    )
+}
+
 /// A colour texture upsampled through a coefficient table at every lookup: a reflectance
 /// (base colour), or an emission (an illuminant-kind spectrum, as the scene's constant
 /// emissive colours are). As a function of wavelength alone (the [`Spectrum`] impl) it is
@@ -284,7 +303,7 @@ impl SpectralTexture {
         context: Arc<FitContext>,
         illuminant: Arc<DenselySampled>,
     ) -> Result<Self, String> {
-        let mean = Self::illuminant_of(rgb.mean(), &table, &context, &illuminant)
+        let mean = illuminant_spectrum(rgb.mean(), &table, &context, &illuminant)
             .map_err(|e| format!("emissive texture: {e}"))?;
         // Illuminant spectra are 2 max(r, g, b) times a sigmoid (at most 1) times the
         // illuminant: bounded by the brightest texel channel.
@@ -306,22 +325,6 @@ impl SpectralTexture {
                 max,
             },
         })
-    }
-
-    fn illuminant_of(
-        rgb: [f32; 3],
-        table: &CoefficientTable,
-        context: &FitContext,
-        illuminant: &Arc<DenselySampled>,
-    ) -> Result<RgbSpectrum, prism_upsample::UpsampleError> {
-        RgbSpectrum::from_table(
-            table,
-            context,
-            rgb.map(f64::from),
-            RgbKind::Illuminant,
-            Some(illuminant.clone()),
-            0,
-        )
     }
 
     /// The relative luminance (Rec. 709 weights) of the texture's colour at `uv`, and
@@ -360,7 +363,7 @@ impl SpectralTexture {
                 context,
                 illuminant,
                 ..
-            } => match Self::illuminant_of(rgb, &self.table, context, illuminant) {
+            } => match illuminant_spectrum(rgb, &self.table, context, illuminant) {
                 Ok(s) => SampledSpectrum(s.evaluate_lanes(wavelengths.lambdas())),
                 // Texels are finite: unreachable, and dark rather than a panic.
                 Err(_) => SampledSpectrum::splat(0.0),

@@ -1,0 +1,176 @@
+//! Environment images: decoding (Radiance .hdr, OpenEXR), the direction mapping, and the
+//! importance sampler (chi-square against its own density, which must integrate to 1).
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+use prism_sampling::stats::chi_square_test;
+use prism_sampling::stream::{IndependentStream, SampleStream};
+use prism_scene::load::{decode_hdr_image, environment_map};
+use prism_scene::world::EnvironmentMap;
+use prism_spectrum::SampledWavelengths;
+
+/// A Radiance RGBE file (flat scanlines) of `width` x `height` texels `texel(x, y)`.
+pub fn rgbe_file(width: u32, height: u32, texel: impl Fn(u32, u32) -> [f32; 3]) -> Vec<u8> {
+    let mut out =
+        format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n").into_bytes();
+    for y in 0..height {
+        for x in 0..width {
+            let c = texel(x, y);
+            let max = c[0].max(c[1]).max(c[2]);
+            if max < 1e-32 {
+                out.extend_from_slice(&[0, 0, 0, 0]);
+                continue;
+            }
+            // max = m 2^e with m in [0.5, 1).
+            let e = max.log2().floor() as i32 + 1;
+            let scale = 256.0 / 2f32.powi(e);
+            out.extend(c.map(|v| (v * scale).min(255.0) as u8));
+            out.push((e + 128) as u8);
+        }
+    }
+    out
+}
+
+/// A sky of radiance `sky` with a sun: texels within `sun_radius` texels of (`sx`, `sy`)
+/// have radiance `sun`.
+fn sky_with_sun(width: u32, height: u32, sky: f32, sun: f32) -> Vec<u8> {
+    let (sx, sy) = (width as f32 * 0.3, height as f32 * 0.25);
+    rgbe_file(width, height, |x, y| {
+        let d = Vec2::new(x as f32 + 0.5 - sx, y as f32 + 0.5 - sy).length();
+        if d < 1.5 {
+            [sun; 3]
+        } else {
+            [sky, sky * 0.9, sky * 1.1]
+        }
+    })
+}
+
+fn map(bytes: &[u8], rotation: f64) -> Arc<EnvironmentMap> {
+    environment_map(bytes, rotation, 1.0).expect("a valid environment image")
+}
+
+#[test]
+fn radiance_files_decode_to_their_values() {
+    let bytes = rgbe_file(3, 2, |x, y| [0.5 * (x + 1) as f32, 4.0 * y as f32, 0.25]);
+    let image = decode_hdr_image(&bytes).unwrap();
+    assert_eq!((image.width, image.height), (3, 2));
+    assert_eq!(image.rgb[0], [0.5, 0.0, 0.25]);
+    assert_eq!(image.rgb[5], [1.5, 4.0, 0.25]);
+    for bad in [&b"#?RADIANCE\n"[..], b"not an image", b""] {
+        assert!(decode_hdr_image(bad).is_err());
+    }
+}
+
+#[test]
+fn directions_and_coordinates_invert_each_other() {
+    let m = map(&rgbe_file(8, 4, |_, _| [1.0; 3]), 0.0);
+    // The convention: the image's centre column looks along +x, u = 3/4 along +z, the top
+    // row at +y.
+    let at = |u: f32, v: f32| m.direction(Vec2::new(u, v)).0;
+    assert!(at(0.5, 0.5).abs_diff_eq(Vec3::X, 1e-6));
+    assert!(at(0.75, 0.5).abs_diff_eq(Vec3::Z, 1e-6));
+    assert!(at(0.0, 0.5).abs_diff_eq(-Vec3::X, 1e-6));
+    assert!(at(0.3, 0.0).abs_diff_eq(Vec3::Y, 1e-6));
+    for (u, v) in [(0.1, 0.2), (0.6, 0.9), (0.99, 0.5), (0.25, 0.01)] {
+        let uv = m.uv(at(u, v));
+        assert!(uv.abs_diff_eq(Vec2::new(u, v), 1e-5), "{u} {v}: {uv}");
+    }
+    // Turned by 90 degrees about +y (counter-clockwise from above), what was along +x
+    // comes from -z.
+    let turned = map(&rgbe_file(8, 4, |_, _| [1.0; 3]), 90.0);
+    assert!(
+        turned
+            .direction(Vec2::new(0.5, 0.5))
+            .0
+            .abs_diff_eq(-Vec3::Z, 1e-6)
+    );
+    assert!(turned.uv(-Vec3::Z).abs_diff_eq(Vec2::new(0.5, 0.5), 1e-6));
+}
+
+/// Sampled directions, binned on the map's own (u, v) grid, against the density
+/// integrated over each cell in solid angle; the density integrates to 1.
+#[test]
+fn sampling_matches_the_density() {
+    let m = map(&sky_with_sun(32, 16, 0.2, 400.0), 30.0);
+    // Bins of 2 x 2 cells of the sampler's grid (4 cells a texel per axis for an image
+    // this small), so that the midpoint rule below integrates its steps exactly.
+    let (nu, nv, samples) = (64usize, 32usize, 300_000usize);
+    let lambdas = SampledWavelengths::<4>::new([450.0, 520.0, 600.0, 680.0], [1.0; 4]).unwrap();
+    let mut stream = IndependentStream::new(7, 0, 0);
+    let mut counts = vec![0u64; nu * nv];
+    let (mut valid, mut mismatched) = (0u64, 0u64);
+    for _ in 0..samples {
+        if let Some((d, pdf, radiance)) = m.sample(stream.next_2d(), &lambdas) {
+            // The density looked up by direction is the sampled one, except where rounding
+            // puts a direction on the other side of a cell's edge.
+            if (pdf - m.pdf(d)).abs() > 1e-3 * pdf {
+                mismatched += 1;
+            }
+            // What next-event estimation sees is what an escaping ray sees.
+            assert_eq!(radiance, m.radiance(d, &lambdas));
+            let uv = m.uv(d);
+            let (i, j) = ((uv.x * nu as f32) as usize, (uv.y * nv as f32) as usize);
+            counts[j.min(nv - 1) * nu + i.min(nu - 1)] += 1;
+            valid += 1;
+        }
+    }
+    const Q: usize = 8;
+    let expected: Vec<f64> = (0..nu * nv)
+        .map(|cell| {
+            let (i, j) = (cell % nu, cell / nu);
+            let mut mass = 0.0;
+            for a in 0..Q {
+                for b in 0..Q {
+                    let u = (i as f64 + (a as f64 + 0.5) / Q as f64) / nu as f64;
+                    let v = (j as f64 + (b as f64 + 0.5) / Q as f64) / nv as f64;
+                    let (d, sin_theta) = m.direction(Vec2::new(u as f32, v as f32));
+                    // dw = 2 pi^2 sin(theta) du dv.
+                    mass += f64::from(m.pdf(d))
+                        * 2.0
+                        * std::f64::consts::PI.powi(2)
+                        * f64::from(sin_theta);
+                }
+            }
+            mass / (Q * Q * nu * nv) as f64
+        })
+        .collect();
+    let total: f64 = expected.iter().sum();
+    assert!(
+        (total - 1.0).abs() < 2e-3,
+        "the density integrates to {total}"
+    );
+    assert!(valid as f64 > 0.999 * samples as f64);
+    assert!(
+        mismatched < 30,
+        "{mismatched} densities differ from the sampled ones"
+    );
+    let expected: Vec<f64> = expected.iter().map(|e| e * valid as f64).collect();
+    let p = chi_square_test(&counts, &expected).p_value;
+    assert!(p > 1e-3, "p = {p:.2e}");
+}
+
+/// The test has power: a density that ignores the sin(theta) of the map's area element
+/// (sampling uniformly in (u, v) within each texel's weight) fails it.
+#[test]
+fn chi_square_rejects_a_density_without_the_area_element() {
+    let m = map(&rgbe_file(16, 8, |_, _| [1.0; 3]), 0.0);
+    let (nv, samples) = (16usize, 100_000usize);
+    let lambdas = SampledWavelengths::<1>::new([550.0], [1.0]).unwrap();
+    let mut stream = IndependentStream::new(3, 0, 0);
+    let mut counts = vec![0u64; nv];
+    for _ in 0..samples {
+        let (d, _, _) = m.sample(stream.next_2d(), &lambdas).unwrap();
+        counts[((m.uv(d).y * nv as f32) as usize).min(nv - 1)] += 1;
+    }
+    let uniform_in_v = vec![samples as f64 / nv as f64; nv];
+    assert!(chi_square_test(&counts, &uniform_in_v).p_value < 1e-6);
+}
+
+#[test]
+fn a_black_image_gives_no_samples_and_no_density() {
+    let m = map(&rgbe_file(4, 2, |_, _| [0.0; 3]), 0.0);
+    let lambdas = SampledWavelengths::<1>::new([550.0], [1.0]).unwrap();
+    assert!(m.sample(Vec2::new(0.3, 0.6), &lambdas).is_none());
+    assert_eq!(m.pdf(Vec3::Y), 0.0);
+}
