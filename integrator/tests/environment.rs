@@ -4,6 +4,8 @@
 //! with the low noise that importance sampling gives.
 
 mod common;
+#[path = "../../scene/tests/support/rgbe.rs"]
+mod rgbe;
 
 use std::sync::Arc;
 
@@ -15,23 +17,7 @@ use prism_scene::load::environment_map;
 use prism_scene::world::{
     EnvironmentMap, Light, Material, Scene, SceneParts, SceneSpectrum, grey_environment,
 };
-
-/// A Radiance RGBE file (flat scanlines) of `width` x `height` texels `texel(x, y)`.
-fn rgbe_file(width: u32, height: u32, texel: impl Fn(u32, u32) -> [f32; 3]) -> Vec<u8> {
-    let mut out =
-        format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n").into_bytes();
-    for y in 0..height {
-        for x in 0..width {
-            let c = texel(x, y);
-            let max = c[0].max(c[1]).max(c[2]);
-            let e = max.log2().floor() as i32 + 1;
-            let scale = 256.0 / 2f32.powi(e);
-            out.extend(c.map(|v| (v * scale).min(255.0) as u8));
-            out.push((e + 128) as u8);
-        }
-    }
-    out
-}
+use rgbe::rgbe_file;
 
 fn white() -> Material {
     Material::Diffuse {

@@ -117,14 +117,16 @@ impl Camera {
     }
 
     /// A perspective camera (45 degree vertical field of view) looking down -z at the box
-    /// `[lo, hi]` from far enough in +z that the whole box is in view at any aspect >= 1:
-    /// what a scene without a camera gets.
+    /// `[lo, hi]`, as the glTF Sample Viewer frames a model (`fitDistanceToExtents`): the
+    /// larger of the box's x and y extents fills the view (at any aspect >= 1) with a 5%
+    /// margin, measured at the box's front face so that nothing nearer is cut off. What a
+    /// scene without a camera gets.
     pub fn framing(lo: Vec3, hi: Vec3) -> Self {
         let yfov = 45f32.to_radians();
-        let center = 0.5 * (lo + hi);
-        let radius = (0.5 * (hi - lo)).length().max(1e-3);
-        // The bounding sphere fits the vertical field of view.
-        let distance = radius / (0.5 * yfov).sin();
+        let (center, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+        let fit = 1.05 * half.x.max(half.y) / (0.5 * yfov).tan();
+        // A flat or point-like model still gets a camera in front of it.
+        let distance = half.z + fit.max(1e-3 * half.length()).max(1e-3);
         Self {
             name: "default".into(),
             to_world: Mat4::from_translation(center + Vec3::new(0.0, 0.0, distance)),

@@ -93,7 +93,8 @@ fn orthographic_rays_are_parallel() {
     assert!((b.origin - Vec3::new(3.0, 1.0, 3.0)).length() < 1e-6);
 }
 
-/// A scene without a camera gets one that sees its whole bounding box.
+/// A scene without a camera gets one that sees its whole bounding box, and fills most of
+/// the view with it (as the glTF Sample Viewer frames a model), not a sliver of it.
 #[test]
 fn the_default_camera_frames_the_scene() {
     let (lo, hi) = (Vec3::new(-3.0, -1.0, -2.0), Vec3::new(5.0, 4.0, 0.5));
@@ -102,6 +103,7 @@ fn the_default_camera_frames_the_scene() {
     let Projection::Perspective { yfov } = camera.projection else {
         panic!()
     };
+    let mut widest = 0.0f32;
     for i in 0..8 {
         let corner = Vec3::new(
             if i & 1 == 0 { lo.x } else { hi.x },
@@ -118,5 +120,11 @@ fn the_default_camera_frames_the_scene() {
             (d.x / -d.z).abs() <= (yfov / 2.0).tan() + 1e-6,
             "corner {corner} beside the view"
         );
+        widest = widest.max(d.x.abs().max(d.y.abs()) / -d.z);
     }
+    assert!(
+        widest > 0.9 * (yfov / 2.0).tan(),
+        "the box spans {widest} of {}",
+        (yfov / 2.0).tan()
+    );
 }

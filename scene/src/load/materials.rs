@@ -334,7 +334,7 @@ pub(crate) fn material(
         .map(|normal| textures.normal(&normal).map(Arc::new))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
-    Ok(MaterialDesc {
+    let desc = MaterialDesc {
         name,
         base_color,
         metallic: unit(metallic),
@@ -351,5 +351,46 @@ pub(crate) fn material(
         absorption,
         dispersion,
         spectral,
-    })
+    };
+    if material.unlit() {
+        return unlit(desc, material, textures, upsampler);
+    }
+    Ok(desc)
+}
+
+/// `KHR_materials_unlit` as the extension suggests for renderers that light everything
+/// physically: the surface emits its base colour (factor times texture, an emissive
+/// colour) and reflects nothing, so it is seen with exactly its authored colour.
+fn unlit(
+    mut desc: MaterialDesc,
+    material: &gltf::Material,
+    textures: &TextureLoader,
+    upsampler: &Upsampler,
+) -> Result<MaterialDesc, LoadError> {
+    let name = desc.name.clone();
+    let error = |e: String| LoadError::Geometry(format!("material {name}: unlit base colour: {e}"));
+    let pbr = material.pbr_metallic_roughness();
+    let base = pbr.base_color_factor();
+    let colour = [base[0], base[1], base[2]];
+    desc.emission = if colour.iter().all(|&c| c <= 0.0) {
+        None
+    } else {
+        Some(
+            upsampler
+                .fit(colour.map(f64::from), RgbKind::Illuminant)
+                .map_err(error)?,
+        )
+    };
+    desc.emissive_texture = match (&desc.emission, pbr.base_color_texture()) {
+        (Some(_), Some(info)) => Some(textures.emission(&info, colour).map_err(error)?),
+        _ => None,
+    };
+    desc.base_color = upsampler.fit([0.0; 3], RgbKind::Albedo).map_err(error)?;
+    desc.base_color_texture = None;
+    desc.metallic_roughness_texture = None;
+    desc.normal_texture = None;
+    desc.metallic = 0.0;
+    desc.roughness = 1.0;
+    desc.transmission = 0.0;
+    Ok(desc)
 }

@@ -1,0 +1,169 @@
+//! Real-world-shaped glTF files (scenes/assets, from scenes/tools/make_assets.py): every
+//! one renders lit, framed and with an alpha channel; the features they carry show.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{assert_one_line_errors, assert_success, prism, temp_dir};
+use prism_integrator::decode_exr;
+
+fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/assets")
+}
+
+fn asset(name: &str) -> String {
+    assets().join(name).to_str().unwrap().to_string()
+}
+
+/// Channel `name` of an EXR file.
+fn channel(exr: &Path, name: &str) -> Vec<f32> {
+    let image = decode_exr(&std::fs::read(exr).unwrap()).unwrap();
+    image
+        .channels
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no channel {name}"))
+        .1
+}
+
+/// Renders `scene` (with `extra` arguments) to a 32 x 32 EXR at 4 spp; returns the EXR's
+/// path and the run's stderr.
+fn render(dir: &Path, scene: &str, extra: &[&str]) -> (PathBuf, String) {
+    let exr = dir.join(format!(
+        "{}.exr",
+        Path::new(scene).file_stem().unwrap().to_str().unwrap()
+    ));
+    let mut args = vec![
+        "render", scene, "--spp", "4", "--width", "32", "--height", "32", "-q", "-o",
+    ];
+    args.push(exr.to_str().unwrap());
+    args.extend_from_slice(extra);
+    let out = prism(&args);
+    assert_success(&out);
+    (exr, String::from_utf8_lossy(&out.stderr).to_string())
+}
+
+/// Every asset that prism can read renders lit (its covered pixels are not black),
+/// framed (what it covers spans most of the image one way, and not all of it both
+/// ways, unless its own camera fills the view) and with an alpha channel.
+#[test]
+fn every_asset_renders_lit_framed_and_with_alpha() {
+    let dir = temp_dir("assets");
+    let mut names: Vec<String> = std::fs::read_dir(assets())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_str().unwrap().to_string())
+        .filter(|n| n.ends_with(".gltf") && !n.starts_with("requires-"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 5, "{names:?}");
+    for name in names {
+        let (exr, _) = render(&dir, &asset(&name), &[]);
+        let alpha = channel(&exr, "A");
+        let (r, g) = (channel(&exr, "R"), channel(&exr, "G"));
+        let covered: Vec<usize> = (0..alpha.len()).filter(|&i| alpha[i] > 0.5).collect();
+        assert!(!covered.is_empty(), "{name}: nothing in view");
+        let lit = covered.iter().map(|&i| r[i] + g[i]).sum::<f32>() / covered.len() as f32;
+        assert!(lit > 0.02, "{name}: covered pixels are dark ({lit})");
+        let (xs, ys): (Vec<usize>, Vec<usize>) = covered.iter().map(|&i| (i % 32, i / 32)).unzip();
+        let span = |v: &[usize]| v.iter().max().unwrap() - v.iter().min().unwrap() + 1;
+        assert!(
+            span(&xs).max(span(&ys)) >= 20,
+            "{name}: the model spans {}x{} of 32x32 pixels",
+            span(&xs),
+            span(&ys)
+        );
+    }
+}
+
+#[test]
+fn a_file_without_lights_is_lit_by_default_and_says_so() {
+    let dir = temp_dir("asset-notice");
+    let (_, stderr) = render(&dir, &asset("box.gltf"), &[]);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("no light source") && stderr.contains("--environment"));
+    // A file with its own light (the unlit quad emits) gets no notice.
+    let (_, stderr) = render(&dir, &asset("unlit.gltf"), &[]);
+    assert!(stderr.is_empty(), "{stderr}");
+}
+
+/// An unlit material is seen with exactly its base colour (0.2, 0.5, 0.8).
+#[test]
+fn an_unlit_quad_shows_its_base_colour() {
+    let dir = temp_dir("asset-unlit");
+    let (exr, _) = render(&dir, &asset("unlit.gltf"), &[]);
+    for (name, expected) in [("R", 0.2f32), ("G", 0.5), ("B", 0.8)] {
+        let values = channel(&exr, name);
+        let mean = values.iter().sum::<f32>() / values.len() as f32;
+        assert!(
+            (mean - expected).abs() < 0.01 * expected + 2e-3,
+            "{name}: {mean} vs {expected}"
+        );
+    }
+    assert!(channel(&exr, "A").iter().all(|&a| a == 1.0));
+}
+
+/// One convention for environment radiance: `--environment 0.5`, an image whose texels
+/// are all 0.5, and the same image at strength 2 with value 0.25... all light a white
+/// Lambertian plane to RGB 0.5.
+#[test]
+fn environment_numbers_and_images_mean_emissive_colours() {
+    let dir = temp_dir("asset-environment");
+    let plane = asset("white-plane.gltf");
+    let hdr = asset("grey-0.5.hdr");
+    let cases: [&[&str]; 4] = [
+        &["--environment", "0.5"],
+        &["--environment", "0.25", "--environment-strength", "2"],
+        &["--environment", &hdr],
+        &["--environment", &hdr, "--environment-rotation", "77"],
+    ];
+    for extra in cases {
+        let (exr, stderr) = render(&dir, &plane, extra);
+        assert!(stderr.is_empty(), "{extra:?}: {stderr}");
+        for name in ["R", "G", "B"] {
+            let values = channel(&exr, name);
+            let mean = values.iter().sum::<f32>() / values.len() as f32;
+            assert!((mean - 0.5).abs() < 0.01, "{extra:?} {name}: {mean}");
+        }
+    }
+}
+
+#[test]
+fn extensions_prism_cannot_read_are_errors_when_required_and_warnings_when_used() {
+    let dir = temp_dir("asset-warnings");
+    let out = dir.join("x.png");
+    assert_one_line_errors(&[(
+        &[
+            "render",
+            &asset("requires-draco.gltf"),
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        "requires glTF extension KHR_draco_mesh_compression",
+    )]);
+    let (_, stderr) = render(&dir, &asset("uses-unknown.gltf"), &[]);
+    for extension in ["KHR_materials_sheen", "VENDOR_made_up"] {
+        let lines = stderr.lines().filter(|l| l.contains(extension)).count();
+        assert_eq!(lines, 1, "{extension}: {stderr}");
+    }
+}
+
+/// `--transparent`: pixels that miss the model are transparent black in the EXR and have
+/// alpha 0 in an RGBA PNG.
+#[test]
+fn transparent_renders_leave_the_background_empty() {
+    let dir = temp_dir("asset-transparent");
+    let png = dir.join("box.png");
+    let (exr, _) = render(
+        &dir,
+        &asset("box.gltf"),
+        &["--transparent", "-o", png.to_str().unwrap()],
+    );
+    let (alpha, r) = (channel(&exr, "A"), channel(&exr, "R"));
+    assert_eq!(alpha[0], 0.0);
+    assert_eq!(r[0], 0.0);
+    assert!(alpha.contains(&1.0));
+    let bytes = std::fs::read(&png).unwrap();
+    // IHDR colour type 6: RGBA.
+    assert_eq!(bytes[25], 6);
+}

@@ -1,0 +1,236 @@
+"""Writes scenes/assets/: small glTF files shaped like the models people download or export
+from Blender (no lights, no camera, the glTF features real files use), each exercising one
+feature so that a test can show it matters. The CLI tests render every file here; the
+fuzz tool mutates them.
+
+The Khronos sample models themselves are not reachable here; these follow the glTF 2.0
+specification and the extensions' texts. Run from the repository root:
+
+    python3 scenes/tools/make_assets.py
+"""
+
+import base64
+import json
+import math
+import os
+import struct
+
+from gltf_build import box, png
+
+OUT = "scenes/assets"
+
+
+class Asset:
+    """A glTF document with an embedded buffer, written by hand so that each file shows
+    its feature plainly (accessor types, node trees, extensions)."""
+
+    def __init__(self):
+        self.blob = b""
+        self.doc = {
+            "asset": {"version": "2.0", "generator": "prism scenes/tools/make_assets.py"},
+            "scene": 0,
+            "scenes": [{"nodes": []}],
+            "nodes": [],
+            "meshes": [],
+            "materials": [],
+            "accessors": [],
+            "bufferViews": [],
+        }
+
+    def view(self, data, stride=None):
+        self.blob += b"\x00" * (-len(self.blob) % 4)
+        view = {"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data)}
+        if stride:
+            view["byteStride"] = stride
+        self.doc["bufferViews"].append(view)
+        self.blob += data
+        return len(self.doc["bufferViews"]) - 1
+
+    def accessor(self, values, kind, component=5126, normalized=False, view=None, offset=0):
+        """An accessor of `values` (tuples, or scalars for SCALAR) of glTF component type
+        `component` (5120 byte, 5121 ubyte, 5122 short, 5123 ushort, 5125 uint, 5126
+        float)."""
+        fmt = {5120: "b", 5121: "B", 5122: "h", 5123: "H", 5125: "I", 5126: "f"}[component]
+        flat = [v for t in values for v in (t if isinstance(t, (tuple, list)) else (t,))]
+        if view is None:
+            data = struct.pack(f"<{len(flat)}{fmt}", *flat)
+            view = self.view(data)
+        accessor = {"bufferView": view, "byteOffset": offset, "componentType": component, "count": len(values), "type": kind}
+        if normalized:
+            accessor["normalized"] = True
+        if kind == "VEC3" and component == 5126:
+            accessor["min"] = [min(v[i] for v in values) for i in range(3)]
+            accessor["max"] = [max(v[i] for v in values) for i in range(3)]
+        self.doc["accessors"].append(accessor)
+        return len(self.doc["accessors"]) - 1
+
+    def material(self, **fields):
+        self.doc["materials"].append(fields)
+        return len(self.doc["materials"]) - 1
+
+    def mesh(self, primitives, name=None):
+        mesh = {"primitives": primitives}
+        if name:
+            mesh["name"] = name
+        self.doc["meshes"].append(mesh)
+        return len(self.doc["meshes"]) - 1
+
+    def node(self, root=True, **fields):
+        self.doc["nodes"].append(fields)
+        index = len(self.doc["nodes"]) - 1
+        if root:
+            self.doc["scenes"][0]["nodes"].append(index)
+        return index
+
+    def texture(self, png_bytes, sampler=None):
+        doc = self.doc
+        doc.setdefault("images", []).append({"bufferView": self.view(png_bytes), "mimeType": "image/png"})
+        doc.setdefault("samplers", []).append(sampler or {})
+        doc.setdefault("textures", []).append({"source": len(doc["images"]) - 1, "sampler": len(doc["samplers"]) - 1})
+        return len(doc["textures"]) - 1
+
+    def write(self, name):
+        self.doc["buffers"] = [
+            {"byteLength": len(self.blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(self.blob).decode()}
+        ]
+        doc = {k: v for k, v in self.doc.items() if v != []}
+        with open(os.path.join(OUT, name), "w") as f:
+            json.dump(doc, f, indent=1)
+            f.write("\n")
+
+
+def cube_primitive(asset, material, half=0.5):
+    """An indexed cube with per-face normals and UVs, as exporters write it."""
+    positions, normals, uvs, indices = [], [], [], []
+    for axis in range(3):
+        for sign in (-1.0, 1.0):
+            n = [0.0, 0.0, 0.0]
+            n[axis] = sign
+            u = [0.0, 0.0, 0.0]
+            u[(axis + 1) % 3] = 1.0
+            v = [n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]]
+            base = len(positions)
+            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                positions.append(tuple(half * (n[i] + a * u[i] + b * v[i]) for i in range(3)))
+                normals.append(tuple(n))
+                uvs.append(((a + 1) / 2, (1 - b) / 2))
+            indices += [base, base + 1, base + 2, base, base + 2, base + 3]
+    return {
+        "attributes": {
+            "POSITION": asset.accessor(positions, "VEC3"),
+            "NORMAL": asset.accessor(normals, "VEC3"),
+            "TEXCOORD_0": asset.accessor(uvs, "VEC2"),
+        },
+        "indices": asset.accessor(indices, "SCALAR", 5123),
+        "material": material,
+    }
+
+
+def quad_primitive(asset, material, corners, extra=None):
+    positions = [tuple(c) for c in corners]
+    uvs = [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)]
+    attributes = {"POSITION": asset.accessor(positions, "VEC3"), "TEXCOORD_0": asset.accessor(uvs, "VEC2")}
+    attributes.update(extra or {})
+    return {"attributes": attributes, "indices": asset.accessor([0, 1, 2, 0, 2, 3], "SCALAR", 5123), "material": material}
+
+
+def boxed():
+    """The Khronos "Box": a red cube under a node with a matrix (Y-up from Z-up), no light,
+    no camera."""
+    a = Asset()
+    red = a.material(name="Red", pbrMetallicRoughness={"baseColorFactor": [0.8, 0.0, 0.0, 1.0], "metallicFactor": 0.0})
+    mesh = a.mesh([cube_primitive(a, red)], "Mesh")
+    child = a.node(root=False, mesh=mesh)
+    a.node(children=[child], matrix=[1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1])
+    a.write("box.gltf")
+
+
+def orientation():
+    """Like "OrientationTest": cubes along +x, +y, +z (red, green, blue) around a grey
+    centre, spread far from the origin, so a default camera must frame them all."""
+    a = Asset()
+    grey = a.material(name="grey", pbrMetallicRoughness={"baseColorFactor": [0.6, 0.6, 0.6, 1.0], "metallicFactor": 0.0})
+    colours = [[0.8, 0.1, 0.1, 1.0], [0.1, 0.8, 0.1, 1.0], [0.1, 0.1, 0.8, 1.0]]
+    a.node(mesh=a.mesh([cube_primitive(a, grey)]), translation=[10.0, 20.0, 0.0])
+    for axis, colour in enumerate(colours):
+        m = a.material(pbrMetallicRoughness={"baseColorFactor": colour, "metallicFactor": 0.0})
+        t = [10.0, 20.0, 0.0]
+        t[axis] += 3.0
+        a.node(mesh=a.mesh([cube_primitive(a, m, 0.4)]), translation=t)
+    a.write("orientation.gltf")
+
+
+def unlit():
+    """KHR_materials_unlit: a quad that shows its base colour exactly, filling the view of
+    an orthographic camera."""
+    a = Asset()
+    a.doc["extensionsUsed"] = ["KHR_materials_unlit"]
+    m = a.material(
+        name="unlit",
+        pbrMetallicRoughness={"baseColorFactor": [0.2, 0.5, 0.8, 1.0]},
+        extensions={"KHR_materials_unlit": {}},
+    )
+    s = 2.0
+    a.node(mesh=a.mesh([quad_primitive(a, m, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    a.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}}]
+    a.node(camera=0, translation=[0.0, 0.0, 2.0])
+    a.write("unlit.gltf")
+
+
+def white_plane():
+    """A white Lambertian square (base colour 1, roughness 1, not metallic) filling the
+    view of an orthographic camera: under an environment of emissive-colour value v it
+    shows RGB v."""
+    a = Asset()
+    m = a.material(name="white", pbrMetallicRoughness={"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    s = 50.0
+    a.node(mesh=a.mesh([quad_primitive(a, m, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    a.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}}]
+    a.node(camera=0, translation=[0.0, 0.0, 2.0])
+    a.write("white-plane.gltf")
+
+
+def requires_draco():
+    """A file that requires KHR_draco_mesh_compression: prism must refuse it by name."""
+    a = Asset()
+    m = a.material(pbrMetallicRoughness={"baseColorFactor": [0.8, 0.8, 0.8, 1.0]})
+    a.node(mesh=a.mesh([cube_primitive(a, m)]))
+    a.doc["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+    a.doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    a.write("requires-draco.gltf")
+
+
+def uses_unknown():
+    """A file that uses (but does not require) extensions prism does not read: it renders,
+    with one warning per extension."""
+    a = Asset()
+    m = a.material(
+        pbrMetallicRoughness={"baseColorFactor": [0.8, 0.7, 0.2, 1.0], "metallicFactor": 0.0},
+        extensions={"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0]}, "VENDOR_made_up": {}},
+    )
+    a.node(mesh=a.mesh([cube_primitive(a, m)]), rotation=[0.2, 0.3, 0.0, math.sqrt(1 - 0.13)])
+    a.doc["extensionsUsed"] = ["KHR_materials_sheen", "VENDOR_made_up"]
+    a.write("uses-unknown.gltf")
+
+
+def grey_sky():
+    """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
+    environment image it must light the white plane as `--environment 0.5` does."""
+    header = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n"
+    with open(os.path.join(OUT, "grey-0.5.hdr"), "wb") as f:
+        f.write(header + bytes([128, 128, 128, 128]) * 32)
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    boxed()
+    orientation()
+    unlit()
+    white_plane()
+    grey_sky()
+    requires_draco()
+    uses_unknown()
+
+
+if __name__ == "__main__":
+    main()
