@@ -167,3 +167,48 @@ fn transparent_renders_leave_the_background_empty() {
     // IHDR colour type 6: RGBA.
     assert_eq!(bytes[25], 6);
 }
+
+/// The mean of channel `name` over the columns `columns` of a 32 x 32 EXR.
+fn column_mean(exr: &Path, name: &str, columns: std::ops::Range<usize>) -> f32 {
+    let values = channel(exr, name);
+    let picked: Vec<f32> = (0..values.len())
+        .filter(|i| columns.contains(&(i % 32)))
+        .map(|i| values[i])
+        .collect();
+    picked.iter().sum::<f32>() / picked.len() as f32
+}
+
+/// COLOR_0 multiplies the base colour: a white Lambertian plane under a grey environment
+/// of 1 shows its vertex colours, normalized bytes on the left, floats on the right.
+#[test]
+fn vertex_colours_multiply_the_base_colour() {
+    let dir = temp_dir("asset-colours");
+    let (exr, _) = render(&dir, &asset("vertex-colors.gltf"), &["--environment", "1"]);
+    let expected = [
+        (0..14, [1.0f32, 64.0 / 255.0, 0.0]),
+        (18..32, [0.2, 0.6, 0.9]),
+    ];
+    for (columns, colour) in expected {
+        for (name, c) in ["R", "G", "B"].iter().zip(colour) {
+            let mean = column_mean(&exr, name, columns.clone());
+            assert!(
+                (mean - c).abs() < 0.02,
+                "columns {columns:?} {name}: {mean} vs {c}"
+            );
+        }
+    }
+}
+
+/// KHR_mesh_quantization: SHORT positions scaled by the node, BYTE normals and
+/// normalized UNSIGNED_SHORT texture coordinates make the same white plane as floats do.
+#[test]
+fn quantized_meshes_read_as_floats() {
+    let dir = temp_dir("asset-quantized");
+    let (exr, stderr) = render(&dir, &asset("quantized.gltf"), &["--environment", "1"]);
+    assert!(stderr.is_empty(), "{stderr}");
+    assert!(channel(&exr, "A").iter().all(|&a| a == 1.0));
+    for name in ["R", "G", "B"] {
+        let mean = column_mean(&exr, name, 0..32);
+        assert!((mean - 1.0).abs() < 0.01, "{name}: {mean}");
+    }
+}

@@ -80,7 +80,7 @@ impl Tracer<'_> {
                 // Re-radiation changes wavelength: this light stays with camera paths.
                 break;
             }
-            let bsdf = material.bsdf_for(hit.uv, &lambdas, TransportMode::Importance);
+            let bsdf = self.scene.bsdf(&hit, &lambdas, TransportMode::Importance);
             let frame = Frame::from_normal(hit.shading_normal);
             let wo_world = -ray.direction.normalize();
             let wo = frame.to_local(wo_world);

@@ -7,7 +7,7 @@ use prism_sampling::distribution::positive_finite;
 use prism_sampling::mis::power_heuristic;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
-use prism_scene::bsdf::Diffuse;
+use prism_scene::bsdf::{Diffuse, TransportMode};
 use prism_scene::geometry::Ray;
 use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
@@ -251,7 +251,7 @@ impl Tracer<'_> {
                     };
                     Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
                 }
-                _ => material.bsdf(hit.uv, &transport),
+                _ => self.scene.bsdf(&hit, &transport, TransportMode::Radiance),
             };
             let frame = Frame::from_normal(hit.shading_normal);
             let wo = frame.to_local(wo_world);

@@ -449,6 +449,7 @@ fn gltf_emissive_textures_emit_per_texel() {
             normal: -Vec3::Z,
             shading_normal: -Vec3::Z,
             uv: Vec2::ZERO,
+            color: glam::Vec4::ONE,
             t: 1.0,
             triangle: 0,
         };

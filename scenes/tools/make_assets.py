@@ -213,6 +213,58 @@ def uses_unknown():
     a.write("uses-unknown.gltf")
 
 
+def ortho_camera(a):
+    a.doc["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}}]
+    a.node(camera=0, translation=[0.0, 0.0, 2.0])
+
+
+def vertex_colors():
+    """COLOR_0 multiplying a white Lambertian base: the left half of the view has
+    normalized UNSIGNED_BYTE RGBA colours (255, 64, 0, 255), the right half FLOAT RGB
+    (0.2, 0.6, 0.9); under a grey environment of 1 each half shows its colour."""
+    a = Asset()
+    m = a.material(name="white", pbrMetallicRoughness={"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    s = 50.0
+    left = [(-s, -s, 0), (0, -s, 0), (0, s, 0), (-s, s, 0)]
+    right = [(0, -s, 0), (s, -s, 0), (s, s, 0), (0, s, 0)]
+    bytes_colour = a.accessor([(255, 64, 0, 255)] * 4, "VEC4", 5121, normalized=True)
+    float_colour = a.accessor([(0.2, 0.6, 0.9)] * 4, "VEC3")
+    a.node(mesh=a.mesh([
+        quad_primitive(a, m, left, {"COLOR_0": bytes_colour}),
+        quad_primitive(a, m, right, {"COLOR_0": float_colour}),
+    ]))
+    ortho_camera(a)
+    a.write("vertex-colors.gltf")
+
+
+def quantized():
+    """KHR_mesh_quantization: the white plane with SHORT positions (unnormalized, scaled
+    by the node), BYTE normalized normals and UNSIGNED_SHORT normalized texture
+    coordinates, as gltfpack writes them."""
+    a = Asset()
+    a.doc["extensionsUsed"] = ["KHR_mesh_quantization"]
+    a.doc["extensionsRequired"] = ["KHR_mesh_quantization"]
+    m = a.material(name="white", pbrMetallicRoughness={"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    q = 1000
+    # VEC3 of SHORT is 6 bytes; vertex attributes must be 4-byte aligned, so pad to 8.
+    positions = [(-q, -q, 0, 0), (q, -q, 0, 0), (q, q, 0, 0), (-q, q, 0, 0)]
+    view = a.view(struct.pack("<16h", *[c for p in positions for c in p]), stride=8)
+    pos = a.accessor([p[:3] for p in positions], "VEC3", 5122, view=view)
+    a.doc["accessors"][pos]["min"] = [-q, -q, 0]
+    a.doc["accessors"][pos]["max"] = [q, q, 0]
+    normals = a.view(struct.pack("<16b", *([0, 0, 127, 0] * 4)), stride=4)
+    nrm = a.accessor([(0, 0, 127)] * 4, "VEC3", 5120, normalized=True, view=normals)
+    uvs = a.accessor([(0, 65535), (65535, 65535), (65535, 0), (0, 0)], "VEC2", 5123, normalized=True)
+    primitive = {
+        "attributes": {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uvs},
+        "indices": a.accessor([0, 1, 2, 0, 2, 3], "SCALAR", 5123),
+        "material": m,
+    }
+    a.node(mesh=a.mesh([primitive]), scale=[0.05, 0.05, 0.05])
+    ortho_camera(a)
+    a.write("quantized.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -228,6 +280,8 @@ def main():
     unlit()
     white_plane()
     grey_sky()
+    vertex_colors()
+    quantized()
     requires_draco()
     uses_unknown()
 

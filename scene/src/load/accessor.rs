@@ -15,28 +15,44 @@ use super::LoadError;
 pub(super) struct Expected {
     pub(super) what: &'static str,
     pub(super) types: &'static [DataType],
-    pub(super) dimensions: Dimensions,
+    pub(super) dimensions: &'static [Dimensions],
 }
 
+/// Floats, or the integers `KHR_mesh_quantization` allows.
 pub(super) const POSITION: Expected = Expected {
     what: "POSITION",
-    types: &[DataType::F32],
-    dimensions: Dimensions::Vec3,
+    types: QUANTIZED,
+    dimensions: &[Dimensions::Vec3],
 };
 pub(super) const NORMAL: Expected = Expected {
     what: "NORMAL",
-    types: &[DataType::F32],
-    dimensions: Dimensions::Vec3,
+    types: &[DataType::F32, DataType::I8, DataType::I16],
+    dimensions: &[Dimensions::Vec3],
+};
+pub(super) const TANGENT: Expected = Expected {
+    what: "TANGENT",
+    types: &[DataType::F32, DataType::I8, DataType::I16],
+    dimensions: &[Dimensions::Vec4],
 };
 pub(super) const TEXCOORD: Expected = Expected {
-    what: "TEXCOORD_0",
+    what: "TEXCOORD",
+    types: QUANTIZED,
+    dimensions: &[Dimensions::Vec2],
+};
+pub(super) const COLOR: Expected = Expected {
+    what: "COLOR_0",
     types: &[DataType::F32, DataType::U8, DataType::U16],
-    dimensions: Dimensions::Vec2,
+    dimensions: &[Dimensions::Vec3, Dimensions::Vec4],
+};
+pub(super) const MORPH_TARGET: Expected = Expected {
+    what: "morph target",
+    types: QUANTIZED,
+    dimensions: &[Dimensions::Vec3],
 };
 pub(super) const INDICES: Expected = Expected {
     what: "index",
     types: &[DataType::U8, DataType::U16, DataType::U32],
-    dimensions: Dimensions::Scalar,
+    dimensions: &[Dimensions::Scalar],
 };
 
 /// Whether `accessor` of primitive owner `name` is a readable `expected`: its component
@@ -57,14 +73,15 @@ pub(super) fn check(
         )))
     };
     let (data_type, dimensions) = (accessor.data_type(), accessor.dimensions());
-    if !expected.types.contains(&data_type) || dimensions != expected.dimensions {
+    if !expected.types.contains(&data_type) || !expected.dimensions.contains(&dimensions) {
         let types: Vec<&str> = expected.types.iter().map(|&t| type_name(t)).collect();
+        let shapes: Vec<&str> = expected.dimensions.iter().map(|&d| shape_name(d)).collect();
         return fail(format!(
             "is {} {}, not {} {}",
             type_name(data_type),
             shape_name(dimensions),
             types.join(" or "),
-            shape_name(expected.dimensions)
+            shapes.join(" or ")
         ));
     }
     let element = accessor.size();
@@ -145,5 +162,75 @@ fn shape_name(d: Dimensions) -> &'static str {
         Dimensions::Mat2 => "MAT2",
         Dimensions::Mat3 => "MAT3",
         Dimensions::Mat4 => "MAT4",
+    }
+}
+
+/// The component types an attribute read by [`read_f32`] may use, by what
+/// `KHR_mesh_quantization` allows: positions any type, directions signed normalized,
+/// texture coordinates and colours any but UNSIGNED_INT.
+pub(super) const QUANTIZED: &[DataType] = &[
+    DataType::F32,
+    DataType::I8,
+    DataType::U8,
+    DataType::I16,
+    DataType::U16,
+];
+
+/// The values of a float-valued attribute of `N` components whatever its component type
+/// (a checked accessor: see [`check`]): floats as they are; normalized integers as glTF
+/// 2.0 §3.11 maps them (unsigned c / (2^b - 1), signed max(c / (2^(b-1) - 1), -1));
+/// unnormalized integers as their values (`KHR_mesh_quantization`'s positions and
+/// texture coordinates, which the node or texture transform then scales). None when the
+/// data cannot be read.
+pub(super) fn read_f32<const N: usize>(
+    accessor: &gltf::Accessor,
+    buffers: &[Vec<u8>],
+) -> Option<Vec<[f32; N]>>
+where
+    [f32; N]: gltf::accessor::Item,
+    [i8; N]: gltf::accessor::Item,
+    [u8; N]: gltf::accessor::Item,
+    [i16; N]: gltf::accessor::Item,
+    [u16; N]: gltf::accessor::Item,
+    [u32; N]: gltf::accessor::Item,
+{
+    fn read<T: gltf::accessor::Item + Copy, const N: usize>(
+        accessor: &gltf::Accessor,
+        buffers: &[Vec<u8>],
+        convert: impl Fn(T) -> f32,
+    ) -> Option<Vec<[f32; N]>>
+    where
+        [T; N]: gltf::accessor::Item,
+    {
+        let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
+        let iter = gltf::accessor::Iter::<[T; N]>::new(accessor.clone(), get)?;
+        Some(iter.map(|v| v.map(&convert)).collect())
+    }
+    let normalized = accessor.normalized();
+    let scale = |max: f32| if normalized { 1.0 / max } else { 1.0 };
+    // The most negative signed value normalizes to just below -1.
+    let floor = if normalized { -1.0 } else { f32::MIN };
+    match accessor.data_type() {
+        DataType::F32 => read::<f32, N>(accessor, buffers, |v| v),
+        DataType::U8 => {
+            let s = scale(255.0);
+            read::<u8, N>(accessor, buffers, |v| f32::from(v) * s)
+        }
+        DataType::U16 => {
+            let s = scale(65535.0);
+            read::<u16, N>(accessor, buffers, |v| f32::from(v) * s)
+        }
+        DataType::I8 => {
+            let s = scale(127.0);
+            read::<i8, N>(accessor, buffers, |v| (f32::from(v) * s).max(floor))
+        }
+        DataType::I16 => {
+            let s = scale(32767.0);
+            read::<i16, N>(accessor, buffers, |v| (f32::from(v) * s).max(floor))
+        }
+        DataType::U32 => {
+            let s = scale(u32::MAX as f32);
+            read::<u32, N>(accessor, buffers, |v| v as f32 * s)
+        }
     }
 }

@@ -12,6 +12,7 @@ pub(crate) const READ: &[&str] = &[
     "KHR_materials_transmission",
     "KHR_materials_unlit",
     "KHR_materials_volume",
+    "KHR_mesh_quantization",
     "KHR_texture_transform",
     crate::spectral::EXTENSION,
 ];

@@ -34,6 +34,11 @@ pub struct LoadedGeometry {
     /// `TEXCOORD_0` at each triangle's vertices (zero where the file gives none), one
     /// entry per triangle; empty when no primitive of the scene has them.
     pub uvs: Vec<[Vec2; 3]>,
+    /// `COLOR_0` (linear RGBA, factors of the base colour and its alpha) at each triangle's
+    /// vertices, white where the file gives none; empty when no primitive has them.
+    pub colors: Vec<[Vec4; 3]>,
+    /// The coefficient table that upsamples vertex colours (present with `colors`).
+    pub color_table: Option<std::sync::Arc<prism_upsample::CoefficientTable>>,
     /// Unit tangents at each triangle's vertices, world space, with glTF's handedness in
     /// w: `TANGENT` where the file gives it, else derived from the triangle's positions
     /// and texture coordinates (one tangent per triangle: a faceted frame on curved
@@ -274,11 +279,25 @@ pub fn load_scene(
             out.cameras.push(make_camera(&node, &camera, world)?);
         }
         if let Some(mesh) = node.mesh() {
+            if node.skin().is_some() {
+                warn_once(
+                    &mut out.warnings,
+                    "skinned meshes are rendered in their bind pose (skins are not applied)",
+                );
+            }
+            let weights = node.weights().or(mesh.weights()).unwrap_or(&[]);
             for primitive in mesh.primitives() {
-                add_primitive(&mut out, &node, &primitive, world, &buffers)?;
+                add_primitive(&mut out, &node, &primitive, world, &buffers, weights)?;
             }
         }
         stack.extend(node.children().map(|c| (c, world, depth + 1)));
+    }
+    if !out.colors.is_empty() {
+        let fitted = match &upsampler {
+            Some(u) => u.table(),
+            None => Upsampler::new(options.upsampling)?.table(),
+        };
+        out.color_table = Some(fitted.map_err(LoadError::Scene)?);
     }
     if out.triangles.is_empty() {
         return Err(LoadError::Scene(format!(
@@ -306,13 +325,11 @@ pub fn load_scene(
     Ok(out)
 }
 
-/// Extensions prism reads itself (from the raw JSON) that the gltf crate does not know.
-const EXTENSIONS_READ_RAW: &[&str] = &["KHR_materials_dispersion", spectral::EXTENSION];
-
 /// Parses and validates a glTF or GLB, with the warnings its extensions call for. A
 /// required extension prism does not read is an error. The gltf crate rejects files that
-/// require an extension it does not know, so those prism reads itself are taken out of
-/// `extensionsRequired` between parsing and the (otherwise unchanged) validation.
+/// require an extension it does not know, so once prism has checked that it reads every
+/// required one, `extensionsRequired` is emptied before the (otherwise unchanged)
+/// validation.
 fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<(gltf::Gltf, Vec<String>), LoadError> {
     // The gltf crate's validation errors begin with the words LoadError adds.
     let invalid = |e: gltf::Error| {
@@ -327,8 +344,9 @@ fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<(gltf::Gltf, Vec<Str
     }
     let warnings = super::extensions::check(&root.extensions_required, &root.extensions_used)
         .map_err(LoadError::Unsupported)?;
-    root.extensions_required
-        .retain(|e| !EXTENSIONS_READ_RAW.contains(&e.as_str()));
+    // Every required extension is one prism reads (checked above); the gltf crate's
+    // validation knows only some of them.
+    root.extensions_required.clear();
     check_position_accessors(&root)?;
     let document = gltf::Document::from_json(root).map_err(invalid)?;
     Ok((gltf::Gltf { document, blob }, warnings))
@@ -404,9 +422,93 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
     })
 }
 
+/// The texture coordinate set a primitive of `material` reads: the one its textures name
+/// (a `KHR_texture_transform` `texCoord` overriding the texture's own). prism keeps one
+/// set per triangle, so a material whose textures name different sets reads the base
+/// colour's (or else the first named), with a warning.
+fn uv_set(material: &gltf::Material, name: &str, warnings: &mut Vec<String>) -> u32 {
+    let set = |tex_coord: u32, transform: Option<gltf::texture::TextureTransform>| {
+        transform.and_then(|t| t.tex_coord()).unwrap_or(tex_coord)
+    };
+    let pbr = material.pbr_metallic_roughness();
+    let mut sets: Vec<u32> = Vec::new();
+    let infos = [
+        pbr.base_color_texture(),
+        pbr.metallic_roughness_texture(),
+        material.emissive_texture(),
+    ];
+    for info in infos.into_iter().flatten() {
+        sets.push(set(info.tex_coord(), info.texture_transform()));
+    }
+    if let Some(normal) = material.normal_texture() {
+        sets.push(normal.tex_coord());
+    }
+    let Some(&first) = sets.first() else {
+        return 0;
+    };
+    if sets.iter().any(|&s| s != first) {
+        let warning = format!(
+            "{name}: material {}'s textures read different texture coordinate sets; prism reads TEXCOORD_{first} for all",
+            material.name().unwrap_or("(unnamed)")
+        );
+        if !warnings.contains(&warning) {
+            warnings.push(warning);
+        }
+    }
+    first
+}
+
 fn node_name(node: &gltf::Node) -> String {
     node.name()
         .map_or_else(|| format!("node {}", node.index()), str::to_string)
+}
+
+/// `COLOR_0` as linear RGBA (alpha 1 for RGB colours), if the primitive has it.
+fn vertex_colors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Option<Vec<Vec4>> {
+    let a = primitive.get(&gltf::Semantic::Colors(0))?;
+    match a.dimensions() {
+        gltf::accessor::Dimensions::Vec3 => accessor::read_f32::<3>(&a, buffers)
+            .map(|c| c.into_iter().map(|c| Vec3::from(c).extend(1.0)).collect()),
+        _ => accessor::read_f32::<4>(&a, buffers).map(|c| c.into_iter().map(Vec4::from).collect()),
+    }
+}
+
+/// Adds `warning` unless it is there already.
+fn warn_once(warnings: &mut Vec<String>, warning: &str) {
+    if !warnings.iter().any(|w| w == warning) {
+        warnings.push(warning.to_string());
+    }
+}
+
+/// `values` displaced by the primitive's morph targets of `semantic` (POSITION or NORMAL)
+/// at `weights` (the node's, else the mesh's default weights): the shape a viewer shows
+/// before any animation plays.
+fn morph(
+    primitive: &gltf::Primitive,
+    weights: &[f32],
+    normals: bool,
+    mut values: Vec<Vec3>,
+    buffers: &[Vec<u8>],
+) -> Vec<Vec3> {
+    for (target, &w) in primitive.morph_targets().zip(weights) {
+        let accessor = if normals {
+            target.normals()
+        } else {
+            target.positions()
+        };
+        let deltas = accessor
+            .filter(|a| accessor::check(a, &accessor::MORPH_TARGET, "", buffers).is_ok())
+            .and_then(|a| accessor::read_f32::<3>(&a, buffers));
+        if w == 0.0 || !w.is_finite() {
+            continue;
+        }
+        if let Some(deltas) = deltas.filter(|d| d.len() == values.len()) {
+            for (v, d) in values.iter_mut().zip(deltas) {
+                *v += w * Vec3::from(d);
+            }
+        }
+    }
+    values
 }
 
 fn add_primitive(
@@ -415,6 +517,7 @@ fn add_primitive(
     primitive: &gltf::Primitive,
     world: Mat4,
     buffers: &[Vec<u8>],
+    weights: &[f32],
 ) -> Result<(), LoadError> {
     let name = node_name(node);
     if primitive.mode() != gltf::mesh::Mode::Triangles {
@@ -423,11 +526,14 @@ fn add_primitive(
             primitive.mode()
         )));
     }
+    let uv_set = uv_set(&primitive.material(), &name, &mut out.warnings);
     // The reader trusts the document; what it would panic on is an error here first.
     for (semantic, expected) in [
         (gltf::Semantic::Positions, &accessor::POSITION),
         (gltf::Semantic::Normals, &accessor::NORMAL),
-        (gltf::Semantic::TexCoords(0), &accessor::TEXCOORD),
+        (gltf::Semantic::Tangents, &accessor::TANGENT),
+        (gltf::Semantic::TexCoords(uv_set), &accessor::TEXCOORD),
+        (gltf::Semantic::Colors(0), &accessor::COLOR),
     ] {
         if let Some(a) = primitive.get(&semantic) {
             accessor::check(&a, expected, &name, buffers)?;
@@ -437,17 +543,37 @@ fn add_primitive(
         accessor::check(&a, &accessor::INDICES, &name, buffers)?;
     }
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-    let positions: Vec<Vec3> = reader
-        .read_positions()
-        .ok_or_else(|| {
-            let accessor = primitive.get(&gltf::Semantic::Positions).map(|a| a.index());
-            LoadError::Geometry(match accessor {
-                Some(i) => format!("{name}: POSITION accessor {i} cannot be read (it runs past its buffer view or buffer)"),
-                None => format!("{name}: a primitive has no POSITION attribute"),
-            })
-        })?
-        .map(Vec3::from)
-        .collect();
+    // Quantized attributes (KHR_mesh_quantization) read as floats like any other.
+    let attribute = |semantic: gltf::Semantic| primitive.get(&semantic);
+    let positions: Vec<Vec3> = match attribute(gltf::Semantic::Positions) {
+        None => {
+            return Err(LoadError::Geometry(format!(
+                "{name}: a primitive has no POSITION attribute"
+            )));
+        }
+        Some(a) => accessor::read_f32::<3>(&a, buffers)
+            .ok_or_else(|| {
+                LoadError::Geometry(format!(
+                    "{name}: POSITION accessor {} cannot be read (it runs past its buffer view or buffer)",
+                    a.index()
+                ))
+            })?
+            .into_iter()
+            .map(Vec3::from)
+            .collect(),
+    };
+    let morphed = primitive.morph_targets().next().is_some();
+    if morphed {
+        warn_once(
+            &mut out.warnings,
+            "morph targets are rendered at their default weights",
+        );
+    }
+    let positions = if morphed {
+        morph(primitive, weights, false, positions, buffers)
+    } else {
+        positions
+    };
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
         return Err(LoadError::Geometry(format!(
             "{name}: position {i} is not finite"
@@ -477,30 +603,47 @@ fn add_primitive(
         )));
     }
     let count = positions.len();
-    let attribute = |what: &str, n: usize| {
+    let attribute_count = |what: &str, n: usize| {
         LoadError::Geometry(format!(
             "{name}: {what} has {n} entries for {count} vertices"
         ))
     };
-    let normals: Option<Vec<Vec3>> = reader.read_normals().map(|n| n.map(Vec3::from).collect());
+    let normals: Option<Vec<Vec3>> = attribute(gltf::Semantic::Normals)
+        .and_then(|a| accessor::read_f32::<3>(&a, buffers))
+        .map(|n| n.into_iter().map(Vec3::from).collect())
+        .map(|n| {
+            if morphed {
+                morph(primitive, weights, true, n, buffers)
+            } else {
+                n
+            }
+        });
     if let Some(n) = &normals
         && n.len() != count
     {
-        return Err(attribute("NORMAL", n.len()));
+        return Err(attribute_count("NORMAL", n.len()));
     }
-    let uvs: Option<Vec<Vec2>> = reader
-        .read_tex_coords(0)
-        .map(|t| t.into_f32().map(Vec2::from).collect());
+    let uvs: Option<Vec<Vec2>> = attribute(gltf::Semantic::TexCoords(uv_set))
+        .and_then(|a| accessor::read_f32::<2>(&a, buffers))
+        .map(|t| t.into_iter().map(Vec2::from).collect());
     if let Some(t) = &uvs
         && t.len() != count
     {
-        return Err(attribute("TEXCOORD_0", t.len()));
+        return Err(attribute_count(&format!("TEXCOORD_{uv_set}"), t.len()));
     }
-    let tangents: Option<Vec<Vec4>> = reader.read_tangents().map(|t| t.map(Vec4::from).collect());
+    let tangents: Option<Vec<Vec4>> = attribute(gltf::Semantic::Tangents)
+        .and_then(|a| accessor::read_f32::<4>(&a, buffers))
+        .map(|t| t.into_iter().map(Vec4::from).collect());
     if let Some(t) = &tangents
         && t.len() != count
     {
-        return Err(attribute("TANGENT", t.len()));
+        return Err(attribute_count("TANGENT", t.len()));
+    }
+    let colors = vertex_colors(primitive, buffers);
+    if let Some(c) = &colors
+        && c.len() != count
+    {
+        return Err(attribute_count("COLOR_0", c.len()));
     }
     // Normals transform by the inverse transpose (correct under non-uniform scale and
     // mirroring), tangents (directions in the surface) by the matrix itself.
@@ -523,6 +666,10 @@ fn add_primitive(
     let keep_uvs = uvs.is_some() || !out.uvs.is_empty();
     if keep_uvs {
         out.uvs.resize(first, [Vec2::ZERO; 3]);
+    }
+    let keep_colors = colors.is_some() || !out.colors.is_empty();
+    if keep_colors {
+        out.colors.resize(first, [Vec4::ONE; 3]);
     }
     // Tangents serve normal maps only.
     let normal_mapped = primitive.material().normal_texture().is_some();
@@ -560,6 +707,20 @@ fn add_primitive(
         };
         if keep_uvs {
             out.uvs.push(uv);
+        }
+        if keep_colors {
+            out.colors.push(match &colors {
+                // Colours are linear factors in [0, 1]; anything else is clamped.
+                Some(c) => t.map(|i| {
+                    let v = c[i];
+                    if v.is_finite() {
+                        v.clamp(Vec4::ZERO, Vec4::ONE)
+                    } else {
+                        Vec4::ONE
+                    }
+                }),
+                None => [Vec4::ONE; 3],
+            });
         }
         if keep_tangents {
             out.tangents.push(if normal_mapped {

@@ -202,6 +202,8 @@ impl Scene {
                 uvs: loaded.uvs,
                 tangents: loaded.tangents,
                 normal_maps,
+                colors: loaded.colors,
+                color_table: loaded.color_table,
             },
             triangle_material,
             materials,

@@ -118,12 +118,27 @@ impl Material {
         wavelengths: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> Bsdf<'_, N> {
+        self.bsdf_tinted(uv, wavelengths, mode, None)
+    }
+
+    /// [`Material::bsdf_for`] with the base colour's reflectance (diffuse, metallic-
+    /// roughness and fluorescent materials' reflectance) multiplied by `tint` (a vertex
+    /// colour's spectrum), if any.
+    pub fn bsdf_tinted<const N: usize>(
+        &self,
+        uv: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        mode: TransportMode,
+        tint: Option<SampledSpectrum<N>>,
+    ) -> Bsdf<'_, N> {
+        let base = |s: &SceneSpectrum| match tint {
+            Some(t) => s.at_uv(uv, wavelengths) * t,
+            None => s.at_uv(uv, wavelengths),
+        };
         match self {
-            Material::Diffuse { reflectance } => {
-                Bsdf::Diffuse(Diffuse::new(reflectance.at_uv(uv, wavelengths)))
-            }
+            Material::Diffuse { reflectance } => Bsdf::Diffuse(Diffuse::new(base(reflectance))),
             Material::MetallicRoughness {
-                base,
+                base: base_colour,
                 metallic,
                 roughness,
                 texture,
@@ -137,7 +152,7 @@ impl Material {
                     None => (*metallic, *roughness),
                 };
                 Bsdf::MetallicRoughness(MetallicRoughness::new(
-                    base.at_uv(uv, wavelengths),
+                    base(base_colour),
                     metallic,
                     roughness,
                     coating,
@@ -161,7 +176,7 @@ impl Material {
                 })
             }
             Material::Fluorescent { reflectance, .. } => {
-                Bsdf::Diffuse(Diffuse::new(reflectance.at_uv(uv, wavelengths)))
+                Bsdf::Diffuse(Diffuse::new(base(reflectance)))
             }
         }
     }

@@ -86,6 +86,11 @@ pub struct VertexAttributes {
     /// Per material (parallel to the materials, or empty: no normal maps), its normal
     /// map. A material with one needs `tangents`.
     pub normal_maps: Vec<Option<Arc<NormalMap>>>,
+    /// Vertex colours (linear RGBA): their RGB multiplies the base colour's reflectance
+    /// (as the reflectance spectrum of the colour, through `color_table`).
+    pub colors: Vec<[glam::Vec4; 3]>,
+    /// The coefficient table that turns vertex colours into spectra (needed with them).
+    pub color_table: Option<Arc<prism_upsample::CoefficientTable>>,
 }
 
 /// Where a ray meets the scene.
@@ -101,6 +106,8 @@ pub struct Hit {
     pub shading_normal: Vec3,
     /// Texture coordinates.
     pub uv: glam::Vec2,
+    /// The vertex colour (linear RGBA; white without vertex colours).
+    pub color: glam::Vec4,
     /// The ray parameter.
     pub t: f32,
     /// The triangle.
@@ -172,6 +179,7 @@ impl Scene {
             ("shading normals", attributes.normals.len()),
             ("texture coordinates", attributes.uvs.len()),
             ("tangents", attributes.tangents.len()),
+            ("vertex colours", attributes.colors.len()),
         ] {
             if n != 0 && n != triangles.len() {
                 return Err(format!(
@@ -189,6 +197,9 @@ impl Scene {
         }
         if attributes.normal_maps.iter().any(Option::is_some) && attributes.tangents.is_empty() {
             return Err("normal maps without tangents".into());
+        }
+        if !attributes.colors.is_empty() && attributes.color_table.is_none() {
+            return Err("vertex colours without a coefficient table".into());
         }
         if let Some(m) = triangle_material
             .iter()
@@ -375,12 +386,18 @@ impl Scene {
         } else {
             self.normal_mapped(hit.triangle, b, shading_normal, normal, uv)
         };
+        let color = self
+            .attributes
+            .colors
+            .get(hit.triangle)
+            .map_or(glam::Vec4::ONE, |c| b[0] * c[0] + b[1] * c[1] + b[2] * c[2]);
         Some(Hit {
             p,
             error: triangle_point_error(v, b),
             normal,
             shading_normal,
             uv,
+            color,
             t: hit.hit.t,
             triangle: hit.triangle as u32,
         })
@@ -420,6 +437,25 @@ impl Scene {
     /// The material of a hit.
     pub fn material(&self, hit: &Hit) -> &Material {
         &self.materials[self.triangle_material[hit.triangle as usize] as usize]
+    }
+
+    /// The BSDF at `hit` for paths carrying `mode`: its material's, with the base colour
+    /// multiplied by the hit's vertex colour where the scene has vertex colours.
+    pub fn bsdf<const N: usize>(
+        &self,
+        hit: &Hit,
+        wavelengths: &SampledWavelengths<N>,
+        mode: crate::bsdf::TransportMode,
+    ) -> Bsdf<'_, N> {
+        let tint =
+            match &self.attributes.color_table {
+                Some(table) if hit.color.truncate() != Vec3::ONE => Some(
+                    texture::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths),
+                ),
+                _ => None,
+            };
+        self.material(hit)
+            .bsdf_tinted(hit.uv, wavelengths, mode, tint)
     }
 
     /// Radiance emitted by the hit surface towards `wo` (unit, pointing away from it).

@@ -211,6 +211,23 @@ impl RgbTexture {
     }
 }
 
+/// The reflectance spectrum of linear RGB `rgb` (clamped to [0, 1]) through `table` at
+/// the package's wavelengths, in f32 lanes as constant colours are evaluated: exact for
+/// greys, the table's sigmoid otherwise. Colour textures and vertex colours share it.
+pub(crate) fn reflectance_lanes<const N: usize>(
+    rgb: [f32; 3],
+    table: &CoefficientTable,
+    wavelengths: &SampledWavelengths<N>,
+) -> SampledSpectrum<N> {
+    match Reflectance::of(rgb, table) {
+        Reflectance::Constant(v) => SampledSpectrum::splat(v),
+        Reflectance::Sigmoid(s) => SampledSpectrum(sigmoid_polynomial_lanes(
+            s.coefficients.map(|c| c as f32),
+            wavelengths.lambdas(),
+        )),
+    }
+}
+
 /// The emission spectrum of linear RGB `rgb` through `table`: an illuminant-kind
 /// spectrum under `illuminant` (normalized to luminance 1), so that RGB (1, 1, 1) emits
 /// the illuminant itself. Emissive textures and environment images share it.
@@ -352,13 +369,7 @@ impl SpectralTexture {
         let rgb = self.rgb.sample(uv);
         match &self.kind {
             // In f32 lanes, as constant colours are evaluated (RgbSpectrum::evaluate_lanes).
-            TextureKind::Reflectance { .. } => match Reflectance::of(rgb, &self.table) {
-                Reflectance::Constant(v) => SampledSpectrum::splat(v),
-                Reflectance::Sigmoid(s) => SampledSpectrum(sigmoid_polynomial_lanes(
-                    s.coefficients.map(|c| c as f32),
-                    wavelengths.lambdas(),
-                )),
-            },
+            TextureKind::Reflectance { .. } => reflectance_lanes(rgb, &self.table, wavelengths),
             TextureKind::Emission {
                 context,
                 illuminant,
