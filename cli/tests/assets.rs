@@ -53,7 +53,7 @@ fn every_asset_renders_lit_framed_and_with_alpha() {
     let mut names: Vec<String> = std::fs::read_dir(assets())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_str().unwrap().to_string())
-        .filter(|n| n.ends_with(".gltf") && !n.starts_with("requires-"))
+        .filter(|n| (n.ends_with(".gltf") || n.ends_with(".glb")) && !n.starts_with("requires-"))
         .collect();
     names.sort();
     assert!(names.len() >= 5, "{names:?}");

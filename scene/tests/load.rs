@@ -234,7 +234,7 @@ fn broken_files_are_clear_errors() {
             "normals of scalars",
             edit(&|d| d["accessors"][1]["type"] = json!("SCALAR")),
             bin.clone(),
-            "NORMAL accessor 1 is FLOAT SCALAR, not FLOAT VEC3",
+            "NORMAL accessor 1 is FLOAT SCALAR, not FLOAT or BYTE or SHORT VEC3",
         ),
         (
             "no indices",

@@ -265,6 +265,76 @@ def quantized():
     a.write("quantized.gltf")
 
 
+def sphere_primitive(a, material, centre, radius, rings=24, segments=48):
+    positions, normals, uvs, indices = [], [], [], []
+    for i in range(rings + 1):
+        theta = math.pi * i / rings
+        for j in range(segments + 1):
+            phi = 2.0 * math.pi * j / segments
+            n = (math.sin(theta) * math.cos(phi), math.cos(theta), math.sin(theta) * math.sin(phi))
+            positions.append(tuple(centre[k] + radius * n[k] for k in range(3)))
+            normals.append(n)
+            uvs.append((j / segments, i / rings))
+    for i in range(rings):
+        for j in range(segments):
+            a0, b0 = i * (segments + 1) + j, (i + 1) * (segments + 1) + j
+            indices += [a0, a0 + 1, b0, a0 + 1, b0 + 1, b0]
+    return {
+        "attributes": {
+            "POSITION": a.accessor(positions, "VEC3"),
+            "NORMAL": a.accessor(normals, "VEC3"),
+            "TEXCOORD_0": a.accessor(uvs, "VEC2"),
+        },
+        "indices": a.accessor(indices, "SCALAR", 5123),
+        "material": material,
+    }
+
+
+def checker(x, y):
+    return (230, 230, 220) if (x // 8 + y // 8) % 2 == 0 else (30, 60, 110)
+
+
+def product_glb():
+    """A binary glTF like a downloaded product model: a polished gold sphere, a
+    checker-textured matte cube and a red plastic sphere on a round grey plinth; no light,
+    no camera. The README renders it under scenes/sky.hdr."""
+    a = Asset()
+    gold = a.material(name="gold", pbrMetallicRoughness={"baseColorFactor": [1.0, 0.78, 0.34, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.25})
+    plastic = a.material(name="red plastic", pbrMetallicRoughness={"baseColorFactor": [0.7, 0.05, 0.04, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.35})
+    checked = a.material(
+        name="checker",
+        pbrMetallicRoughness={"baseColorTexture": {"index": a.texture(png(64, 64, checker))}, "metallicFactor": 0.0, "roughnessFactor": 0.8},
+    )
+    grey = a.material(name="plinth", pbrMetallicRoughness={"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6})
+    parts = [
+        a.node(root=False, mesh=a.mesh([sphere_primitive(a, gold, (-0.65, 0.45, 0.0), 0.45)]), name="gold ball"),
+        a.node(root=False, mesh=a.mesh([sphere_primitive(a, plastic, (0.75, 0.3, 0.45), 0.3)]), name="red ball"),
+        a.node(root=False, mesh=a.mesh([cube_primitive(a, checked, 0.35)]), translation=[0.35, 0.35, -0.45], rotation=[0.0, 0.38268343, 0.0, 0.92387953], name="cube"),
+    ]
+    # A flat plinth: a disc of 64 segments.
+    n = 64
+    positions = [(0.0, 0.0, 0.0)] + [(1.6 * math.cos(2 * math.pi * k / n), 0.0, 1.6 * math.sin(2 * math.pi * k / n)) for k in range(n)]
+    indices = [i for k in range(n) for i in (0, 1 + (k + 1) % n, 1 + k)]
+    parts.append(a.node(root=False, mesh=a.mesh([{
+        "attributes": {"POSITION": a.accessor(positions, "VEC3"), "NORMAL": a.accessor([(0.0, 1.0, 0.0)] * len(positions), "VEC3")},
+        "indices": a.accessor(indices, "SCALAR", 5123),
+        "material": grey,
+    }]), name="plinth"))
+    # The whole set tilted 20 degrees towards the viewer, as a product shot is framed.
+    a.node(children=parts, name="product", rotation=[0.17364818, 0.0, 0.0, 0.98480775])
+    # As a GLB: the JSON chunk, then the binary chunk, each padded to 4 bytes.
+    a.doc["buffers"] = [{"byteLength": len(a.blob)}]
+    doc = {k: v for k, v in a.doc.items() if v != []}
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    blob = a.blob + b"\x00" * (-len(a.blob) % 4)
+    total = 12 + 8 + len(text) + 8 + len(blob)
+    with open(os.path.join(OUT, "product.glb"), "wb") as f:
+        f.write(struct.pack("<4sII", b"glTF", 2, total))
+        f.write(struct.pack("<I4s", len(text), b"JSON") + text)
+        f.write(struct.pack("<I4s", len(blob), b"BIN\x00") + blob)
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -282,6 +352,7 @@ def main():
     grey_sky()
     vertex_colors()
     quantized()
+    product_glb()
     requires_draco()
     uses_unknown()
 

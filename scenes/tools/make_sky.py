@@ -20,7 +20,7 @@ import math
 WIDTH, HEIGHT = 256, 128
 SUN_U, SUN_ELEVATION = 0.62, math.radians(35.0)
 SUN_RADIUS = math.radians(2.5)
-SUN = (1800.0, 1640.0, 1400.0)
+SUN = (420.0, 385.0, 330.0)
 
 
 def direction(u, v):
