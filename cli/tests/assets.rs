@@ -212,3 +212,48 @@ fn quantized_meshes_read_as_floats() {
         assert!((mean - 1.0).abs() < 0.01, "{name}: {mean}");
     }
 }
+
+/// alphaMode MASK: the red floor shows through the leaf's cut-out left half; the right
+/// half is the white leaf.
+#[test]
+fn masked_cutouts_show_what_is_behind() {
+    let dir = temp_dir("asset-mask");
+    let (exr, _) = render(&dir, &asset("alpha-mask.gltf"), &["--environment", "1"]);
+    let (left_r, left_g) = (column_mean(&exr, "R", 2..14), column_mean(&exr, "G", 2..14));
+    assert!(
+        left_r > 0.3 && left_g < 0.5 * left_r,
+        "cut-out half: R {left_r}, G {left_g}"
+    );
+    let right_g = column_mean(&exr, "G", 18..30);
+    assert!(right_g > 0.8, "opaque half: G {right_g}");
+}
+
+/// alphaMode BLEND: a white square of alpha 0.25 over a black floor shows a quarter of
+/// its radiance (1 under a grey environment of 1), on average over samples.
+#[test]
+fn blended_surfaces_are_stochastically_transparent() {
+    let dir = temp_dir("asset-blend");
+    let exr = dir.join("blend.exr");
+    let out = prism(&[
+        "render",
+        &asset("alpha-blend.gltf"),
+        "--environment",
+        "1",
+        "--spp",
+        "64",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-q",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert_success(&out);
+    for name in ["R", "G", "B"] {
+        let values = channel(&exr, name);
+        let mean = values.iter().sum::<f32>() / values.len() as f32;
+        // 16 x 16 x 64 Bernoulli(0.25) choices: a standard error of 0.0027.
+        assert!((mean - 0.25).abs() < 0.015, "{name}: {mean}");
+    }
+}

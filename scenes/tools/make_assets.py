@@ -335,6 +335,57 @@ def product_glb():
         f.write(struct.pack("<I4s", len(blob), b"BIN\x00") + blob)
 
 
+def png_rgba(width, height, texel):
+    """An 8-bit RGBA PNG whose texel (x, y) (y down) is texel(x, y)."""
+    import zlib
+    raw = b"".join(b"\x00" + bytes(c for x in range(width) for c in texel(x, y)) for y in range(height))
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+
+
+def alpha_mask():
+    """alphaMode MASK: a white leaf above a red floor whose base colour texture's alpha is
+    0 on its left half and 1 on its right: the floor shows through the left half."""
+    a = Asset()
+    red = a.material(name="red floor", pbrMetallicRoughness={"baseColorFactor": [0.8, 0.1, 0.1, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    leaf_texture = a.texture(png_rgba(8, 8, lambda x, y: (255, 255, 255, 0 if x < 4 else 255)), {"magFilter": 9728, "minFilter": 9728, "wrapS": 33071, "wrapT": 33071})
+    leaf = a.material(
+        name="leaf",
+        alphaMode="MASK",
+        alphaCutoff=0.5,
+        doubleSided=True,
+        pbrMetallicRoughness={"baseColorTexture": {"index": leaf_texture}, "metallicFactor": 0.0, "roughnessFactor": 1.0},
+    )
+    s = 50.0
+    a.node(mesh=a.mesh([quad_primitive(a, red, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    # The leaf spans the view; its UVs put the texture's halves left and right.
+    a.node(mesh=a.mesh([quad_primitive(a, leaf, [(-1.0, -1.0, 0.5), (1.0, -1.0, 0.5), (1.0, 1.0, 0.5), (-1.0, 1.0, 0.5)])]))
+    ortho_camera(a)
+    a.write("alpha-mask.gltf")
+
+
+def alpha_blend():
+    """alphaMode BLEND: a white square of alpha 0.25 above a black floor: seen through it,
+    the pixel is a quarter of the white's radiance (stochastic transparency on average)."""
+    a = Asset()
+    black = a.material(name="black floor", pbrMetallicRoughness={"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    glass = a.material(
+        name="quarter white",
+        alphaMode="BLEND",
+        pbrMetallicRoughness={"baseColorFactor": [1.0, 1.0, 1.0, 0.25], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+    )
+    s = 50.0
+    a.node(mesh=a.mesh([quad_primitive(a, black, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    a.node(mesh=a.mesh([quad_primitive(a, glass, [(-s, -s, 0.5), (s, -s, 0.5), (s, s, 0.5), (-s, s, 0.5)])]))
+    ortho_camera(a)
+    a.write("alpha-blend.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -353,6 +404,8 @@ def main():
     vertex_colors()
     quantized()
     product_glb()
+    alpha_mask()
+    alpha_blend()
     requires_draco()
     uses_unknown()
 

@@ -12,6 +12,8 @@ pub struct DecodedImage {
     pub height: u32,
     /// Pixels, row-major from the top-left.
     pub rgb: Vec<[u8; 3]>,
+    /// The alpha channel, when the image has one (PNG with alpha).
+    pub alpha: Option<Vec<u8>>,
 }
 
 /// Images larger than this many pixels are refused rather than allocated (a 16k x 16k
@@ -63,10 +65,16 @@ fn decode_png(bytes: &[u8]) -> Result<DecodedImage, String> {
         png::ColorType::Rgba => 4,
         png::ColorType::Indexed => return Err("PNG: palette was not expanded".into()),
     };
+    let alpha = matches!(channels, 2 | 4).then(|| {
+        data.chunks_exact(channels)
+            .map(|p| p[channels - 1])
+            .collect()
+    });
     Ok(DecodedImage {
         width,
         height,
         rgb: to_rgb(data, channels, width, height)?,
+        alpha,
     })
 }
 
@@ -89,6 +97,7 @@ fn decode_jpeg(bytes: &[u8]) -> Result<DecodedImage, String> {
         width,
         height,
         rgb: to_rgb(&data, 3, width, height)?,
+        alpha: None,
     })
 }
 

@@ -9,7 +9,7 @@ use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
-use crate::world::{NormalMap, RgbTexture, SceneSpectrum};
+use crate::world::{Alpha, AlphaMode, NormalMap, RgbTexture, SceneSpectrum};
 
 use super::textures::TextureLoader;
 
@@ -58,6 +58,8 @@ pub struct MaterialDesc {
     pub absorption: Option<SceneSpectrum>,
     /// The `PRISM_spectral` description, if the material (or an overlay) has one.
     pub spectral: Option<SpectralMaterial>,
+    /// Alpha coverage (`alphaMode` MASK or BLEND), None for OPAQUE.
+    pub alpha: Option<Alpha>,
 }
 
 impl MaterialDesc {
@@ -334,7 +336,10 @@ pub(crate) fn material(
         .map(|normal| textures.normal(&normal).map(Arc::new))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let alpha = alpha(material, &pbr, textures, base[3])
+        .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let desc = MaterialDesc {
+        alpha,
         name,
         base_color,
         metallic: unit(metallic),
@@ -356,6 +361,40 @@ pub(crate) fn material(
         return unlit(desc, material, textures, upsampler);
     }
     Ok(desc)
+}
+
+/// glTF's `alphaMode` (§3.9.4): MASK with `alphaCutoff` (default 0.5) or BLEND, the
+/// alpha being baseColorFactor's times the base colour texture's alpha channel; None for
+/// OPAQUE.
+fn alpha(
+    material: &gltf::Material,
+    pbr: &gltf::material::PbrMetallicRoughness,
+    textures: &TextureLoader,
+    factor: f32,
+) -> Result<Option<Alpha>, String> {
+    let mode = match material.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => return Ok(None),
+        gltf::material::AlphaMode::Mask => {
+            let cutoff = material.alpha_cutoff().unwrap_or(0.5);
+            if !cutoff.is_finite() {
+                return Err(format!("alphaCutoff {cutoff} is not finite"));
+            }
+            AlphaMode::Mask { cutoff }
+        }
+        gltf::material::AlphaMode::Blend => AlphaMode::Blend,
+    };
+    let factor = factor.clamp(0.0, 1.0);
+    let texture = pbr
+        .base_color_texture()
+        .map(|info| textures.alpha(&info, factor))
+        .transpose()?
+        .flatten()
+        .map(Arc::new);
+    Ok(Some(Alpha {
+        mode,
+        factor,
+        texture,
+    }))
 }
 
 /// `KHR_materials_unlit` as the extension suggests for renderers that light everything

@@ -15,8 +15,9 @@ use crate::world::{
     Encoding, NormalMap, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap,
 };
 
-/// A decoded image shared by the textures that use it: width, height, texels.
-type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>);
+/// A decoded image shared by the textures that use it: width, height, texels, and its
+/// alpha channel (repeated in three channels, so that it is an [`RgbTexture`] too).
+type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>, Option<Arc<Vec<[u8; 3]>>>);
 
 /// Loads textures for one glTF file.
 pub(crate) struct TextureLoader<'a> {
@@ -134,27 +135,47 @@ impl<'a> TextureLoader<'a> {
         self.rgb(info.texture(), tex_coord, uv, factor)
     }
 
-    /// `texture`, read at TEXCOORD_`tex_coord` transformed by `uv`, times `factor`.
+    /// The alpha channel of a base colour texture times `factor` (baseColorFactor's
+    /// alpha), as a linear texture whose channels all hold it; None when the image has no
+    /// alpha.
+    pub(crate) fn alpha(
+        &self,
+        info: &gltf::texture::Info,
+        factor: f32,
+    ) -> Result<Option<RgbTexture>, String> {
+        let texture = info.texture();
+        let (width, height, _, alpha) = self.image(&texture.source())?;
+        let Some(alpha) = alpha else {
+            return Ok(None);
+        };
+        let colour = self.info(info, [factor; 3])?;
+        RgbTexture::new(
+            width,
+            height,
+            alpha,
+            colour.wrap(),
+            colour.transform(),
+            [factor; 3],
+        )
+        .map(|t| Some(t.encoded(Encoding::Linear)))
+    }
+
+    /// `texture`, transformed by `uv`, times `factor`. Its coordinates are the set the
+    /// primitive loaded (see the loader's `uv_set`): `_tex_coord` is that set's number.
     fn rgb(
         &self,
         texture: gltf::texture::Texture,
-        tex_coord: u32,
+        _tex_coord: u32,
         uv: Option<UvTransform>,
         factor: [f32; 3],
     ) -> Result<RgbTexture, String> {
-        if tex_coord != 0 {
-            return Err(format!(
-                "texture {} uses TEXCOORD_{tex_coord}; prism reads TEXCOORD_0 only",
-                texture.index()
-            ));
-        }
         let sampler = texture.sampler();
         let wrap = [sampler.wrap_s(), sampler.wrap_t()].map(|w| match w {
             WrappingMode::ClampToEdge => Wrap::Clamp,
             WrappingMode::MirroredRepeat => Wrap::Mirror,
             WrappingMode::Repeat => Wrap::Repeat,
         });
-        let (width, height, texels) = self.image(&texture.source())?;
+        let (width, height, texels, _) = self.image(&texture.source())?;
         RgbTexture::new(width, height, texels, wrap, uv.unwrap_or_default(), factor)
     }
 
@@ -188,7 +209,10 @@ impl<'a> TextureLoader<'a> {
             },
         };
         let decoded = decode_image(&bytes).map_err(|e| format!("{what}: {e}"))?;
-        let entry = (decoded.width, decoded.height, Arc::new(decoded.rgb));
+        let alpha = decoded
+            .alpha
+            .map(|a| Arc::new(a.into_iter().map(|v| [v; 3]).collect()));
+        let entry = (decoded.width, decoded.height, Arc::new(decoded.rgb), alpha);
         self.images
             .borrow_mut()
             .insert(image.index(), entry.clone());

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use prism_spectrum::optics::Cauchy;
 
-use super::{Environment, Light, Material, Scene, SceneParts, SceneSpectrum};
+use super::{Alpha, AlphaMode, Environment, Light, Material, Scene, SceneParts, SceneSpectrum};
 use crate::bsdf::CoatingAlbedo;
 use crate::geometry::BvhQuality;
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
@@ -194,6 +194,7 @@ impl Scene {
         } else {
             Vec::new()
         };
+        let alpha = alpha_coverage(&loaded, &triangle_material, materials.len());
         let camera = loaded.camera(options.camera.as_deref())?;
         Scene::new(SceneParts {
             triangles: loaded.triangles,
@@ -202,6 +203,7 @@ impl Scene {
                 uvs: loaded.uvs,
                 tangents: loaded.tangents,
                 normal_maps,
+                alpha,
                 colors: loaded.colors,
                 color_table: loaded.color_table,
             },
@@ -217,6 +219,40 @@ impl Scene {
             scene
         })
         .map_err(LoadError::Scene)
+    }
+}
+
+/// Per material, its alpha coverage where it can let rays through: a texture's alpha,
+/// vertex alpha below 1 on one of its triangles, or a factor below 1 (under MASK, below
+/// the cutoff). A file that marks everything BLEND without any transparency (exporters
+/// do) stays on the opaque scenes' path. Empty when no material lets rays through.
+fn alpha_coverage(
+    loaded: &LoadedGeometry,
+    triangle_material: &[u32],
+    materials: usize,
+) -> Vec<Option<Arc<Alpha>>> {
+    let mut vertex_alpha = vec![false; materials];
+    for (t, colors) in loaded.colors.iter().enumerate() {
+        if colors.iter().any(|c| c.w < 1.0) {
+            vertex_alpha[triangle_material[t] as usize] = true;
+        }
+    }
+    let alpha: Vec<Option<Arc<Alpha>>> = (0..materials)
+        .map(|m| {
+            let a = loaded.materials.get(m)?.alpha.as_ref()?;
+            // Without a texture or vertex alpha the factor decides everywhere alike.
+            let uniformly_opaque = match a.mode {
+                AlphaMode::Mask { cutoff } => a.factor >= cutoff,
+                AlphaMode::Blend => a.factor >= 1.0,
+            };
+            let transparent = a.texture.is_some() || vertex_alpha[m] || !uniformly_opaque;
+            transparent.then(|| Arc::new(a.clone()))
+        })
+        .collect();
+    if alpha.iter().all(Option::is_none) {
+        Vec::new()
+    } else {
+        alpha
     }
 }
 

@@ -3,6 +3,7 @@
 //! is what the integrator sees: spectra to sample at its wavelengths and BSDFs to
 //! evaluate, never RGB.
 
+mod alpha;
 mod emission_cache;
 mod environment;
 mod from_gltf;
@@ -14,6 +15,7 @@ mod normal_map;
 mod spectrum;
 mod texture;
 
+pub use alpha::{Alpha, AlphaMode};
 pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
@@ -91,6 +93,9 @@ pub struct VertexAttributes {
     pub colors: Vec<[glam::Vec4; 3]>,
     /// The coefficient table that turns vertex colours into spectra (needed with them).
     pub color_table: Option<Arc<prism_upsample::CoefficientTable>>,
+    /// Per material (parallel to the materials, or empty: every surface opaque), its
+    /// alpha coverage, None where opaque. Rays pass through where it says so.
+    pub alpha: Vec<Option<Arc<Alpha>>>,
 }
 
 /// Where a ray meets the scene.
@@ -133,6 +138,10 @@ impl Hit {
         Ray::new(origin, direction, t_max.max(0.0))
     }
 }
+
+/// The most cut-out or transparent surfaces a ray passes through before the next one
+/// counts as a hit (dense foliage seen edge-on has dozens of layers).
+pub const MAX_ALPHA_CROSSINGS: usize = 256;
 
 /// A scene ready to render.
 pub struct Scene {
@@ -187,6 +196,13 @@ impl Scene {
                     triangles.len()
                 ));
             }
+        }
+        if !attributes.alpha.is_empty() && attributes.alpha.len() != materials.len() {
+            return Err(format!(
+                "{} materials' alpha for {} materials",
+                attributes.alpha.len(),
+                materials.len()
+            ));
         }
         let normal_maps = attributes.normal_maps.len();
         if normal_maps != 0 && normal_maps != materials.len() {
@@ -350,8 +366,52 @@ impl Scene {
         self.radius
     }
 
-    /// The closest hit along `ray`.
+    /// The closest hit along `ray` on a surface the ray does not pass through (alpha
+    /// coverage: see [`Alpha`]).
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        if self.attributes.alpha.is_empty() {
+            self.closest(ray)
+        } else {
+            self.intersect_through_alpha(ray)
+        }
+    }
+
+    /// [`Scene::intersect`] in a scene with cut-out or transparent surfaces: the closest
+    /// hit, then the next beyond it wherever the ray passes through, up to
+    /// [`MAX_ALPHA_CROSSINGS`] surfaces (a ray through more is taken as blocked). Opaque
+    /// scenes never come here.
+    #[inline(never)]
+    fn intersect_through_alpha(&self, ray: &Ray) -> Option<Hit> {
+        let mut current = *ray;
+        let mut travelled = 0.0f32;
+        for _ in 0..MAX_ALPHA_CROSSINGS {
+            let mut hit = self.closest(&current)?;
+            let material = self.triangle_material[hit.triangle as usize] as usize;
+            let passes = match self.attributes.alpha.get(material) {
+                Some(Some(alpha)) => {
+                    let u = alpha::blend_number(current.origin, current.direction, hit.triangle);
+                    !alpha.opaque(hit.uv, hit.color.w, u)
+                }
+                _ => false,
+            };
+            if !passes {
+                hit.t += travelled;
+                return Some(hit);
+            }
+            travelled += hit.t;
+            let next = hit.spawn(current.direction);
+            current = Ray::new(next.origin, current.direction, current.t_max - hit.t);
+            if current.t_max <= 0.0 {
+                return None;
+            }
+        }
+        let mut hit = self.closest(&current)?;
+        hit.t += travelled;
+        Some(hit)
+    }
+
+    /// The closest hit along `ray`, whatever its alpha.
+    fn closest(&self, ray: &Ray) -> Option<Hit> {
         let hit = self.bvh.intersect(ray)?;
         // The BVH's copy of the vertices: the same values, already in cache.
         let v = hit.vertices;
@@ -429,9 +489,14 @@ impl Scene {
             .unwrap_or(n)
     }
 
-    /// Whether anything blocks `ray`.
+    /// Whether anything blocks `ray` (cut-out and transparent surfaces as
+    /// [`Scene::intersect`] sees them).
     pub fn occluded(&self, ray: &Ray) -> bool {
-        self.bvh.occluded(ray)
+        if self.attributes.alpha.is_empty() {
+            self.bvh.occluded(ray)
+        } else {
+            self.intersect_through_alpha(ray).is_some()
+        }
     }
 
     /// The material of a hit.

@@ -165,6 +165,16 @@ impl RgbTexture {
         Self { encoding, ..self }
     }
 
+    /// Its wrap modes (s, t).
+    pub fn wrap(&self) -> [Wrap; 2] {
+        self.wrap
+    }
+
+    /// Its coordinate transform.
+    pub fn transform(&self) -> UvTransform {
+        self.transform
+    }
+
     fn linear(&self, x: i64, y: i64) -> [f32; 3] {
         let i = self.wrap[1].texel(y, self.height) * self.width as usize
             + self.wrap[0].texel(x, self.width);
