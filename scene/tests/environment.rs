@@ -156,3 +156,75 @@ fn a_black_image_gives_no_samples_and_no_density() {
     assert!(m.sample(Vec2::new(0.3, 0.6), &lambdas).is_none());
     assert_eq!(m.pdf(Vec3::Y), 0.0);
 }
+
+mod extremes {
+    use super::*;
+    use proptest::prelude::*;
+    use std::sync::OnceLock;
+
+    fn extreme() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            Just(0.0f32),
+            Just(-0.0f32),
+            Just(1e-40f32),
+            Just(1e30f32),
+            Just(f32::MAX),
+            Just(f32::INFINITY),
+            Just(f32::NAN),
+            Just(-1.0f32),
+            0.0..100.0f32,
+        ]
+    }
+
+    /// The table behind every map, fitted once for the whole property run.
+    fn upsampling() -> (
+        Arc<prism_upsample::CoefficientTable>,
+        Arc<prism_upsample::FitContext>,
+        Arc<prism_spectrum::spectra::DenselySampled>,
+    ) {
+        static TABLE: OnceLock<Arc<prism_upsample::CoefficientTable>> = OnceLock::new();
+        let space = prism_spectrum::color::RgbSpaceId::Srgb;
+        let context =
+            Arc::new(prism_upsample::FitContext::new(space.space(), &space.illuminant()).unwrap());
+        let table = TABLE
+            .get_or_init(|| {
+                Arc::new(
+                    prism_upsample::CoefficientTable::fit(&context, 16, &|_| {})
+                        .unwrap()
+                        .0,
+                )
+            })
+            .clone();
+        (table, context, prism_scene::world::unit_d65())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Any texels, strength, rotation and direction: coordinates in [0, 1], unit
+        /// directions, and finite, non-negative densities and radiance; samples likewise.
+        #[test]
+        fn maps_stay_finite(
+            texels in prop::collection::vec(prop::array::uniform3(extreme()), 8),
+            strength in prop_oneof![Just(0.0f64), Just(1e300f64), 0.0..10.0f64],
+            rotation in prop_oneof![Just(1e30f64), -720.0..720.0f64],
+            d in prop::array::uniform3(extreme()),
+            u in prop::array::uniform2(0.0..1.0f32),
+        ) {
+            let map = EnvironmentMap::new(4, 2, texels, rotation, strength, upsampling()).unwrap();
+            let lambdas = SampledWavelengths::<4>::new([380.0, 500.0, 600.0, 780.0], [1.0; 4]).unwrap();
+            let d = Vec3::from(d);
+            let uv = map.uv(d);
+            prop_assert!(uv.is_finite() && uv.min_element() >= 0.0 && uv.max_element() <= 1.0);
+            let (w, _) = map.direction(uv);
+            prop_assert!((w.length() - 1.0).abs() < 1e-4);
+            let pdf = map.pdf(d);
+            prop_assert!(pdf.is_finite() && pdf >= 0.0);
+            let l = map.radiance(d, &lambdas);
+            prop_assert!(l.0.iter().all(|v| v.is_finite() && *v >= 0.0));
+            if let Some((w, pdf, l)) = map.sample(Vec2::from(u), &lambdas) {
+                prop_assert!(w.is_finite() && pdf.is_finite() && pdf > 0.0);
+                prop_assert!(l.0.iter().all(|v| v.is_finite() && *v >= 0.0));
+            }
+        }
+    }
+}

@@ -67,6 +67,18 @@ fn texel_centres_return_their_texels_and_wrap_modes_differ() {
     assert!(close(grey.sample(Vec2::ZERO), [0.215_861; 3]));
 }
 
+/// glTF's NEAREST magnification: the texel under the point, so that between two texels'
+/// centres there is no blend (LINEAR gives their mean there).
+#[test]
+fn nearest_filtering_takes_the_texel_under_the_point() {
+    let t = texture(Wrap::Repeat, UvTransform::default()).nearest();
+    assert!(close(t.sample(Vec2::new(0.49, 0.25)), [1.0, 0.0, 0.0]));
+    assert!(close(t.sample(Vec2::new(0.51, 0.25)), [0.0, 1.0, 0.0]));
+    assert!(close(t.sample(Vec2::new(0.99, 0.99)), [1.0, 1.0, 1.0]));
+    // Wrapping applies as before: u = 1.1 is u = 0.1 (red).
+    assert!(close(t.sample(Vec2::new(1.1, 0.25)), [1.0, 0.0, 0.0]));
+}
+
 #[test]
 fn texture_transform_scales_rotates_then_offsets() {
     // Scale by 0.5 maps u = 0.5 to 0.25 (red); an offset of 0.5 moves it to green.

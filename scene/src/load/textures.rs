@@ -149,15 +149,20 @@ impl<'a> TextureLoader<'a> {
             return Ok(None);
         };
         let colour = self.info(info, [factor; 3])?;
-        RgbTexture::new(
+        let texture = RgbTexture::new(
             width,
             height,
             alpha,
             colour.wrap(),
             colour.transform(),
             [factor; 3],
-        )
-        .map(|t| Some(t.encoded(Encoding::Linear)))
+        )?
+        .encoded(Encoding::Linear);
+        Ok(Some(if colour.is_nearest() {
+            texture.nearest()
+        } else {
+            texture
+        }))
     }
 
     /// `texture`, transformed by `uv`, times `factor`. Its coordinates are the set the
@@ -176,7 +181,11 @@ impl<'a> TextureLoader<'a> {
             WrappingMode::Repeat => Wrap::Repeat,
         });
         let (width, height, texels, _) = self.image(&texture.source())?;
-        RgbTexture::new(width, height, texels, wrap, uv.unwrap_or_default(), factor)
+        let rgb = RgbTexture::new(width, height, texels, wrap, uv.unwrap_or_default(), factor)?;
+        Ok(match sampler.mag_filter() {
+            Some(gltf::texture::MagFilter::Nearest) => rgb.nearest(),
+            _ => rgb,
+        })
     }
 
     fn image(&self, image: &gltf::Image) -> Result<SharedImage, String> {

@@ -121,6 +121,9 @@ pub struct RgbTexture {
     /// The transform's rotation as (sin, cos): a lookup's sine and cosine were a tenth of
     /// its instructions.
     rotation: (f32, f32),
+    /// glTF's NEAREST magnification filter: the texel under the point, not a bilinear
+    /// blend of four (pixel art, lookup tables, labels drawn at texel size).
+    nearest: bool,
 }
 
 impl RgbTexture {
@@ -157,12 +160,26 @@ impl RgbTexture {
             factor,
             encoding: Encoding::Srgb,
             rotation: transform.rotation.sin_cos(),
+            nearest: false,
         })
     }
 
     /// The same texture with its bytes read as `encoding`.
     pub fn encoded(self, encoding: Encoding) -> Self {
         Self { encoding, ..self }
+    }
+
+    /// The same texture read with nearest-texel filtering (glTF's NEAREST `magFilter`).
+    pub fn nearest(self) -> Self {
+        Self {
+            nearest: true,
+            ..self
+        }
+    }
+
+    /// Whether it is read with nearest-texel filtering.
+    pub fn is_nearest(&self) -> bool {
+        self.nearest
     }
 
     /// Its wrap modes (s, t).
@@ -191,6 +208,10 @@ impl RgbTexture {
         // absurd coordinates (wrapping makes the exact multiple irrelevant).
         let x = (uv.x * self.width as f32 - 0.5).clamp(-1e9, 1e9);
         let y = (uv.y * self.height as f32 - 0.5).clamp(-1e9, 1e9);
+        if self.nearest {
+            let c = self.linear((x + 0.5).floor() as i64, (y + 0.5).floor() as i64);
+            return std::array::from_fn(|k| c[k] * self.factor[k]);
+        }
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
