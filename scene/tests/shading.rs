@@ -186,3 +186,76 @@ fn attributes_are_kept_only_where_a_primitive_has_them() {
     assert!((mixed.normals[1][0] - Vec3::new(-h, 0.0, h)).length() < 1e-6);
     assert_eq!(mixed.uvs[1], [Vec2::ZERO, Vec2::X, Vec2::Y]);
 }
+
+/// A normal-mapped strip bent around a cylinder without TANGENT gets MikkTSpace tangents:
+/// at a vertex two faces share, both faces have the same tangent (along the cylinder's
+/// circumference there, where u grows), not each face's own chord direction.
+#[test]
+fn normal_mapped_meshes_without_tangents_get_smooth_mikktspace_tangents() {
+    // Columns at 0, 30 and 60 degrees around +y, rows at y = 0 and 1; u follows the angle.
+    let angles = [0.0f32, 30.0, 60.0].map(f32::to_radians);
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    let mut uvs = Vec::new();
+    for y in [0.0f32, 1.0] {
+        for (k, a) in angles.iter().enumerate() {
+            positions.extend([a.sin(), y, a.cos()]);
+            normals.extend([a.sin(), 0.0, a.cos()]);
+            uvs.extend([k as f32 / 2.0, 1.0 - y]);
+        }
+    }
+    // Counter-clockwise seen from outside (+z side).
+    let indices: [u16; 12] = [0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4];
+    let mut bin: Vec<u8> = positions
+        .iter()
+        .chain(&normals)
+        .chain(&uvs)
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    bin.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
+    let png = {
+        let mut out = Vec::new();
+        let mut encoder = png::Encoder::new(&mut out, 1, 1);
+        encoder.set_color(png::ColorType::Rgb);
+        let mut writer = encoder.write_header().unwrap();
+        writer.write_image_data(&[128, 128, 255]).unwrap();
+        writer.finish().unwrap();
+        out
+    };
+    let image_offset = bin.len();
+    bin.extend(&png);
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}],
+        "materials": [{"normalTexture": {"index": 0}}],
+        "textures": [{"source": 0}],
+        "images": [{"bufferView": 4, "mimeType": "image/png"}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 6, "type": "VEC3", "min": [0, 0, 0.5], "max": [0.87, 1, 1]},
+            {"bufferView": 1, "componentType": 5126, "count": 6, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": 6, "type": "VEC2"},
+            {"bufferView": 3, "componentType": 5123, "count": 12, "type": "SCALAR"}
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 72},
+            {"buffer": 0, "byteOffset": 72, "byteLength": 72},
+            {"buffer": 0, "byteOffset": 144, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 192, "byteLength": 24},
+            {"buffer": 0, "byteOffset": image_offset, "byteLength": png.len()}
+        ],
+        "buffers": [{"byteLength": bin.len(), "uri": "strip.bin"}]
+    });
+    let loaded = load_doc(&doc, bin);
+    assert_eq!(loaded.tangents.len(), 4);
+    // Vertex 1 (30 degrees, y = 0) is corner 1 of face 0 and corner 0 of face 2.
+    let (a, b) = (loaded.tangents[0][1], loaded.tangents[2][0]);
+    assert!(a.abs_diff_eq(b, 1e-5), "{a} vs {b}");
+    // There u grows along the circumference: (cos 30, 0, -sin 30); glTF's handedness: +1
+    // (normal x tangent points up the image, +y, where v decreases).
+    let along = Vec3::new(30f32.to_radians().cos(), 0.0, -30f32.to_radians().sin());
+    assert!(a.truncate().abs_diff_eq(along, 1e-4), "{a}");
+    assert_eq!(a.w, 1.0);
+}

@@ -686,7 +686,16 @@ fn add_primitive(
     out.uvs.reserve(if keep_uvs { triangles } else { 0 });
     out.tangents
         .reserve(if keep_tangents { triangles } else { 0 });
-    for tri in indices.chunks_exact(3) {
+    // Without TANGENT, a normal-mapped primitive gets MikkTSpace's (per corner, in the
+    // primitive's own space), as glTF asks.
+    let mikktspace = match (&tangents, &uvs) {
+        (None, Some(uvs)) if normal_mapped => {
+            super::tangents::mikktspace(&positions, normals.as_deref(), uvs, &indices)
+        }
+        _ => None,
+    };
+    let corners = if mirrored { [0, 2, 1] } else { [0, 1, 2] };
+    for (face, tri) in indices.chunks_exact(3).enumerate() {
         let t = order([tri[0] as usize, tri[1] as usize, tri[2] as usize]);
         let v = t.map(|i| world.transform_point3(positions[i]));
         out.triangles.push(v);
@@ -725,19 +734,22 @@ fn add_primitive(
         if keep_tangents {
             out.tangents.push(if normal_mapped {
                 let derived = triangle_tangent(v, uv, triangle_normal(v));
-                t.map(|i| match &tangents {
-                    Some(tangent) => {
-                        // Unusable tangents (zero, non-finite) fall back to the derived one.
-                        let d = (linear * tangent[i].truncate()).normalize_or_zero();
-                        let sign = if tangent[i].w < 0.0 { -1.0 } else { 1.0 };
-                        if d == Vec3::ZERO {
-                            derived
-                        } else {
-                            d.extend(sign * handedness)
-                        }
+                // A tangent of the primitive's space in world space; unusable ones (zero,
+                // non-finite) fall back to the triangle's derived tangent.
+                let placed = |tangent: Vec4| {
+                    let d = (linear * tangent.truncate()).normalize_or_zero();
+                    let sign = if tangent.w < 0.0 { -1.0 } else { 1.0 };
+                    if d == Vec3::ZERO {
+                        derived
+                    } else {
+                        d.extend(sign * handedness)
                     }
-                    None => derived,
-                })
+                };
+                match (&tangents, &mikktspace) {
+                    (Some(tangent), _) => t.map(|i| placed(tangent[i])),
+                    (None, Some(mikk)) => corners.map(|c| mikk[face][c].map_or(derived, placed)),
+                    (None, None) => [derived; 3],
+                }
             } else {
                 [Vec4::ZERO; 3]
             });

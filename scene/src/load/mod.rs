@@ -12,6 +12,7 @@ mod instancing;
 mod lights;
 mod materials;
 mod summary;
+mod tangents;
 mod textures;
 
 pub(crate) use base64::uri_bytes;
