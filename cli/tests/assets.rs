@@ -257,3 +257,22 @@ fn blended_surfaces_are_stochastically_transparent() {
         assert!((mean - 0.25).abs() < 0.015, "{name}: {mean}");
     }
 }
+
+/// EXT_texture_webp, required, no fallback: the WebP base colour (red left, blue right)
+/// shows on the white plane.
+#[test]
+fn webp_textures_decode() {
+    let dir = temp_dir("asset-webp");
+    let (exr, stderr) = render(&dir, &asset("webp-texture.gltf"), &["--environment", "1"]);
+    assert!(stderr.is_empty(), "{stderr}");
+    let (left_r, left_b) = (column_mean(&exr, "R", 2..14), column_mean(&exr, "B", 2..14));
+    let (right_r, right_b) = (
+        column_mean(&exr, "R", 18..30),
+        column_mean(&exr, "B", 18..30),
+    );
+    assert!(left_r > 0.8 && left_b < 0.1, "left: R {left_r} B {left_b}");
+    assert!(
+        right_b > 0.8 && right_r < 0.1,
+        "right: R {right_r} B {right_b}"
+    );
+}

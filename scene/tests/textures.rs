@@ -135,7 +135,7 @@ fn broken_images_are_errors_not_panics() {
     assert_eq!(decoded.rgb, vec![[255, 0, 0], [0, 255, 0]]);
     for (bytes, expected) in [
         (good[..good.len() / 2].to_vec(), "PNG"),
-        (b"GIF89a".to_vec(), "not a PNG or JPEG"),
+        (b"GIF89a".to_vec(), "not a PNG, JPEG or WebP"),
         (vec![0xFF, 0xD8, 0xFF, 0xE0, 0, 0, 1, 2, 3], "JPEG"),
         (vec![0xFF, 0xD8], "JPEG"),
     ] {

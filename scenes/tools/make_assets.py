@@ -386,6 +386,35 @@ def alpha_blend():
     a.write("alpha-blend.gltf")
 
 
+def webp_texture():
+    """EXT_texture_webp, required and without a fallback: the white plane's base colour is
+    a lossless 2 x 1 WebP, red on the left and blue on the right (NEAREST). Needs Pillow
+    to encode the WebP; without it the committed file stays as it is."""
+    try:
+        from PIL import Image
+    except ImportError:
+        print("Pillow is missing: webp-texture.gltf not rewritten")
+        return
+    import io
+
+    image = Image.new("RGB", (2, 1))
+    image.putpixel((0, 0), (255, 0, 0))
+    image.putpixel((1, 0), (0, 0, 255))
+    buffer = io.BytesIO()
+    image.save(buffer, "WEBP", lossless=True)
+    a = Asset()
+    a.doc["extensionsUsed"] = ["EXT_texture_webp"]
+    a.doc["extensionsRequired"] = ["EXT_texture_webp"]
+    a.doc["images"] = [{"bufferView": a.view(buffer.getvalue()), "mimeType": "image/webp"}]
+    a.doc["samplers"] = [{"magFilter": 9728, "minFilter": 9728, "wrapS": 33071, "wrapT": 33071}]
+    a.doc["textures"] = [{"sampler": 0, "extensions": {"EXT_texture_webp": {"source": 0}}}]
+    m = a.material(name="webp", pbrMetallicRoughness={"baseColorTexture": {"index": 0}, "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    s = 1.0
+    a.node(mesh=a.mesh([quad_primitive(a, m, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    ortho_camera(a)
+    a.write("webp-texture.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -406,6 +435,7 @@ def main():
     product_glb()
     alpha_mask()
     alpha_blend()
+    webp_texture()
     requires_draco()
     uses_unknown()
 

@@ -14,6 +14,7 @@ pub(crate) const READ: &[&str] = &[
     "KHR_materials_volume",
     "KHR_mesh_quantization",
     "KHR_texture_transform",
+    "EXT_texture_webp",
     crate::spectral::EXTENSION,
 ];
 
@@ -23,9 +24,7 @@ fn consequence(extension: &str) -> &'static str {
         "KHR_draco_mesh_compression" | "EXT_meshopt_compression" => {
             "its uncompressed fallback geometry is rendered"
         }
-        "KHR_texture_basisu" | "EXT_texture_webp" | "EXT_texture_avif" => {
-            "its fallback images are used"
-        }
+        "KHR_texture_basisu" | "EXT_texture_avif" => "its fallback images are used",
         "KHR_materials_variants" => "the default material of each primitive is rendered",
         _ => "the file renders without it",
     }

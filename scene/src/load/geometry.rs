@@ -344,12 +344,30 @@ fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<(gltf::Gltf, Vec<Str
     }
     let warnings = super::extensions::check(&root.extensions_required, &root.extensions_used)
         .map_err(LoadError::Unsupported)?;
+    use_webp_sources(&mut root);
     // Every required extension is one prism reads (checked above); the gltf crate's
     // validation knows only some of them.
     root.extensions_required.clear();
     check_position_accessors(&root)?;
     let document = gltf::Document::from_json(root).map_err(invalid)?;
     Ok((gltf::Gltf { document, blob }, warnings))
+}
+
+/// `EXT_texture_webp`: a texture whose extension names a WebP image reads that image
+/// (prism decodes WebP), whether or not it also has a PNG or JPEG fallback `source`.
+fn use_webp_sources(root: &mut gltf::json::Root) {
+    for texture in &mut root.textures {
+        let webp = texture
+            .extensions
+            .as_ref()
+            .and_then(|e| e.others.get("EXT_texture_webp"))
+            .and_then(|v| v.get("source"))
+            .and_then(serde_json::Value::as_u64)
+            .and_then(|i| u32::try_from(i).ok());
+        if let Some(i) = webp {
+            texture.source = gltf::json::Index::new(i);
+        }
+    }
 }
 
 /// The gltf crate's validation reads each primitive's `POSITION` accessor by indexing

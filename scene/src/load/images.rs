@@ -1,4 +1,5 @@
-//! Decoding glTF images (PNG and JPEG, the formats glTF core allows) to 8-bit RGB.
+//! Decoding glTF images (PNG and JPEG, the formats glTF core allows, and WebP for
+//! `EXT_texture_webp`) to 8-bit RGB and alpha.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -27,8 +28,10 @@ pub fn decode_image(bytes: &[u8]) -> Result<DecodedImage, String> {
         catch_unwind(AssertUnwindSafe(|| decode_png(bytes)))
     } else if bytes.starts_with(&[0xFF, 0xD8]) {
         catch_unwind(AssertUnwindSafe(|| decode_jpeg(bytes)))
+    } else if bytes.len() >= 12 && &bytes[..4] == b"RIFF" && &bytes[8..12] == b"WEBP" {
+        catch_unwind(AssertUnwindSafe(|| decode_webp(bytes)))
     } else {
-        return Err("not a PNG or JPEG image".into());
+        return Err("not a PNG, JPEG or WebP image".into());
     };
     let image = decoded.map_err(|_| "the image decoder failed on malformed data".to_string())??;
     if image.width == 0 || image.height == 0 {
@@ -98,6 +101,25 @@ fn decode_jpeg(bytes: &[u8]) -> Result<DecodedImage, String> {
         height,
         rgb: to_rgb(&data, 3, width, height)?,
         alpha: None,
+    })
+}
+
+fn decode_webp(bytes: &[u8]) -> Result<DecodedImage, String> {
+    use image::ImageDecoder;
+    let decoder = image::codecs::webp::WebPDecoder::new(std::io::Cursor::new(bytes))
+        .map_err(|e| format!("WebP: {e}"))?;
+    let (width, height) = decoder.dimensions();
+    check_size(width, height)?;
+    let has_alpha = decoder.color_type().has_alpha();
+    let rgba = image::DynamicImage::from_decoder(decoder)
+        .map_err(|e| format!("WebP: {e}"))?
+        .into_rgba8();
+    let data = rgba.as_raw();
+    Ok(DecodedImage {
+        width,
+        height,
+        rgb: to_rgb(data, 4, width, height)?,
+        alpha: has_alpha.then(|| data.chunks_exact(4).map(|p| p[3]).collect()),
     })
 }
 
