@@ -276,3 +276,22 @@ fn webp_textures_decode() {
         "right: R {right_r} B {right_b}"
     );
 }
+
+/// `prism info` names the glTF features each asset carries.
+#[test]
+fn info_names_the_gltf_features_a_file_uses() {
+    for (file, feature) in [
+        ("alpha-mask.gltf", "alphaMode MASK"),
+        ("alpha-blend.gltf", "alphaMode BLEND"),
+        ("quantized.gltf", "KHR_mesh_quantization"),
+        ("vertex-colors.gltf", "COLOR_0"),
+        ("unlit.gltf", "KHR_materials_unlit"),
+        ("webp-texture.gltf", "EXT_texture_webp"),
+    ] {
+        let out = prism(&["info", &asset(file)]);
+        assert_success(&out);
+        let text = String::from_utf8_lossy(&out.stdout);
+        let line = text.lines().find(|l| l.starts_with("glTF")).unwrap_or("");
+        assert!(line.contains(feature), "{file}: {text}");
+    }
+}

@@ -50,9 +50,17 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
         yes(s.uses_textures)
     );
     println!(
+        "glTF           {}",
+        if s.gltf_features.is_empty() {
+            "core only".into()
+        } else {
+            s.gltf_features.join(", ")
+        }
+    );
+    println!(
         "light spectra  {}",
         if s.light_spectra.is_empty() {
-            "none".into()
+            "none (a neutral D65 environment lights the scene)".into()
         } else {
             s.light_spectra.join("; ")
         }

@@ -58,6 +58,10 @@ pub struct LoadedGeometry {
     /// What the caller should tell the user about the file: one line each, such as an
     /// extension that prism ignores.
     pub warnings: Vec<String>,
+    /// The glTF features and extensions the file uses that change how it renders (alpha
+    /// modes, vertex colours, quantized attributes, ...), each named once, in the order
+    /// met: what `prism info` lists.
+    pub gltf_features: Vec<String>,
 }
 
 impl LoadedGeometry {
@@ -142,6 +146,18 @@ pub fn load_scene(
 ) -> Result<LoadedGeometry, LoadError> {
     let scene = options.scene;
     let (gltf, warnings) = parse(bytes, options.overlay)?;
+    let mut gltf_features: Vec<String> = gltf
+        .extensions_used()
+        .filter(|e| super::extensions::READ.contains(e))
+        .map(str::to_string)
+        .collect();
+    for m in gltf.materials() {
+        match m.alpha_mode() {
+            gltf::material::AlphaMode::Opaque => {}
+            gltf::material::AlphaMode::Mask => note(&mut gltf_features, "alphaMode MASK"),
+            gltf::material::AlphaMode::Blend => note(&mut gltf_features, "alphaMode BLEND"),
+        }
+    }
     let buffers = gltf
         .buffers()
         .map(|buffer| {
@@ -199,6 +215,7 @@ pub fn load_scene(
     super::instancing::check(&gltf, &scene)?;
     let mut out = LoadedGeometry {
         warnings,
+        gltf_features,
         ..LoadedGeometry::default()
     };
     // Fitting needs a context; scenes without colours never build one.
@@ -280,6 +297,7 @@ pub fn load_scene(
         }
         if let Some(mesh) = node.mesh() {
             if node.skin().is_some() {
+                note(&mut out.gltf_features, "skins (bind pose)");
                 warn_once(
                     &mut out.warnings,
                     "skinned meshes are rendered in their bind pose (skins are not applied)",
@@ -491,6 +509,13 @@ fn vertex_colors(primitive: &gltf::Primitive, buffers: &[Vec<u8>]) -> Option<Vec
     }
 }
 
+/// Adds `feature` to a list of names unless it is there already.
+fn note(features: &mut Vec<String>, feature: &str) {
+    if !features.iter().any(|f| f == feature) {
+        features.push(feature.to_string());
+    }
+}
+
 /// Adds `warning` unless it is there already.
 fn warn_once(warnings: &mut Vec<String>, warning: &str) {
     if !warnings.iter().any(|w| w == warning) {
@@ -582,6 +607,7 @@ fn add_primitive(
     };
     let morphed = primitive.morph_targets().next().is_some();
     if morphed {
+        note(&mut out.gltf_features, "morph targets (default weights)");
         warn_once(
             &mut out.warnings,
             "morph targets are rendered at their default weights",
@@ -658,6 +684,18 @@ fn add_primitive(
         return Err(attribute_count("TANGENT", t.len()));
     }
     let colors = vertex_colors(primitive, buffers);
+    if colors.is_some() {
+        note(&mut out.gltf_features, "COLOR_0");
+    }
+    if uv_set > 0 {
+        note(&mut out.gltf_features, &format!("TEXCOORD_{uv_set}"));
+    }
+    if primitive.indices().is_none() {
+        note(&mut out.gltf_features, "non-indexed primitives");
+    }
+    if primitive.attributes().any(|(_, a)| a.sparse().is_some()) {
+        note(&mut out.gltf_features, "sparse accessors");
+    }
     if let Some(c) = &colors
         && c.len() != count
     {

@@ -31,6 +31,8 @@ pub struct SceneSummary {
     pub uses_dispersion: bool,
     /// Whether a material re-radiates (fluorescence).
     pub uses_fluorescence: bool,
+    /// The glTF features and extensions the file uses that change how it renders.
+    pub gltf_features: Vec<String>,
     /// What the lights' spectra are, one line each, distinct.
     pub light_spectra: Vec<String>,
     /// The wavelengths (nm) the scene needs: the visible 360-830 nm, widened to where its
@@ -115,6 +117,7 @@ impl LoadedGeometry {
                 .materials
                 .iter()
                 .any(|m| surface(m).is_some_and(|s| s.fluorescent())),
+            gltf_features: self.gltf_features.clone(),
             light_spectra,
             wavelength_range: range,
         }
