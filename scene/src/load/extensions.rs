@@ -15,15 +15,14 @@ pub(crate) const READ: &[&str] = &[
     "KHR_mesh_quantization",
     "KHR_texture_transform",
     "EXT_texture_webp",
+    "EXT_meshopt_compression",
     crate::spectral::EXTENSION,
 ];
 
 /// What a used but unread extension loses, where there is more to say than its name.
 fn consequence(extension: &str) -> &'static str {
     match extension {
-        "KHR_draco_mesh_compression" | "EXT_meshopt_compression" => {
-            "its uncompressed fallback geometry is rendered"
-        }
+        "KHR_draco_mesh_compression" => "its uncompressed fallback geometry is rendered",
         "KHR_texture_basisu" | "EXT_texture_avif" => "its fallback images are used",
         "KHR_materials_variants" => "the default material of each primitive is rendered",
         _ => "the file renders without it",

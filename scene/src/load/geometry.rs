@@ -158,9 +158,13 @@ pub fn load_scene(
             gltf::material::AlphaMode::Blend => note(&mut gltf_features, "alphaMode BLEND"),
         }
     }
-    let buffers = gltf
+    let mut buffers = gltf
         .buffers()
         .map(|buffer| {
+            // EXT_meshopt_compression's placeholders are filled by decoding (below).
+            if super::meshopt::is_fallback(&buffer) {
+                return Ok(vec![0; buffer.length().min(1 << 31)]);
+            }
             let data = match buffer.source() {
                 gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
                     LoadError::Buffer(format!(
@@ -200,6 +204,7 @@ pub fn load_scene(
             Ok(data)
         })
         .collect::<Result<Vec<_>, _>>()?;
+    super::meshopt::decode_views(&gltf, &mut buffers)?;
     let scene = match scene {
         Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
             LoadError::Scene(format!(

@@ -11,6 +11,7 @@ mod images;
 mod instancing;
 mod lights;
 mod materials;
+mod meshopt;
 mod summary;
 mod tangents;
 mod textures;
