@@ -295,3 +295,61 @@ fn info_names_the_gltf_features_a_file_uses() {
         assert!(line.contains(feature), "{file}: {text}");
     }
 }
+
+/// Every pixel's value of channel `name` of a 32 x 32 render of `scene` at 1 spp under a
+/// grey environment `environment`.
+fn pixels(dir: &Path, scene: &str, environment: &str, name: &str) -> Vec<f32> {
+    let exr = dir.join("pixels.exr");
+    let out = prism(&[
+        "render",
+        scene,
+        "--spp",
+        "1",
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "--environment",
+        environment,
+        "-q",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert_success(&out);
+    channel(&exr, name)
+}
+
+fn mean_and_spread(v: &[f32]) -> (f32, f32) {
+    let n = v.len() as f32;
+    let mean = v.iter().sum::<f32>() / n;
+    (
+        mean,
+        (v.iter().map(|x| (x - mean).powi(2)).sum::<f32>() / n).sqrt(),
+    )
+}
+
+/// Texture filtering by footprint (mipmaps): a checkerboard so fine that each pixel
+/// covers 32 x 32 texels renders at 1 spp as its squares' mean (linear 0.5), its pixels
+/// spreading no more than a uniform surface of the same radiance does (path noise), not
+/// as aliased black and white pixels (a spread of 0.5); magnified, the squares stay
+/// sharp.
+#[test]
+fn minified_textures_do_not_alias_at_one_sample_per_pixel() {
+    let dir = temp_dir("asset-checker");
+    let fine = pixels(&dir, &asset("checker-minified.gltf"), "1", "G");
+    let (mean, spread) = mean_and_spread(&fine);
+    assert!((mean - 0.5).abs() < 0.03, "mean {mean}");
+    let uniform = pixels(&dir, &asset("white-plane.gltf"), "0.5", "G");
+    let (uniform_mean, noise) = mean_and_spread(&uniform);
+    assert!(
+        (uniform_mean - 0.5).abs() < 0.03,
+        "uniform mean {uniform_mean}"
+    );
+    assert!(
+        spread < 1.3 * noise + 0.01,
+        "checker pixels spread by {spread}, a uniform surface's by {noise}: aliasing"
+    );
+    let coarse = pixels(&dir, &asset("checker-magnified.gltf"), "1", "G");
+    let (_, spread) = mean_and_spread(&coarse);
+    assert!(spread > 0.4, "magnified squares blurred: spread {spread}");
+}

@@ -29,6 +29,48 @@ pub(crate) struct Tracer<'a> {
     pub light_caustics: bool,
     /// Whether camera rays that leave the scene show nothing (a transparent background).
     pub transparent: bool,
+    /// How wide a pixel's footprint is where a path meets a surface, for filtering
+    /// textures (None: the scene has no texture to filter).
+    pub footprint: Option<Footprint>,
+}
+
+/// A pixel's footprint at a point, as pbrt-v4 approximates it for every vertex of a path
+/// (`Camera::Approximate_dp_dxy`): the width a camera ray's pixel cone would have there,
+/// halved, since the pixel filter averages the samples too (pbrt-v4 narrows it by
+/// max(1/8, 1/sqrt(spp)); a fixed factor keeps an image independent of how its samples
+/// are split between passes and machines, and 1/2 is pbrt-v4's at 4 spp).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Footprint {
+    /// The camera's position (perspective) or None (orthographic: the width is constant).
+    pub origin: Option<Vec3>,
+    /// Width per unit of distance from the camera (perspective), or the width itself.
+    pub width: f32,
+}
+
+impl Footprint {
+    /// For `camera` rendering `height` rows.
+    pub(crate) fn new(camera: &prism_scene::camera::Camera, height: u32) -> Self {
+        let narrowing = 0.5;
+        let rows = height.max(1) as f32;
+        match camera.projection {
+            prism_scene::camera::Projection::Perspective { yfov } => Self {
+                origin: Some(camera.to_world.transform_point3(Vec3::ZERO)),
+                width: 2.0 * (0.5 * yfov).tan() / rows * narrowing,
+            },
+            prism_scene::camera::Projection::Orthographic { ymag, .. } => Self {
+                origin: None,
+                width: 2.0 * ymag / rows * narrowing,
+            },
+        }
+    }
+
+    /// The footprint's width at `p`.
+    pub(crate) fn at(&self, p: Vec3) -> f32 {
+        match self.origin {
+            Some(o) => self.width * (p - o).length(),
+            None => self.width,
+        }
+    }
 }
 
 /// The sample-stream dimensions: the wavelength and the film position first, then a fixed
@@ -157,7 +199,7 @@ impl Tracer<'_> {
             rays += 1;
             let hit = self.scene.intersect(&ray);
             covered |= depth == 0 && hit.is_some();
-            let Some(hit) = hit else {
+            let Some(mut hit) = hit else {
                 if depth == 0 && self.transparent {
                     break;
                 }
@@ -173,6 +215,10 @@ impl Tracer<'_> {
                 break;
             };
             let wo_world = -ray.direction.normalize();
+            if let Some(footprint) = &self.footprint {
+                let width = footprint.at(hit.p);
+                self.scene.set_footprint(&mut hit, wo_world, width);
+            }
             absorb(self.scene, &ray, &hit, &transport, &mut beta);
             let le = self
                 .scene

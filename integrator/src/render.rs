@@ -15,6 +15,7 @@ use rayon::prelude::*;
 use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
+use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
 use crate::sample_value::{Outputs, SampleValue};
 use crate::{Film, RenderError, RenderSettings};
@@ -126,6 +127,10 @@ impl<'a> Renderer<'a> {
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
             light_caustics: self.light_caustics(),
             transparent: settings.transparent,
+            footprint: self
+                .scene
+                .filters_textures()
+                .then(|| Footprint::new(self.scene.camera(), settings.height)),
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);

@@ -415,6 +415,29 @@ def webp_texture():
     a.write("webp-texture.gltf")
 
 
+def checkerboard(name, repeats):
+    """A white-and-black 2 x 2 checker repeated `repeats` times (KHR_texture_transform)
+    across a plane filling an orthographic view: at 512 repeats over 32 pixels, each pixel
+    covers 32 texels each way (texture filtering must average them); at 1, each texel
+    spans 16 pixels (magnification must stay sharp)."""
+    a = Asset()
+    a.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    # NEAREST magnification: magnified squares must stay sharp.
+    tex = a.texture(png(2, 2, lambda x, y: (255, 255, 255) if (x + y) % 2 == 0 else (0, 0, 0)), {"magFilter": 9728})
+    m = a.material(
+        name="checker",
+        pbrMetallicRoughness={
+            "baseColorTexture": {"index": tex, "extensions": {"KHR_texture_transform": {"scale": [repeats, repeats]}}},
+            "metallicFactor": 0.0,
+            "roughnessFactor": 1.0,
+        },
+    )
+    s = 1.0
+    a.node(mesh=a.mesh([quad_primitive(a, m, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    ortho_camera(a)
+    a.write(name)
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -436,6 +459,8 @@ def main():
     alpha_mask()
     alpha_blend()
     webp_texture()
+    checkerboard("checker-minified.gltf", 512)
+    checkerboard("checker-magnified.gltf", 1)
     requires_draco()
     uses_unknown()
 

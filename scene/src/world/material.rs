@@ -93,7 +93,22 @@ impl Material {
         }
     }
 
-    /// Whether light changes wavelength here.
+    /// Whether its reflectance or metallic-roughness parameters come from textures (what
+    /// footprint filtering applies to).
+    pub fn textured(&self) -> bool {
+        let textured = |s: &SceneSpectrum| matches!(s, SceneSpectrum::Texture(_));
+        match self {
+            Material::Diffuse { reflectance } | Material::Fluorescent { reflectance, .. } => {
+                textured(reflectance)
+            }
+            Material::MetallicRoughness { base, texture, .. } => {
+                textured(base) || texture.is_some()
+            }
+            _ => false,
+        }
+    }
+
+    /// Whether the material re-radiates (fluorescence).
     pub fn fluorescent(&self) -> bool {
         matches!(self, Material::Fluorescent { .. })
     }
@@ -131,9 +146,22 @@ impl Material {
         mode: TransportMode,
         tint: Option<SampledSpectrum<N>>,
     ) -> Bsdf<'_, N> {
+        self.bsdf_at(uv, f32::NEG_INFINITY, wavelengths, mode, tint)
+    }
+
+    /// [`Material::bsdf_tinted`] with textures filtered over a footprint of 2^`lod`
+    /// units of texture coordinates (mipmapping; `-inf`: unfiltered texels).
+    pub fn bsdf_at<const N: usize>(
+        &self,
+        uv: Vec2,
+        lod: f32,
+        wavelengths: &SampledWavelengths<N>,
+        mode: TransportMode,
+        tint: Option<SampledSpectrum<N>>,
+    ) -> Bsdf<'_, N> {
         let base = |s: &SceneSpectrum| match tint {
-            Some(t) => s.at_uv(uv, wavelengths) * t,
-            None => s.at_uv(uv, wavelengths),
+            Some(t) => s.at_uv_lod(uv, lod, wavelengths) * t,
+            None => s.at_uv_lod(uv, lod, wavelengths),
         };
         match self {
             Material::Diffuse { reflectance } => Bsdf::Diffuse(Diffuse::new(base(reflectance))),
@@ -146,7 +174,7 @@ impl Material {
             } => {
                 let (metallic, roughness) = match texture {
                     Some(t) => {
-                        let [_, roughness, metallic] = t.sample(uv);
+                        let [_, roughness, metallic] = t.sample_lod(uv, lod + t.log2_resolution());
                         (metallic, roughness)
                     }
                     None => (*metallic, *roughness),

@@ -11,6 +11,7 @@ mod guide;
 mod light;
 mod light_choice;
 mod material;
+mod mipmap;
 mod normal_map;
 mod spectrum;
 mod texture;
@@ -113,6 +114,10 @@ pub struct Hit {
     pub uv: glam::Vec2,
     /// The vertex colour (linear RGBA; white without vertex colours).
     pub color: glam::Vec4,
+    /// The base-2 logarithm of the hit's footprint in texture coordinates (textures are
+    /// filtered over it: see [`Scene::set_footprint`]); `-inf` (as intersections return
+    /// it) reads texels unfiltered.
+    pub lod: f32,
     /// The ray parameter.
     pub t: f32,
     /// The triangle.
@@ -160,6 +165,8 @@ pub struct Scene {
     light_wavelengths: Vec<Option<prism_sampling::distribution::PiecewiseConstant1D>>,
     /// Whether the scene had no light and is lit by the default environment.
     lit_by_default: bool,
+    /// Whether a material has a base colour or metallic-roughness texture.
+    filters_textures: bool,
 }
 
 impl Scene {
@@ -239,6 +246,8 @@ impl Scene {
                 ));
             }
         }
+        let filters_textures =
+            !attributes.uvs.is_empty() && materials.iter().any(Material::textured);
         let bvh = Bvh::build(&triangles, quality);
         let (lo, hi) = triangles
             .iter()
@@ -309,6 +318,7 @@ impl Scene {
             radius,
             light_wavelengths,
             lit_by_default: false,
+            filters_textures,
         })
     }
 
@@ -458,6 +468,7 @@ impl Scene {
             shading_normal,
             uv,
             color,
+            lod: f32::NEG_INFINITY,
             t: hit.hit.t,
             triangle: hit.triangle as u32,
         })
@@ -520,7 +531,32 @@ impl Scene {
                 _ => None,
             };
         self.material(hit)
-            .bsdf_tinted(hit.uv, wavelengths, mode, tint)
+            .bsdf_at(hit.uv, hit.lod, wavelengths, mode, tint)
+    }
+
+    /// Whether any material reads a texture that footprints filter (base colour or
+    /// metallic-roughness): only then do paths compute footprints.
+    pub fn filters_textures(&self) -> bool {
+        self.filters_textures
+    }
+
+    /// Sets `hit.lod` for a footprint `width` wide (world units, across the ray `direction`
+    /// at the hit): the width over the surface's cosine (a glancing footprint spreads),
+    /// in texture coordinates by the triangle's ratio of texture to world area (*Ray
+    /// Tracing Gems* ch. 20, ray cones). Triangles without texture coordinates keep
+    /// `-inf`.
+    pub fn set_footprint(&self, hit: &mut Hit, direction: Vec3, width: f32) {
+        let (Some(uv), Some(v)) = (
+            self.attributes.uvs.get(hit.triangle as usize),
+            self.triangles.get(hit.triangle as usize),
+        ) else {
+            return;
+        };
+        let uv_area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs();
+        let world_area = (v[1] - v[0]).cross(v[2] - v[0]).length();
+        let cos = hit.normal.dot(direction).abs().max(0.05);
+        let lod = (width / cos * (uv_area / world_area).sqrt()).log2();
+        hit.lod = if lod.is_nan() { f32::NEG_INFINITY } else { lod };
     }
 
     /// Radiance emitted by the hit surface towards `wo` (unit, pointing away from it).

@@ -65,6 +65,20 @@ impl SceneSpectrum {
         }
     }
 
+    /// The values at texture coordinate `uv` over a footprint of 2^`lod` units of
+    /// texture coordinates (textures are filtered over it; nothing else varies).
+    pub fn at_uv_lod<const N: usize>(
+        &self,
+        uv: glam::Vec2,
+        lod: f32,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        match self {
+            SceneSpectrum::Texture(t) => t.at_lod(uv, lod, wavelengths),
+            _ => self.at(wavelengths),
+        }
+    }
+
     /// The values at texture coordinate `uv` (textures vary with it, nothing else does).
     pub fn at_uv<const N: usize>(
         &self,

@@ -4,6 +4,8 @@
 
 use std::sync::{Arc, LazyLock};
 
+use super::mipmap::{Level, pyramid};
+
 use glam::Vec2;
 use prism_spectrum::spectra::DenselySampled;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
@@ -88,7 +90,7 @@ pub enum Encoding {
 
 impl Encoding {
     /// Every byte's linear value: a lookup per texel where the sRGB curve was a `powf`.
-    fn table(self) -> &'static [f32; 256] {
+    pub(crate) fn table(self) -> &'static [f32; 256] {
         static SRGB: LazyLock<[f32; 256]> = LazyLock::new(|| {
             std::array::from_fn(|v| {
                 let c = v as f32 / 255.0;
@@ -124,6 +126,8 @@ pub struct RgbTexture {
     /// glTF's NEAREST magnification filter: the texel under the point, not a bilinear
     /// blend of four (pixel art, lookup tables, labels drawn at texel size).
     nearest: bool,
+    /// The mipmap levels below the image, built on the first minified lookup.
+    mips: std::sync::OnceLock<Arc<Vec<Level>>>,
 }
 
 impl RgbTexture {
@@ -161,6 +165,7 @@ impl RgbTexture {
             encoding: Encoding::Srgb,
             rotation: transform.rotation.sin_cos(),
             nearest: false,
+            mips: std::sync::OnceLock::new(),
         })
     }
 
@@ -193,10 +198,79 @@ impl RgbTexture {
     }
 
     fn linear(&self, x: i64, y: i64) -> [f32; 3] {
-        let i = self.wrap[1].texel(y, self.height) * self.width as usize
-            + self.wrap[0].texel(x, self.width);
+        self.level_linear(self.width, self.height, &self.texels, x, y)
+    }
+
+    fn level_linear(
+        &self,
+        width: u32,
+        height: u32,
+        texels: &[[u8; 3]],
+        x: i64,
+        y: i64,
+    ) -> [f32; 3] {
+        let i = self.wrap[1].texel(y, height) * width as usize + self.wrap[0].texel(x, width);
         let table = self.encoding.table();
-        self.texels[i].map(|v| table[usize::from(v)])
+        texels[i].map(|v| table[usize::from(v)])
+    }
+
+    /// The base-2 logarithm of the texture's resolution in texels per unit of texture
+    /// coordinates, sqrt(width x height) scaled by its transform's scale: a lookup whose
+    /// footprint spans f units of texture coordinates reads level log2(f) + this.
+    pub fn log2_resolution(&self) -> f32 {
+        let scale = (self.transform.scale.x * self.transform.scale.y).abs();
+        0.5 * ((self.width as f32) * (self.height as f32) * scale).log2()
+    }
+
+    /// Linear RGB at `uv` read at mipmap level `lod` (0: the image itself, each level up
+    /// half the resolution; fractional levels blend the two around them, trilinear
+    /// filtering), times the factor. `lod` <= 0 or NaN reads the image as
+    /// [`RgbTexture::sample`] does.
+    pub fn sample_lod(&self, uv: Vec2, lod: f32) -> [f32; 3] {
+        if !(lod > 0.0) {
+            return self.sample(uv);
+        }
+        let levels = self.mips.get_or_init(|| {
+            let base = Level {
+                width: self.width,
+                height: self.height,
+                texels: self.texels.clone(),
+            };
+            Arc::new(pyramid(&base, self.encoding))
+        });
+        let uv = self.transform.apply_rotated(self.rotation, uv);
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let lod = lod.min(levels.len() as f32);
+        let below = lod.floor();
+        let t = lod - below;
+        let at = |l: usize| -> [f32; 3] {
+            match l.checked_sub(1).and_then(|i| levels.get(i)) {
+                Some(level) => self.bilinear(level.width, level.height, &level.texels, uv),
+                None => self.bilinear(self.width, self.height, &self.texels, uv),
+            }
+        };
+        let (a, b) = (at(below as usize), at(below as usize + 1));
+        std::array::from_fn(|k| (a[k] * (1.0 - t) + b[k] * t) * self.factor[k])
+    }
+
+    /// Bilinear filtering of texels `texels` (`width` x `height`) at transformed `uv`.
+    fn bilinear(&self, width: u32, height: u32, texels: &[[u8; 3]], uv: Vec2) -> [f32; 3] {
+        let x = (uv.x * width as f32 - 0.5).clamp(-1e9, 1e9);
+        let y = (uv.y * height as f32 - 0.5).clamp(-1e9, 1e9);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let c = [
+            self.level_linear(width, height, texels, x0, y0),
+            self.level_linear(width, height, texels, x0 + 1, y0),
+            self.level_linear(width, height, texels, x0, y0 + 1),
+            self.level_linear(width, height, texels, x0 + 1, y0 + 1),
+        ];
+        std::array::from_fn(|k| {
+            let top = c[0][k] * (1.0 - fx) + c[1][k] * fx;
+            let bottom = c[2][k] * (1.0 - fx) + c[3][k] * fx;
+            top * (1.0 - fy) + bottom * fy
+        })
     }
 
     /// Linear RGB at `uv` (glTF: u right, v down from the top-left), bilinearly filtered
@@ -204,28 +278,16 @@ impl RgbTexture {
     pub fn sample(&self, uv: Vec2) -> [f32; 3] {
         let uv = self.transform.apply_rotated(self.rotation, uv);
         let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
-        // Texel centres sit at half-integers; keep the integer part within i64 even for
-        // absurd coordinates (wrapping makes the exact multiple irrelevant).
-        let x = (uv.x * self.width as f32 - 0.5).clamp(-1e9, 1e9);
-        let y = (uv.y * self.height as f32 - 0.5).clamp(-1e9, 1e9);
         if self.nearest {
-            let c = self.linear((x + 0.5).floor() as i64, (y + 0.5).floor() as i64);
+            // Texel centres sit at half-integers; keep the integer part within i64 even
+            // for absurd coordinates (wrapping makes the exact multiple irrelevant).
+            let x = (uv.x * self.width as f32).clamp(-1e9, 1e9).floor();
+            let y = (uv.y * self.height as f32).clamp(-1e9, 1e9).floor();
+            let c = self.linear(x as i64, y as i64);
             return std::array::from_fn(|k| c[k] * self.factor[k]);
         }
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let c = [
-            self.linear(x0, y0),
-            self.linear(x0 + 1, y0),
-            self.linear(x0, y0 + 1),
-            self.linear(x0 + 1, y0 + 1),
-        ];
-        std::array::from_fn(|k| {
-            let top = c[0][k] * (1.0 - fx) + c[1][k] * fx;
-            let bottom = c[2][k] * (1.0 - fx) + c[3][k] * fx;
-            (top * (1.0 - fy) + bottom * fy) * self.factor[k]
-        })
+        let c = self.bilinear(self.width, self.height, &self.texels, uv);
+        std::array::from_fn(|k| c[k] * self.factor[k])
     }
 
     /// The mean linear colour over the texels, times the factor.
@@ -397,7 +459,18 @@ impl SpectralTexture {
         uv: Vec2,
         wavelengths: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let rgb = self.rgb.sample(uv);
+        self.at_lod(uv, f32::NEG_INFINITY, wavelengths)
+    }
+
+    /// The spectrum at `uv` filtered over a footprint of 2^`lod` units of texture
+    /// coordinates (see [`RgbTexture::sample_lod`]; `-inf`: the texel itself).
+    pub fn at_lod<const N: usize>(
+        &self,
+        uv: Vec2,
+        lod: f32,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        let rgb = self.rgb.sample_lod(uv, lod + self.rgb.log2_resolution());
         match &self.kind {
             // In f32 lanes, as constant colours are evaluated (RgbSpectrum::evaluate_lanes).
             TextureKind::Reflectance { .. } => reflectance_lanes(rgb, &self.table, wavelengths),
