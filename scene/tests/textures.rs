@@ -462,6 +462,7 @@ fn gltf_emissive_textures_emit_per_texel() {
             shading_normal: -Vec3::Z,
             uv: Vec2::ZERO,
             color: glam::Vec4::ONE,
+            lod: f32::NEG_INFINITY,
             t: 1.0,
             triangle: 0,
         };

@@ -227,7 +227,8 @@ impl RgbTexture {
     /// filtering), times the factor. `lod` <= 0 or NaN reads the image as
     /// [`RgbTexture::sample`] does.
     pub fn sample_lod(&self, uv: Vec2, lod: f32) -> [f32; 3] {
-        if !(lod > 0.0) {
+        // NaN reads the image too.
+        if lod.is_nan() || lod <= 0.0 {
             return self.sample(uv);
         }
         let levels = self.mips.get_or_init(|| {
