@@ -82,8 +82,13 @@ fn a_file_without_lights_is_lit_by_default_and_says_so() {
     let (_, stderr) = render(&dir, &asset("box.gltf"), &[]);
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("no light source") && stderr.contains("--environment"));
-    // A file with its own light (the unlit quad emits) gets no notice.
+    // Glowing surfaces (an unlit quad emits its base colour, at most 1) do not light a
+    // scene as lamps do: it still gets the environment, and the notice.
     let (_, stderr) = render(&dir, &asset("unlit.gltf"), &[]);
+    assert!(stderr.contains("no light source"), "{stderr}");
+    // A file with a lamp (an emissive strength of 6, and a point light) gets none.
+    let textured = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/textured.gltf");
+    let (_, stderr) = render(&dir, textured.to_str().unwrap(), &[]);
     assert!(stderr.is_empty(), "{stderr}");
 }
 

@@ -291,8 +291,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let scene = Scene::from_loaded(loaded, &options).map_err(|e| e.to_string())?;
     if scene.lit_by_default() {
         eprintln!(
-            "prism: the scene has no light source; lighting it with a neutral environment \
-             (CIE D65, --environment {DEFAULT_ENVIRONMENT}); choose another with --environment VALUE|FILE"
+            "prism: the scene has no light source (only glowing surfaces, if any); lighting it with a \
+             neutral environment (CIE D65, --environment {DEFAULT_ENVIRONMENT}); choose another with --environment VALUE|FILE"
         );
     }
     let (width, height) = image_size(args.width, args.height, scene.camera().aspect_ratio);

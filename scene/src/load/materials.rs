@@ -60,6 +60,9 @@ pub struct MaterialDesc {
     pub spectral: Option<SpectralMaterial>,
     /// Alpha coverage (`alphaMode` MASK or BLEND), None for OPAQUE.
     pub alpha: Option<Alpha>,
+    /// The brightest channel of the RGB it emits (emissiveFactor times the strength, or
+    /// an unlit base colour): at most 1 is a glow (a screen, an indicator), not a lamp.
+    pub emission_peak: f32,
 }
 
 impl MaterialDesc {
@@ -338,7 +341,9 @@ pub(crate) fn material(
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let alpha = alpha(material, &pbr, textures, base[3])
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let emission_peak = emitted.iter().fold(0.0f64, |a, &c| a.max(c)) as f32;
     let desc = MaterialDesc {
+        emission_peak,
         alpha,
         name,
         base_color,
@@ -411,6 +416,7 @@ fn unlit(
     let pbr = material.pbr_metallic_roughness();
     let base = pbr.base_color_factor();
     let colour = [base[0], base[1], base[2]];
+    desc.emission_peak = colour.iter().fold(0.0f32, |a, &c| a.max(c));
     desc.emission = if colour.iter().all(|&c| c <= 0.0) {
         None
     } else {

@@ -173,9 +173,21 @@ impl Scene {
         if let Some(environment) = environment {
             lights.push(environment.light());
         }
-        // A file with no light at all (most real assets: viewers light them) is lit as a
-        // glTF viewer would, by a neutral environment: D65 of emissive-colour value 1.
-        let lit_by_default = lights.is_empty();
+        // A file with no light meant to light it (most real assets: viewers light them
+        // with an environment) is lit as a glTF viewer would, by a neutral environment:
+        // D65 of emissive-colour value 1. Emission no brighter than an emissive colour of
+        // 1 (glowing screens and indicators, unlit surfaces) is not such a light; a
+        // spectral emission or one scaled by KHR_materials_emissive_strength above 1 is.
+        let lamp = |m: &MaterialDesc| {
+            m.emission_peak > 1.0 || m.spectral.as_ref().is_some_and(|s| s.emission.is_some())
+        };
+        let lit_by_default = lights.iter().all(|l| match l {
+            Light::Triangle { triangle, .. } => {
+                let m = triangle_material[*triangle as usize] as usize;
+                !loaded.materials.get(m).is_some_and(lamp)
+            }
+            _ => false,
+        });
         if lit_by_default {
             lights.push(Light::Environment {
                 radiance: super::grey_environment(DEFAULT_ENVIRONMENT),
