@@ -85,8 +85,9 @@ pub struct Comparison {
     pub channel_relmse: Vec<f64>,
 }
 
-/// Compares `image` against `reference`: both must have the same size and channel names,
-/// and only finite samples (a NaN or infinity is an error naming its channel and pixel).
+/// Compares `image` against `reference` over the channels both have (an error when they
+/// share none): both must have the same size and only finite samples (a NaN or infinity
+/// is an error naming its channel and pixel).
 pub fn compare_images(
     image: &ChannelImage,
     reference: &ChannelImage,
@@ -99,9 +100,19 @@ pub fn compare_images(
         )));
     }
     let names = |i: &ChannelImage| i.channels.iter().map(|c| c.0.clone()).collect::<Vec<_>>();
-    if names(image) != names(reference) {
+    // The channels both have: a render with alpha compares with a reference without it
+    // (an older render, another renderer's).
+    let pairs: Vec<(&String, &Vec<f32>, &Vec<f32>)> = image
+        .channels
+        .iter()
+        .filter_map(|(name, a)| {
+            let b = reference.channels.iter().find(|(n, _)| n == name)?;
+            Some((name, a, &b.1))
+        })
+        .collect();
+    if pairs.is_empty() {
         return Err(bad(format!(
-            "channels differ: {:?} and {:?}",
+            "channels differ: {:?} and {:?} have none in common",
             names(image),
             names(reference)
         )));
@@ -121,9 +132,9 @@ pub fn compare_images(
     let (mut squared, mut relative, mut absolute, mut max_difference) = (0.0, 0.0, 0.0, 0.0f64);
     let mut peak = 0.0f64;
     let (mut mean_ratio, mut channel_relmse) = (vec![], vec![]);
-    for ((_, a), (_, b)) in image.channels.iter().zip(&reference.channels) {
+    for (_, a, b) in &pairs {
         let (mut sum_a, mut sum_b, mut rel) = (0.0, 0.0, 0.0);
-        for (&x, &y) in a.iter().zip(b) {
+        for (&x, &y) in a.iter().zip(b.iter()) {
             let (x, y) = (f64::from(x), f64::from(y));
             let d = x - y;
             squared += d * d;
@@ -138,10 +149,10 @@ pub fn compare_images(
         channel_relmse.push(rel / n);
         mean_ratio.push((sum_b != 0.0).then(|| sum_a / sum_b));
     }
-    let count = n * image.channels.len().max(1) as f64;
+    let count = n * pairs.len() as f64;
     let mse = squared / count;
     Ok(Comparison {
-        channels: names(image),
+        channels: pairs.iter().map(|(name, _, _)| (*name).clone()).collect(),
         rmse: mse.sqrt(),
         relmse: relative / count,
         mae: absolute / count,
@@ -182,5 +193,20 @@ mod tests {
         let e = compare_images(&image(&[1.0, f32::NAN]), &image(&[1.0, 2.0])).unwrap_err();
         assert!(e.to_string().contains("(1, 0)"), "{e}");
         assert!(compare_images(&image(&[1.0]), &image(&[f32::INFINITY])).is_err());
+    }
+
+    /// A render with an alpha channel compares with a reference without one over the
+    /// channels both have; images with no channel in common are an error.
+    #[test]
+    fn only_shared_channels_are_compared() {
+        let mut with_alpha = image(&[1.0, 4.0]);
+        with_alpha.channels.insert(0, ("A".into(), vec![1.0, 0.0]));
+        let c = compare_images(&with_alpha, &image(&[1.0, 2.0])).unwrap();
+        assert_eq!(c.channels, vec!["Y".to_string()]);
+        assert_eq!(c.max_difference, 2.0);
+        let mut other = image(&[1.0, 2.0]);
+        other.channels[0].0 = "Z".into();
+        let e = compare_images(&other, &image(&[1.0, 2.0])).unwrap_err();
+        assert!(e.to_string().contains("none in common"), "{e}");
     }
 }
