@@ -358,3 +358,19 @@ fn minified_textures_do_not_alias_at_one_sample_per_pixel() {
     let (_, spread) = mean_and_spread(&coarse);
     assert!(spread > 0.4, "magnified squares blurred: spread {spread}");
 }
+
+/// A non-indexed primitive with interleaved POSITION and NORMAL and a sparse POSITION
+/// accessor (whose substitution moves two far-off corners back) is the white plane that
+/// fills the view: white everywhere under a grey environment of 1.
+#[test]
+fn sparse_interleaved_non_indexed_primitives_read_right() {
+    let dir = temp_dir("asset-sparse");
+    let (exr, _) = render(
+        &dir,
+        &asset("sparse-interleaved.gltf"),
+        &["--environment", "1"],
+    );
+    assert!(channel(&exr, "A").iter().all(|&a| a == 1.0));
+    let (mean, _) = mean_and_spread(&channel(&exr, "G"));
+    assert!((mean - 1.0).abs() < 0.02, "G {mean}");
+}

@@ -219,6 +219,40 @@ fn spectral_emission_and_environment() {
     assert!(scene.lights().environment().is_some());
 }
 
+/// An environment image from the root's description and from a TOML overlay (the file
+/// relative to the glTF, rotation and strength), with errors naming what is wrong.
+#[test]
+fn environment_images_from_the_root_and_overlays() {
+    let mut doc = cornell_json();
+    doc["extensions"] = json!({"PRISM_spectral": {"environment": {"image": "sky.hdr", "rotation": 30, "strength": 2}}});
+    let loaded = load(&doc, None, &[]).unwrap();
+    let Some(Environment::Map(map)) = &loaded.spectral.environment else {
+        panic!("no environment image")
+    };
+    assert_eq!(map.size(), (256, 128));
+    let overlay =
+        "gltf = \"cornell-box.gltf\"\nenvironment = { image = \"sky.hdr\", rotation = 90 }\n";
+    let loaded = load(&cornell_json(), Some(overlay), &[]).unwrap();
+    assert!(matches!(
+        loaded.spectral.environment,
+        Some(Environment::Map(_))
+    ));
+    for (environment, needle) in [
+        (json!({"image": "missing.hdr"}), "missing.hdr"),
+        (
+            json!({"image": "cornell-box.gltf"}),
+            "not an OpenEXR or Radiance",
+        ),
+        (json!({"image": "sky.hdr", "strength": -1}), "strength"),
+        (json!({"image": "sky.hdr", "tilt": 3}), "tilt"),
+    ] {
+        let mut doc = cornell_json();
+        doc["extensions"] = json!({"PRISM_spectral": {"environment": environment}});
+        let e = load(&doc, None, &[]).unwrap_err().to_string();
+        assert!(e.contains("environment") && e.contains(needle), "{e}");
+    }
+}
+
 #[test]
 fn overlays_override_by_name() {
     let overlay = r#"

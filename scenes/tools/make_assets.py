@@ -438,6 +438,37 @@ def checkerboard(name, repeats):
     a.write(name)
 
 
+def sparse_interleaved():
+    """The white plane as a non-indexed primitive (six vertices) whose POSITION and NORMAL
+    are interleaved in one buffer view (byteStride 24), and whose POSITION accessor is
+    sparse: the stored positions put two corners far off, and the sparse substitution
+    puts them back. Read correctly it fills the orthographic view."""
+    a = Asset()
+    m = a.material(name="white", pbrMetallicRoughness={"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
+    s = 50.0
+    good = [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, -s, 0), (s, s, 0), (-s, s, 0)]
+    stored = list(good)
+    stored[2] = (0.0, 0.0, -500.0)
+    stored[4] = (0.0, 0.0, -500.0)
+    data = b"".join(struct.pack("<6f", *p, 0.0, 0.0, 1.0) for p in stored)
+    view = a.view(data, stride=24)
+    pos = a.accessor(stored, "VEC3", view=view, offset=0)
+    a.doc["accessors"][pos]["min"] = [-s, -s, -500.0]
+    a.doc["accessors"][pos]["max"] = [s, s, 0.0]
+    nrm = a.accessor([(0.0, 0.0, 1.0)] * 6, "VEC3", view=view, offset=12)
+    del a.doc["accessors"][nrm]["min"], a.doc["accessors"][nrm]["max"]
+    indices_view = a.view(struct.pack("<2H", 2, 4))
+    values_view = a.view(struct.pack("<6f", *good[2], *good[4]))
+    a.doc["accessors"][pos]["sparse"] = {
+        "count": 2,
+        "indices": {"bufferView": indices_view, "componentType": 5123},
+        "values": {"bufferView": values_view},
+    }
+    a.node(mesh=a.mesh([{"attributes": {"POSITION": pos, "NORMAL": nrm}, "material": m}]))
+    ortho_camera(a)
+    a.write("sparse-interleaved.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -459,6 +490,7 @@ def main():
     alpha_mask()
     alpha_blend()
     webp_texture()
+    sparse_interleaved()
     checkerboard("checker-minified.gltf", 512)
     checkerboard("checker-magnified.gltf", 1)
     requires_draco()
