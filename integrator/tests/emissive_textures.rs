@@ -120,7 +120,11 @@ fn scene(light: (f32, f32), emission: Value, image: Option<Vec<u8>>) -> Scene {
             bounded(mirror_p, &mirror)
         ],
         "bufferViews": views,
-        "buffers": [{"byteLength": bin.len(), "uri": "scene.bin"}]
+        "buffers": [{"byteLength": bin.len(), "uri": "scene.bin"}],
+        // The lamp's emission is no brighter than an emissive colour of 1, which alone
+        // would not count as the scene's light: a black environment, stated, keeps the
+        // default one out.
+        "extensions": {"PRISM_spectral": {"environment": 0.0}}
     });
     if let Some(view) = image_view {
         doc["images"] = json!([{"bufferView": view, "mimeType": "image/png"}]);
