@@ -86,6 +86,9 @@ fn a_file_without_lights_is_lit_by_default_and_says_so() {
     // scene as lamps do: it still gets the environment, and the notice.
     let (_, stderr) = render(&dir, &asset("unlit.gltf"), &[]);
     assert!(stderr.contains("no light source"), "{stderr}");
+    // Stating an environment, even a black one, is the scene's own light: no notice.
+    let (_, stderr) = render(&dir, &asset("unlit.gltf"), &["--environment", "0"]);
+    assert!(stderr.is_empty(), "{stderr}");
     // A file with a lamp (an emissive strength of 6, and a point light) gets none.
     let textured = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/textured.gltf");
     let (_, stderr) = render(&dir, textured.to_str().unwrap(), &[]);
