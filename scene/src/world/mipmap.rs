@@ -54,16 +54,10 @@ pub(crate) fn pyramid(base: &Level, encoding: Encoding) -> Vec<Level> {
 
 /// A linear value in [0, 1] as the nearest byte of `encoding`.
 fn encode(v: f32, encoding: Encoding) -> u8 {
-    let v = v.clamp(0.0, 1.0);
+    let v = f64::from(v.clamp(0.0, 1.0));
     let e = match encoding {
         Encoding::Linear => v,
-        Encoding::Srgb => {
-            if v <= 0.003_130_8 {
-                12.92 * v
-            } else {
-                1.055 * v.powf(1.0 / 2.4) - 0.055
-            }
-        }
+        Encoding::Srgb => prism_spectrum::color::TransferFunction::Srgb.encode(v),
     };
     (e * 255.0).round() as u8
 }
