@@ -377,3 +377,17 @@ fn sparse_interleaved_non_indexed_primitives_read_right() {
     let (mean, _) = mean_and_spread(&channel(&exr, "G"));
     assert!((mean - 1.0).abs() < 0.02, "G {mean}");
 }
+
+/// KHR_materials_pbrSpecularGlossiness: the diffuse colour is the base colour (a matte
+/// dielectric at glossiness 0), with the approximation said once.
+#[test]
+fn specular_glossiness_materials_take_their_diffuse_colour() {
+    let dir = temp_dir("asset-spec-gloss");
+    let (exr, stderr) = render(&dir, &asset("spec-gloss.gltf"), &["--environment", "1"]);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("approximated"), "{stderr}");
+    for (name, c) in [("R", 0.2f32), ("G", 0.6), ("B", 0.9)] {
+        let mean = column_mean(&exr, name, 0..32);
+        assert!((mean - c).abs() < 0.02, "{name}: {mean} vs {c}");
+    }
+}

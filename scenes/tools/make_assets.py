@@ -469,6 +469,22 @@ def sparse_interleaved():
     a.write("sparse-interleaved.gltf")
 
 
+def spec_gloss():
+    """KHR_materials_pbrSpecularGlossiness (older assets): the white plane's colour comes
+    from diffuseFactor (0.2, 0.6, 0.9); glossiness 0 makes it matte. Without the
+    extension the material would be glTF's default white metal."""
+    a = Asset()
+    a.doc["extensionsUsed"] = ["KHR_materials_pbrSpecularGlossiness"]
+    m = a.material(
+        name="spec-gloss",
+        extensions={"KHR_materials_pbrSpecularGlossiness": {"diffuseFactor": [0.2, 0.6, 0.9, 1.0], "specularFactor": [0.0, 0.0, 0.0], "glossinessFactor": 0.0}},
+    )
+    s = 50.0
+    a.node(mesh=a.mesh([quad_primitive(a, m, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    ortho_camera(a)
+    a.write("spec-gloss.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -491,6 +507,7 @@ def main():
     alpha_blend()
     webp_texture()
     sparse_interleaved()
+    spec_gloss()
     checkerboard("checker-minified.gltf", 512)
     checkerboard("checker-magnified.gltf", 1)
     requires_draco()

@@ -9,6 +9,7 @@ pub(crate) const READ: &[&str] = &[
     "KHR_materials_dispersion",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_transmission",
     "KHR_materials_unlit",
     "KHR_materials_volume",
@@ -38,6 +39,16 @@ pub(crate) fn check(required: &[String], used: &[String]) -> Result<Vec<String>,
         ));
     }
     let mut warnings = Vec::new();
+    if used
+        .iter()
+        .any(|e| e == "KHR_materials_pbrSpecularGlossiness")
+    {
+        warnings.push(
+            "KHR_materials_pbrSpecularGlossiness is approximated: the diffuse colour as a \
+             dielectric's base colour, roughness 1 - glossiness; the specular colour is not read"
+                .to_string(),
+        );
+    }
     for e in used {
         let e = e.as_str();
         if !READ.contains(&e) && !warnings.iter().any(|w: &String| w.contains(e)) {

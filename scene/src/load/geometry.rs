@@ -474,7 +474,7 @@ fn uv_set(material: &gltf::Material, name: &str, warnings: &mut Vec<String>) -> 
     let pbr = material.pbr_metallic_roughness();
     let mut sets: Vec<u32> = Vec::new();
     let infos = [
-        pbr.base_color_texture(),
+        super::materials::base_colour(material).1,
         pbr.metallic_roughness_texture(),
         material.emissive_texture(),
     ];

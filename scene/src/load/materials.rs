@@ -264,8 +264,18 @@ pub(crate) fn material(
         str::to_string,
     );
     let pbr = material.pbr_metallic_roughness();
-    let base = pbr.base_color_factor();
-    let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
+    let (base, base_texture) = base_colour(material);
+    // KHR_materials_pbrSpecularGlossiness (older assets): a dielectric whose roughness is
+    // 1 - glossiness; its specular colour and texture are not read.
+    let spec_gloss = material.pbr_specular_glossiness();
+    let (metallic, roughness) = match &spec_gloss {
+        Some(sg) => (0.0, 1.0 - sg.glossiness_factor()),
+        None => (pbr.metallic_factor(), pbr.roughness_factor()),
+    };
+    let metallic_roughness_info = match spec_gloss {
+        Some(_) => None,
+        None => pbr.metallic_roughness_texture(),
+    };
     let emissive = material.emissive_factor();
     let strength = material.emissive_strength().unwrap_or(1.0);
     let ior = material.ior().unwrap_or(1.5);
@@ -312,13 +322,12 @@ pub(crate) fn material(
         }
         _ => None,
     };
-    let base_color_texture = pbr
-        .base_color_texture()
+    let base_color_texture = base_texture
+        .as_ref()
         .map(|info| textures.base_color(&info, [base[0], base[1], base[2]]))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
-    let metallic_roughness_texture = pbr
-        .metallic_roughness_texture()
+    let metallic_roughness_texture = metallic_roughness_info
         .map(|info| {
             textures
                 .metallic_roughness(&info, unit(metallic), unit(roughness))
@@ -339,7 +348,7 @@ pub(crate) fn material(
         .map(|normal| textures.normal(&normal).map(Arc::new))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
-    let alpha = alpha(material, &pbr, textures, base[3])
+    let alpha = alpha(material, base_texture.as_ref(), textures, base[3])
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let emission_peak = emitted.iter().fold(0.0f64, |a, &c| a.max(c)) as f32;
     let desc = MaterialDesc {
@@ -353,7 +362,7 @@ pub(crate) fn material(
         transmission: unit(transmission),
         emission,
         double_sided: material.double_sided(),
-        has_base_color_texture: pbr.base_color_texture().is_some(),
+        has_base_color_texture: base_texture.is_some(),
         base_color_texture,
         metallic_roughness_texture,
         normal_texture,
@@ -368,12 +377,26 @@ pub(crate) fn material(
     Ok(desc)
 }
 
+/// The base colour factor and texture: `KHR_materials_pbrSpecularGlossiness`'s diffuse
+/// ones where the material has that extension, else the metallic-roughness base colour.
+pub(super) fn base_colour<'a>(
+    material: &gltf::Material<'a>,
+) -> ([f32; 4], Option<gltf::texture::Info<'a>>) {
+    match material.pbr_specular_glossiness() {
+        Some(sg) => (sg.diffuse_factor(), sg.diffuse_texture()),
+        None => {
+            let pbr = material.pbr_metallic_roughness();
+            (pbr.base_color_factor(), pbr.base_color_texture())
+        }
+    }
+}
+
 /// glTF's `alphaMode` (§3.9.4): MASK with `alphaCutoff` (default 0.5) or BLEND, the
 /// alpha being baseColorFactor's times the base colour texture's alpha channel; None for
 /// OPAQUE.
 fn alpha(
     material: &gltf::Material,
-    pbr: &gltf::material::PbrMetallicRoughness,
+    base_texture: Option<&gltf::texture::Info>,
     textures: &TextureLoader,
     factor: f32,
 ) -> Result<Option<Alpha>, String> {
@@ -389,9 +412,8 @@ fn alpha(
         gltf::material::AlphaMode::Blend => AlphaMode::Blend,
     };
     let factor = factor.clamp(0.0, 1.0);
-    let texture = pbr
-        .base_color_texture()
-        .map(|info| textures.alpha(&info, factor))
+    let texture = base_texture
+        .map(|info| textures.alpha(info, factor))
         .transpose()?
         .flatten()
         .map(Arc::new);
@@ -413,8 +435,7 @@ fn unlit(
 ) -> Result<MaterialDesc, LoadError> {
     let name = desc.name.clone();
     let error = |e: String| LoadError::Geometry(format!("material {name}: unlit base colour: {e}"));
-    let pbr = material.pbr_metallic_roughness();
-    let base = pbr.base_color_factor();
+    let (base, base_texture) = base_colour(material);
     let colour = [base[0], base[1], base[2]];
     desc.emission_peak = colour.iter().fold(0.0f32, |a, &c| a.max(c));
     desc.emission = if colour.iter().all(|&c| c <= 0.0) {
@@ -426,7 +447,7 @@ fn unlit(
                 .map_err(error)?,
         )
     };
-    desc.emissive_texture = match (&desc.emission, pbr.base_color_texture()) {
+    desc.emissive_texture = match (&desc.emission, base_texture) {
         (Some(_), Some(info)) => Some(textures.emission(&info, colour).map_err(error)?),
         _ => None,
     };
