@@ -324,7 +324,7 @@ pub(crate) fn material(
     };
     let base_color_texture = base_texture
         .as_ref()
-        .map(|info| textures.base_color(&info, [base[0], base[1], base[2]]))
+        .map(|info| textures.base_color(info, [base[0], base[1], base[2]]))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let metallic_roughness_texture = metallic_roughness_info
