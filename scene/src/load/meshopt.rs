@@ -85,26 +85,19 @@ fn decode(
             Ok(bytes)
         }
         "TRIANGLES" | "INDICES" => {
-            let triangles = mode == "TRIANGLES";
-            match stride {
-                2 => {
-                    let v: Vec<u16> = if triangles {
-                        meshopt::decode_index_buffer(encoded, count).map_err(error)?
-                    } else {
-                        meshopt::decode_index_sequence(encoded, count).map_err(error)?
-                    };
-                    Ok(v.iter().flat_map(|i| i.to_le_bytes()).collect())
-                }
-                4 => {
-                    let v: Vec<u32> = if triangles {
-                        meshopt::decode_index_buffer(encoded, count).map_err(error)?
-                    } else {
-                        meshopt::decode_index_sequence(encoded, count).map_err(error)?
-                    };
-                    Ok(v.iter().flat_map(|i| i.to_le_bytes()).collect())
-                }
-                _ => Err(format!("indices of {stride} bytes (2 or 4 expected)")),
+            if stride != 2 && stride != 4 {
+                return Err(format!("indices of {stride} bytes (2 or 4 expected)"));
             }
+            // The index codecs do not depend on the index width: decoded as u32, each
+            // index keeps its low `stride` bytes.
+            let v: Vec<u32> = if mode == "TRIANGLES" {
+                meshopt::decode_index_buffer(encoded, count).map_err(error)?
+            } else {
+                meshopt::decode_index_sequence(encoded, count).map_err(error)?
+            };
+            Ok(v.iter()
+                .flat_map(|i| i.to_le_bytes()[..stride].to_vec())
+                .collect())
         }
         other => Err(format!(
             "mode '{other}' is not ATTRIBUTES, TRIANGLES or INDICES"

@@ -100,39 +100,23 @@ impl<'a> TextureLoader<'a> {
             ),
             None => None,
         };
-        let (uv, tex_coord) = match transform {
-            Some(t) => (
-                Some(UvTransform {
-                    offset: Vec2::from(t.offset.0),
-                    rotation: t.rotation.0,
-                    scale: Vec2::from(t.scale.0),
-                }),
-                t.tex_coord,
-            ),
-            None => (None, None),
-        };
-        let texture = self.rgb(
-            normal.texture(),
-            tex_coord.unwrap_or(normal.tex_coord()),
-            uv,
-            [1.0; 3],
-        )?;
+        let uv = transform.map(|t| UvTransform {
+            offset: Vec2::from(t.offset.0),
+            rotation: t.rotation.0,
+            scale: Vec2::from(t.scale.0),
+        });
+        let texture = self.rgb(normal.texture(), uv, [1.0; 3])?;
         NormalMap::new(texture.encoded(Encoding::Linear), normal.scale())
     }
 
     /// The texture `info` refers to, with its sampler and transform, times `factor`.
     fn info(&self, info: &gltf::texture::Info, factor: [f32; 3]) -> Result<RgbTexture, String> {
-        let transform = info.texture_transform();
-        let tex_coord = transform
-            .as_ref()
-            .and_then(|t| t.tex_coord())
-            .unwrap_or(info.tex_coord());
-        let uv = transform.map(|t| UvTransform {
+        let uv = info.texture_transform().map(|t| UvTransform {
             offset: Vec2::from(t.offset()),
             rotation: t.rotation(),
             scale: Vec2::from(t.scale()),
         });
-        self.rgb(info.texture(), tex_coord, uv, factor)
+        self.rgb(info.texture(), uv, factor)
     }
 
     /// The alpha channel of a base colour texture times `factor` (baseColorFactor's
@@ -166,11 +150,10 @@ impl<'a> TextureLoader<'a> {
     }
 
     /// `texture`, transformed by `uv`, times `factor`. Its coordinates are the set the
-    /// primitive loaded (see the loader's `uv_set`): `_tex_coord` is that set's number.
+    /// primitive loaded (see the loader's `uv_set`).
     fn rgb(
         &self,
         texture: gltf::texture::Texture,
-        _tex_coord: u32,
         uv: Option<UvTransform>,
         factor: [f32; 3],
     ) -> Result<RgbTexture, String> {
@@ -205,17 +188,9 @@ impl<'a> TextureLoader<'a> {
                     .ok_or_else(|| format!("{what}: its buffer view runs past the buffer"))?
                     .to_vec()
             }
-            gltf::image::Source::Uri { uri, .. } => match uri.strip_prefix("data:") {
-                Some(rest) => {
-                    let payload = rest
-                        .split_once(";base64,")
-                        .map(|(_, p)| p)
-                        .ok_or_else(|| format!("{what}: only base64 data URIs are supported"))?;
-                    base64::decode(payload)
-                        .ok_or_else(|| format!("{what}: malformed base64 data URI"))?
-                }
-                None => (self.resolve)(uri).map_err(|e| format!("{what} ('{uri}'): {e}"))?,
-            },
+            gltf::image::Source::Uri { uri, .. } => {
+                base64::uri_bytes(uri, self.resolve).map_err(|e| format!("{what}: {e}"))?
+            }
         };
         let decoded = decode_image(&bytes).map_err(|e| format!("{what}: {e}"))?;
         let alpha = decoded
