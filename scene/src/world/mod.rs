@@ -163,7 +163,7 @@ pub struct Scene {
     radius: f32,
     /// Per material: where its re-radiated light comes from (fluorescent materials only).
     light_wavelengths: Vec<Option<prism_sampling::distribution::PiecewiseConstant1D>>,
-    /// Whether the scene had no light and is lit by the default environment.
+    /// Whether the scene is lit by the default environment (see `lit_by_default()`).
     lit_by_default: bool,
     /// Whether a material has a base colour or metallic-roughness texture.
     filters_textures: bool,
@@ -322,8 +322,9 @@ impl Scene {
         })
     }
 
-    /// Whether the scene's file had no light source and the scene is lit by the default
-    /// environment ([`from_gltf::DEFAULT_ENVIRONMENT`]) instead.
+    /// Whether the scene's file had no light of its own (no punctual light, no
+    /// environment, no emission brighter than an emissive colour of 1) and the scene is
+    /// lit by the default environment ([`DEFAULT_ENVIRONMENT`]) instead.
     pub fn lit_by_default(&self) -> bool {
         self.lit_by_default
     }
