@@ -178,12 +178,49 @@ fn transparent_renders_leave_the_background_empty() {
 
 /// The mean of channel `name` over the columns `columns` of a 32 x 32 EXR.
 fn column_mean(exr: &Path, name: &str, columns: std::ops::Range<usize>) -> f32 {
+    region_mean(exr, name, 0..32, columns)
+}
+
+/// The mean of channel `name` over rows `rows` (from the top) and columns `columns` of a
+/// 32 x 32 EXR.
+fn region_mean(
+    exr: &Path,
+    name: &str,
+    rows: std::ops::Range<usize>,
+    columns: std::ops::Range<usize>,
+) -> f32 {
     let values = channel(exr, name);
     let picked: Vec<f32> = (0..values.len())
-        .filter(|i| columns.contains(&(i % 32)))
+        .filter(|i| rows.contains(&(i / 32)) && columns.contains(&(i % 32)))
         .map(|i| values[i])
         .collect();
     picked.iter().sum::<f32>() / picked.len() as f32
+}
+
+/// Textures read the texture coordinate set they name: each quad's TEXCOORD_0 points
+/// into the red half of a texture and its TEXCOORD_1 spans red and green, so the right
+/// half of the view is green only when set 1 is read: above, by an emissive texture beside
+/// a grey base colour texture on set 0 (a material reading both sets); below, by an unlit
+/// quad whose set 0 KHR_texture_transform overrides to 1. Emission is read on camera
+/// paths and by light sampling alike.
+#[test]
+fn textures_read_the_texture_coordinate_set_they_name() {
+    let dir = temp_dir("asset-multi-uv");
+    let (exr, stderr) = render(&dir, &asset("multi-uv.gltf"), &["--environment", "1"]);
+    assert!(stderr.is_empty(), "{stderr}");
+    // sRGB 204, 128 and 25: 0.604, 0.216 and 0.0097.
+    let (hi, lo, grey) = (0.604, 0.0097, 0.216);
+    for (half, rows, base) in [("top", 2..14, grey), ("bottom", 18..30, 0.0)] {
+        for (side, columns, (r, g)) in [("left", 2..14, (hi, lo)), ("right", 18..30, (lo, hi))] {
+            let red = region_mean(&exr, "R", rows.clone(), columns.clone());
+            let green = region_mean(&exr, "G", rows.clone(), columns);
+            let (r, g) = (r + base, g + base);
+            assert!(
+                (red - r).abs() < 0.03 && (green - g).abs() < 0.03,
+                "{half} {side}: R {red}, G {green}, expected {r}, {g}"
+            );
+        }
+    }
 }
 
 /// COLOR_0 multiplies the base colour: a white Lambertian plane under a grey environment
@@ -295,6 +332,7 @@ fn info_names_the_gltf_features_a_file_uses() {
         ("vertex-colors.gltf", "COLOR_0"),
         ("unlit.gltf", "KHR_materials_unlit"),
         ("webp-texture.gltf", "EXT_texture_webp"),
+        ("multi-uv.gltf", "TEXCOORD_1"),
     ] {
         let out = prism(&["info", &asset(file)]);
         assert_success(&out);

@@ -252,7 +252,7 @@ impl Tracer<'_> {
                     // Lambertian either way.
                     let u_wavelength = stream.next_1d();
                     let guide = self.scene.light_wavelengths(&hit);
-                    let r = reflectance.at_uv(hit.uv, &transport);
+                    let r = reflectance.at_uv(hit.tex, &transport);
                     let mut incident = *transport.lambdas();
                     for j in 0..N {
                         let out = transport.lambda(j);

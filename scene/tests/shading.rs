@@ -98,7 +98,7 @@ fn hits_interpolate_normals_and_uvs() {
         hit.shading_normal
     );
     assert_eq!(hit.normal, Vec3::Z);
-    assert!((hit.uv - Vec2::new(0.25, 0.25)).length() < 1e-6);
+    assert!((hit.tex.uv[0] - Vec2::new(0.25, 0.25)).length() < 1e-6);
 }
 
 #[test]
@@ -173,7 +173,7 @@ fn attributes_are_kept_only_where_a_primitive_has_them() {
     let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z, f32::INFINITY);
     let hit = scene.intersect(&ray).unwrap();
     assert_eq!(
-        (hit.normal, hit.shading_normal, hit.uv),
+        (hit.normal, hit.shading_normal, hit.tex.uv[0]),
         (Vec3::Z, Vec3::Z, Vec2::ZERO)
     );
 

@@ -419,7 +419,48 @@ fn gltf_emissive_textures_emit_per_texel() {
             "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]}
         }),
     );
-    let mut doc = doc;
+    assert_emits_per_texel(doc, bin);
+}
+
+/// The same emissive quad with its texture read through TEXCOORD_1, while a base colour
+/// texture reads TEXCOORD_0, which points at the black texel everywhere: the emission
+/// must follow the second set on rays that hit it and in light samples.
+#[test]
+fn gltf_emissive_textures_read_their_own_texture_coordinate_set() {
+    let image = png(2, 1, &[[0, 0, 0], [255, 255, 255]]);
+    let (mut doc, mut bin) = textured_quad(
+        &image,
+        json!({
+            "emissiveFactor": [1.0, 1.0, 1.0],
+            "emissiveTexture": {"index": 0, "texCoord": 1},
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3.0}},
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [0.0, 0.0, 0.0, 1.0],
+                "baseColorTexture": {"index": 0, "texCoord": 0}
+            }
+        }),
+    );
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let offset = bin.len();
+    bin.extend([0u8; 48]);
+    doc["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": 48}));
+    doc["accessors"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"bufferView": 3, "componentType": 5126, "count": 6, "type": "VEC2"}));
+    doc["buffers"][0]["byteLength"] = json!(bin.len());
+    doc["meshes"][0]["primitives"][0]["attributes"] =
+        json!({"POSITION": 0, "TEXCOORD_0": 2, "TEXCOORD_1": 1});
+    assert_emits_per_texel(doc, bin);
+}
+
+/// The checks of [`gltf_emissive_textures_emit_per_texel`] on quad `doc`.
+fn assert_emits_per_texel(mut doc: serde_json::Value, bin: Vec<u8>) {
     doc["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
     // Clamped at the edges: the outer quarters are the texels' own colours.
     doc["samplers"] = json!([{"wrapS": 33071, "wrapT": 33071}]);
@@ -460,9 +501,8 @@ fn gltf_emissive_textures_emit_per_texel() {
             error: Vec3::ZERO,
             normal: -Vec3::Z,
             shading_normal: -Vec3::Z,
-            uv: Vec2::ZERO,
+            tex: prism_scene::world::TexCoords::default(),
             color: glam::Vec4::ONE,
-            lod: f32::NEG_INFINITY,
             t: 1.0,
             triangle: 0,
         };
@@ -569,4 +609,36 @@ fn textured_emitters_are_chosen_by_the_light_of_their_own_texels() {
     let (white, black) = (scene.lights().pmf(0), scene.lights().pmf(1));
     assert!((white + black - 1.0).abs() < 1e-6);
     assert!(black > 0.0 && white > 8.0 * black, "{white} vs {black}");
+}
+
+/// A material whose textures read more texture coordinate sets than prism keeps, or a set
+/// the primitive lacks, loads with one warning saying which set they read instead.
+#[test]
+fn unkept_or_missing_texture_coordinate_sets_are_warned_about() {
+    let image = png(2, 1, &[[0, 0, 0], [255, 255, 255]]);
+    let (doc, bin) = textured_quad(
+        &image,
+        json!({
+            "pbrMetallicRoughness": {
+                "baseColorTexture": {"index": 0, "texCoord": 0},
+                "metallicRoughnessTexture": {"index": 0, "texCoord": 1}
+            },
+            "emissiveTexture": {"index": 0, "texCoord": 2},
+            "emissiveFactor": [0.5, 0.5, 0.5]
+        }),
+    );
+    let loaded = load_quad(&doc, bin);
+    let warnings = loaded.warnings.join("\n");
+    assert!(
+        warnings.contains("TEXCOORD_0, TEXCOORD_1, TEXCOORD_2")
+            && warnings.contains("prism keeps 2"),
+        "{warnings}"
+    );
+    assert!(
+        warnings.contains("reads TEXCOORD_1, which the primitive does not have"),
+        "{warnings}"
+    );
+    assert_eq!(loaded.warnings.len(), 2, "{warnings}");
+    // Without the second set, none is kept: textures on it read the first set's.
+    assert!(loaded.uvs1.is_empty() && !loaded.uvs.is_empty());
 }

@@ -485,6 +485,43 @@ def spec_gloss():
     a.write("spec-gloss.gltf")
 
 
+def multi_uv():
+    """Like "MultiUVTest": textures that read TEXCOORD_1. Each quad's TEXCOORD_0 is one
+    point of the red left half of a texture, its TEXCOORD_1 spans it (red left, green
+    right): read from the right set, the right half of the view is green. The top quad's
+    material reads both sets: a grey base colour texture (and a flat normal texture) on set
+    0 and the red-green texture as its emission on set 1 (so a texture on the scene's
+    second set shows). The bottom quad is unlit and names set 0 overridden to 1 by
+    KHR_texture_transform."""
+    a = Asset()
+    a.doc["extensionsUsed"] = ["KHR_texture_transform", "KHR_materials_unlit"]
+    nearest = {"magFilter": 9728, "minFilter": 9728, "wrapS": 33071, "wrapT": 33071}
+    halves = a.texture(png_rgba(2, 1, lambda x, y: (204, 25, 25, 255) if x == 0 else (25, 204, 25, 255)), nearest)
+    grey = a.texture(png_rgba(1, 1, lambda x, y: (128, 128, 128, 255)))
+    flat = a.texture(png_rgba(1, 1, lambda x, y: (128, 128, 255, 255)))
+    lit = a.material(
+        name="grey on set 0, glowing on set 1",
+        pbrMetallicRoughness={"baseColorTexture": {"index": grey, "texCoord": 0}, "metallicFactor": 0.0, "roughnessFactor": 1.0},
+        normalTexture={"index": flat, "texCoord": 0},
+        emissiveTexture={"index": halves, "texCoord": 1},
+        emissiveFactor=[1.0, 1.0, 1.0],
+    )
+    unlit = a.material(
+        name="unlit, set 0 overridden to 1",
+        pbrMetallicRoughness={"baseColorTexture": {"index": halves, "texCoord": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1}}}},
+        extensions={"KHR_materials_unlit": {}},
+    )
+    for material, (y0, y1) in ((lit, (0.0, 1.0)), (unlit, (-1.0, 0.0))):
+        point = a.accessor([(0.25, 0.5)] * 4, "VEC2")
+        spans = a.accessor([(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)], "VEC2")
+        corners = [(-1.0, y0, 0.0), (1.0, y0, 0.0), (1.0, y1, 0.0), (-1.0, y1, 0.0)]
+        primitive = quad_primitive(a, material, corners, {"TEXCOORD_0": point, "TEXCOORD_1": spans})
+        primitive["attributes"]["NORMAL"] = a.accessor([(0.0, 0.0, 1.0)] * 4, "VEC3")
+        a.node(mesh=a.mesh([primitive]))
+    ortho_camera(a)
+    a.write("multi-uv.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -508,6 +545,7 @@ def main():
     webp_texture()
     sparse_interleaved()
     spec_gloss()
+    multi_uv()
     checkerboard("checker-minified.gltf", 512)
     checkerboard("checker-magnified.gltf", 1)
     requires_draco()

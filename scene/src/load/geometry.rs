@@ -2,6 +2,7 @@ use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use super::lights::{LightDesc, punctual};
 use super::materials::{MaterialDesc, Upsampler, material};
+use super::tex_coord_sets::TexCoordSets;
 use crate::camera::{Camera, Projection};
 use crate::geometry::triangle_normal;
 use crate::world::triangle_tangent;
@@ -31,9 +32,15 @@ pub struct LoadedGeometry {
     /// normal where the file gives none), one entry per triangle; empty when no primitive
     /// of the scene has normals (flat shading everywhere).
     pub normals: Vec<[Vec3; 3]>,
-    /// `TEXCOORD_0` at each triangle's vertices (zero where the file gives none), one
-    /// entry per triangle; empty when no primitive of the scene has them.
+    /// Texture coordinates at each triangle's vertices (zero where the file gives none),
+    /// one entry per triangle; empty when no primitive of the scene has them. The set is
+    /// the one the material's base colour texture reads (else its first texture's):
+    /// `TEXCOORD_0` in most files.
     pub uvs: Vec<[Vec2; 3]>,
+    /// The second set, where a material's textures read two (a texture reads the set it
+    /// names: see [`crate::world::TexCoords`]); otherwise the first set's, and empty when
+    /// no material reads two.
+    pub uvs1: Vec<[Vec2; 3]>,
     /// `COLOR_0` (linear RGBA, factors of the base colour and its alpha) at each triangle's
     /// vertices, white where the file gives none; empty when no primitive has them.
     pub colors: Vec<[Vec4; 3]>,
@@ -463,42 +470,6 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
     })
 }
 
-/// The texture coordinate set a primitive of `material` reads: the one its textures name
-/// (a `KHR_texture_transform` `texCoord` overriding the texture's own). prism keeps one
-/// set per triangle, so a material whose textures name different sets reads the base
-/// colour's (or else the first named), with a warning.
-fn uv_set(material: &gltf::Material, name: &str, warnings: &mut Vec<String>) -> u32 {
-    let set = |tex_coord: u32, transform: Option<gltf::texture::TextureTransform>| {
-        transform.and_then(|t| t.tex_coord()).unwrap_or(tex_coord)
-    };
-    let pbr = material.pbr_metallic_roughness();
-    let mut sets: Vec<u32> = Vec::new();
-    let infos = [
-        super::materials::base_colour(material).1,
-        pbr.metallic_roughness_texture(),
-        material.emissive_texture(),
-    ];
-    for info in infos.into_iter().flatten() {
-        sets.push(set(info.tex_coord(), info.texture_transform()));
-    }
-    if let Some(normal) = material.normal_texture() {
-        sets.push(normal.tex_coord());
-    }
-    let Some(&first) = sets.first() else {
-        return 0;
-    };
-    if sets.iter().any(|&s| s != first) {
-        let warning = format!(
-            "{name}: material {}'s textures read different texture coordinate sets; prism reads TEXCOORD_{first} for all",
-            material.name().unwrap_or("(unnamed)")
-        );
-        if !warnings.contains(&warning) {
-            warnings.push(warning);
-        }
-    }
-    first
-}
-
 fn node_name(node: &gltf::Node) -> String {
     node.name()
         .map_or_else(|| format!("node {}", node.index()), str::to_string)
@@ -574,13 +545,21 @@ fn add_primitive(
             primitive.mode()
         )));
     }
-    let uv_set = uv_set(&primitive.material(), &name, &mut out.warnings);
+    let material = primitive.material();
+    let sets = TexCoordSets::of(&material);
+    if let Some(w) = sets.warning(material.name().unwrap_or("(unnamed)")) {
+        warn_once(&mut out.warnings, &format!("{name}: {w}"));
+    }
     // The reader trusts the document; what it would panic on is an error here first.
     for (semantic, expected) in [
         (gltf::Semantic::Positions, &accessor::POSITION),
         (gltf::Semantic::Normals, &accessor::NORMAL),
         (gltf::Semantic::Tangents, &accessor::TANGENT),
-        (gltf::Semantic::TexCoords(uv_set), &accessor::TEXCOORD),
+        (gltf::Semantic::TexCoords(sets.first()), &accessor::TEXCOORD),
+        (
+            gltf::Semantic::TexCoords(sets.second().unwrap_or(sets.first())),
+            &accessor::TEXCOORD,
+        ),
         (gltf::Semantic::Colors(0), &accessor::COLOR),
     ] {
         if let Some(a) = primitive.get(&semantic) {
@@ -672,14 +651,34 @@ fn add_primitive(
     {
         return Err(attribute_count("NORMAL", n.len()));
     }
-    let uvs: Option<Vec<Vec2>> = attribute(gltf::Semantic::TexCoords(uv_set))
-        .and_then(|a| accessor::read_f32::<2>(&a, buffers))
-        .map(|t| t.into_iter().map(Vec2::from).collect());
-    if let Some(t) = &uvs
-        && t.len() != count
-    {
-        return Err(attribute_count(&format!("TEXCOORD_{uv_set}"), t.len()));
-    }
+    let read_uvs = |set: u32| -> Result<Option<Vec<Vec2>>, LoadError> {
+        let uvs: Option<Vec<Vec2>> = attribute(gltf::Semantic::TexCoords(set))
+            .and_then(|a| accessor::read_f32::<2>(&a, buffers))
+            .map(|t| t.into_iter().map(Vec2::from).collect());
+        match uvs {
+            Some(t) if t.len() != count => {
+                Err(attribute_count(&format!("TEXCOORD_{set}"), t.len()))
+            }
+            uvs => Ok(uvs),
+        }
+    };
+    let uvs = read_uvs(sets.first())?;
+    let uvs1 = match sets.second() {
+        Some(set) => {
+            let second = read_uvs(set)?;
+            if second.is_none() {
+                warn_once(
+                    &mut out.warnings,
+                    &format!(
+                        "{name}: a texture reads TEXCOORD_{set}, which the primitive does not have; it reads TEXCOORD_{} instead",
+                        sets.first()
+                    ),
+                );
+            }
+            second
+        }
+        None => None,
+    };
     let tangents: Option<Vec<Vec4>> = attribute(gltf::Semantic::Tangents)
         .and_then(|a| accessor::read_f32::<4>(&a, buffers))
         .map(|t| t.into_iter().map(Vec4::from).collect());
@@ -692,8 +691,10 @@ fn add_primitive(
     if colors.is_some() {
         note(&mut out.gltf_features, "COLOR_0");
     }
-    if uv_set > 0 {
-        note(&mut out.gltf_features, &format!("TEXCOORD_{uv_set}"));
+    for set in [Some(sets.first()), sets.second()].into_iter().flatten() {
+        if set > 0 {
+            note(&mut out.gltf_features, &format!("TEXCOORD_{set}"));
+        }
     }
     if primitive.indices().is_none() {
         note(&mut out.gltf_features, "non-indexed primitives");
@@ -724,16 +725,24 @@ fn add_primitive(
         let flat = |t: &[Vec3; 3]| [triangle_normal(*t); 3];
         out.normals.extend(out.triangles[from..].iter().map(flat));
     }
-    let keep_uvs = uvs.is_some() || !out.uvs.is_empty();
+    let keep_uvs = uvs.is_some() || uvs1.is_some() || !out.uvs.is_empty();
     if keep_uvs {
         out.uvs.resize(first, [Vec2::ZERO; 3]);
+    }
+    // The second set stays empty until a primitive reads one; the triangles before it
+    // then get their first set's.
+    let keep_uvs1 = uvs1.is_some() || !out.uvs1.is_empty();
+    if keep_uvs1 && out.uvs1.len() < first {
+        let from = out.uvs1.len();
+        let copied: Vec<[Vec2; 3]> = out.uvs[from..first].to_vec();
+        out.uvs1.extend(copied);
     }
     let keep_colors = colors.is_some() || !out.colors.is_empty();
     if keep_colors {
         out.colors.resize(first, [Vec4::ONE; 3]);
     }
     // Tangents serve normal maps only.
-    let normal_mapped = primitive.material().normal_texture().is_some();
+    let normal_mapped = material.normal_texture().is_some();
     let keep_tangents = normal_mapped || !out.tangents.is_empty();
     if keep_tangents {
         out.tangents.resize(first, [Vec4::ZERO; 3]);
@@ -749,7 +758,16 @@ fn add_primitive(
         .reserve(if keep_tangents { triangles } else { 0 });
     // Without TANGENT, a normal-mapped primitive gets MikkTSpace's (per corner, in the
     // primitive's own space), as glTF asks.
-    let mikktspace = match (&tangents, &uvs) {
+    // Tangents follow the u direction of the set the normal texture reads.
+    let normal_set = material
+        .normal_texture()
+        .map_or(0, |n| sets.slot(super::tex_coord_sets::normal_set(&n)));
+    let normal_uvs = if normal_set == 1 && uvs1.is_some() {
+        &uvs1
+    } else {
+        &uvs
+    };
+    let mikktspace = match (&tangents, normal_uvs) {
         (None, Some(uvs)) if normal_mapped => {
             super::tangents::mikktspace(&positions, normals.as_deref(), uvs, &indices)
         }
@@ -771,13 +789,19 @@ fn add_primitive(
                 None => [geometric; 3],
             });
         }
-        let uv = match &uvs {
-            Some(uv) => t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }),
-            None => [Vec2::ZERO; 3],
+        let corner_uvs = |uvs: &Option<Vec<Vec2>>| {
+            uvs.as_ref()
+                .map(|uv| t.map(|i| if uv[i].is_finite() { uv[i] } else { Vec2::ZERO }))
         };
+        let uv = corner_uvs(&uvs).unwrap_or([Vec2::ZERO; 3]);
+        let uv1 = corner_uvs(&uvs1).unwrap_or(uv);
         if keep_uvs {
             out.uvs.push(uv);
         }
+        if keep_uvs1 {
+            out.uvs1.push(uv1);
+        }
+        let tangent_uv = if normal_set == 1 { uv1 } else { uv };
         if keep_colors {
             out.colors.push(match &colors {
                 // Colours are linear factors in [0, 1]; anything else is clamped.
@@ -794,7 +818,7 @@ fn add_primitive(
         }
         if keep_tangents {
             out.tangents.push(if normal_mapped {
-                let derived = triangle_tangent(v, uv, triangle_normal(v));
+                let derived = triangle_tangent(v, tangent_uv, triangle_normal(v));
                 // A tangent of the primitive's space in world space; unusable ones (zero,
                 // non-finite) fall back to the triangle's derived tangent.
                 let placed = |tangent: Vec4| {

@@ -11,6 +11,7 @@ use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
 use crate::world::{Alpha, AlphaMode, NormalMap, RgbTexture, SceneSpectrum};
 
+use super::tex_coord_sets::TexCoordSets;
 use super::textures::TextureLoader;
 
 /// A glTF metallic-roughness material, spectral.
@@ -265,6 +266,7 @@ pub(crate) fn material(
     );
     let pbr = material.pbr_metallic_roughness();
     let (base, base_texture) = base_colour(material);
+    let sets = TexCoordSets::of(material);
     // KHR_materials_pbrSpecularGlossiness (older assets): a dielectric whose roughness is
     // 1 - glossiness; its specular colour and texture are not read.
     let spec_gloss = material.pbr_specular_glossiness();
@@ -324,13 +326,13 @@ pub(crate) fn material(
     };
     let base_color_texture = base_texture
         .as_ref()
-        .map(|info| textures.base_color(info, [base[0], base[1], base[2]]))
+        .map(|info| textures.base_color(info, [base[0], base[1], base[2]], &sets))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let metallic_roughness_texture = metallic_roughness_info
         .map(|info| {
             textures
-                .metallic_roughness(&info, unit(metallic), unit(roughness))
+                .metallic_roughness(&info, unit(metallic), unit(roughness), &sets)
                 .map(Arc::new)
         })
         .transpose()
@@ -338,17 +340,17 @@ pub(crate) fn material(
     let emissive_texture = match (&emission, material.emissive_texture()) {
         (Some(_), Some(info)) => Some(
             textures
-                .emission(&info, emitted.map(|c| c as f32))
+                .emission(&info, emitted.map(|c| c as f32), &sets)
                 .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?,
         ),
         _ => None,
     };
     let normal_texture = material
         .normal_texture()
-        .map(|normal| textures.normal(&normal).map(Arc::new))
+        .map(|normal| textures.normal(&normal, &sets).map(Arc::new))
         .transpose()
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
-    let alpha = alpha(material, base_texture.as_ref(), textures, base[3])
+    let alpha = alpha(material, base_texture.as_ref(), textures, &sets, base[3])
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let emission_peak = emitted.iter().fold(0.0f64, |a, &c| a.max(c)) as f32;
     let desc = MaterialDesc {
@@ -398,6 +400,7 @@ fn alpha(
     material: &gltf::Material,
     base_texture: Option<&gltf::texture::Info>,
     textures: &TextureLoader,
+    sets: &TexCoordSets,
     factor: f32,
 ) -> Result<Option<Alpha>, String> {
     let mode = match material.alpha_mode() {
@@ -413,7 +416,7 @@ fn alpha(
     };
     let factor = factor.clamp(0.0, 1.0);
     let texture = base_texture
-        .map(|info| textures.alpha(info, factor))
+        .map(|info| textures.alpha(info, factor, sets))
         .transpose()?
         .flatten()
         .map(Arc::new);
@@ -448,7 +451,11 @@ fn unlit(
         )
     };
     desc.emissive_texture = match (&desc.emission, base_texture) {
-        (Some(_), Some(info)) => Some(textures.emission(&info, colour).map_err(error)?),
+        (Some(_), Some(info)) => Some(
+            textures
+                .emission(&info, colour, &TexCoordSets::of(material))
+                .map_err(error)?,
+        ),
         _ => None,
     };
     desc.base_color = upsampler.fit([0.0; 3], RgbKind::Albedo).map_err(error)?;

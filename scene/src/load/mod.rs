@@ -14,6 +14,7 @@ mod materials;
 mod meshopt;
 mod summary;
 mod tangents;
+mod tex_coord_sets;
 mod textures;
 
 pub(crate) use base64::uri_bytes;

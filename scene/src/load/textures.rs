@@ -11,6 +11,7 @@ use gltf::texture::WrappingMode;
 
 use super::base64;
 use super::images::decode_image;
+use super::tex_coord_sets::{TexCoordSets, info_set, normal_set, normal_transform};
 use crate::world::{
     Encoding, NormalMap, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap,
 };
@@ -46,8 +47,9 @@ impl<'a> TextureLoader<'a> {
         &self,
         info: &gltf::texture::Info,
         factor: [f32; 3],
+        sets: &TexCoordSets,
     ) -> Result<SceneSpectrum, String> {
-        let rgb = self.info(info, factor)?;
+        let rgb = self.info(info, factor, sets)?;
         Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::new(
             rgb,
             self.upsampler.table()?,
@@ -60,8 +62,9 @@ impl<'a> TextureLoader<'a> {
         &self,
         info: &gltf::texture::Info,
         factor: [f32; 3],
+        sets: &TexCoordSets,
     ) -> Result<SceneSpectrum, String> {
-        let rgb = self.info(info, factor)?;
+        let rgb = self.info(info, factor, sets)?;
         Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::emission(
             rgb,
             self.upsampler.table()?,
@@ -77,9 +80,10 @@ impl<'a> TextureLoader<'a> {
         info: &gltf::texture::Info,
         metallic: f32,
         roughness: f32,
+        sets: &TexCoordSets,
     ) -> Result<RgbTexture, String> {
         Ok(self
-            .info(info, [1.0, roughness, metallic])?
+            .info(info, [1.0, roughness, metallic], sets)?
             .encoded(Encoding::Linear))
     }
 
@@ -88,35 +92,35 @@ impl<'a> TextureLoader<'a> {
     pub(crate) fn normal(
         &self,
         normal: &gltf::material::NormalTexture,
+        sets: &TexCoordSets,
     ) -> Result<NormalMap, String> {
-        // The gltf crate offers KHR_texture_transform on texture infos only; a normal
-        // texture's is read from its JSON.
-        let transform = match normal.extension_value("KHR_texture_transform") {
-            Some(v) => Some(
-                serde_json::from_value::<gltf::json::extensions::texture::TextureTransform>(
-                    v.clone(),
-                )
-                .map_err(|e| format!("normal texture: KHR_texture_transform: {e}"))?,
-            ),
-            None => None,
-        };
-        let uv = transform.map(|t| UvTransform {
+        let uv = normal_transform(normal)?.map(|t| UvTransform {
             offset: Vec2::from(t.offset.0),
             rotation: t.rotation.0,
             scale: Vec2::from(t.scale.0),
         });
-        let texture = self.rgb(normal.texture(), uv, [1.0; 3])?;
+        let texture = self
+            .rgb(normal.texture(), uv, [1.0; 3])?
+            .with_set(sets.slot(normal_set(normal)));
         NormalMap::new(texture.encoded(Encoding::Linear), normal.scale())
     }
 
-    /// The texture `info` refers to, with its sampler and transform, times `factor`.
-    fn info(&self, info: &gltf::texture::Info, factor: [f32; 3]) -> Result<RgbTexture, String> {
+    /// The texture `info` refers to, with its sampler, transform and texture coordinate
+    /// set (where `sets` keeps it), times `factor`.
+    fn info(
+        &self,
+        info: &gltf::texture::Info,
+        factor: [f32; 3],
+        sets: &TexCoordSets,
+    ) -> Result<RgbTexture, String> {
         let uv = info.texture_transform().map(|t| UvTransform {
             offset: Vec2::from(t.offset()),
             rotation: t.rotation(),
             scale: Vec2::from(t.scale()),
         });
-        self.rgb(info.texture(), uv, factor)
+        Ok(self
+            .rgb(info.texture(), uv, factor)?
+            .with_set(sets.slot(info_set(info))))
     }
 
     /// The alpha channel of a base colour texture times `factor` (baseColorFactor's
@@ -126,13 +130,14 @@ impl<'a> TextureLoader<'a> {
         &self,
         info: &gltf::texture::Info,
         factor: f32,
+        sets: &TexCoordSets,
     ) -> Result<Option<RgbTexture>, String> {
         let texture = info.texture();
         let (width, height, _, alpha) = self.image(&texture.source())?;
         let Some(alpha) = alpha else {
             return Ok(None);
         };
-        let colour = self.info(info, [factor; 3])?;
+        let colour = self.info(info, [factor; 3], sets)?;
         let texture = RgbTexture::new(
             width,
             height,
@@ -141,7 +146,8 @@ impl<'a> TextureLoader<'a> {
             colour.transform(),
             [factor; 3],
         )?
-        .encoded(Encoding::Linear);
+        .encoded(Encoding::Linear)
+        .with_set(colour.set());
         Ok(Some(if colour.is_nearest() {
             texture.nearest()
         } else {
@@ -149,8 +155,8 @@ impl<'a> TextureLoader<'a> {
         }))
     }
 
-    /// `texture`, transformed by `uv`, times `factor`. Its coordinates are the set the
-    /// primitive loaded (see the loader's `uv_set`).
+    /// `texture`, transformed by `uv`, times `factor`, reading the first texture
+    /// coordinate set.
     fn rgb(
         &self,
         texture: gltf::texture::Texture,

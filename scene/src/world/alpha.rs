@@ -5,9 +5,9 @@
 
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
-use super::RgbTexture;
+use super::{RgbTexture, TexCoords};
 
 /// How alpha decides whether a ray meets the surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,19 +35,20 @@ pub struct Alpha {
 }
 
 impl Alpha {
-    /// The alpha at `uv` with vertex alpha `vertex`.
-    pub fn at(&self, uv: Vec2, vertex: f32) -> f32 {
+    /// The alpha at `at` (texels unfiltered: coverage is decided at a point) with vertex
+    /// alpha `vertex`.
+    pub fn at(&self, at: &TexCoords, vertex: f32) -> f32 {
         let a = match &self.texture {
-            Some(t) => t.sample(uv)[0],
+            Some(t) => t.sample(at.set(t.set()).0)[0],
             None => self.factor,
         };
         a * vertex
     }
 
-    /// Whether a ray meets the surface at `uv` (vertex alpha `vertex`), `u` uniform in
+    /// Whether a ray meets the surface at `at` (vertex alpha `vertex`), `u` uniform in
     /// [0, 1) for BLEND's choice.
-    pub fn opaque(&self, uv: Vec2, vertex: f32, u: f32) -> bool {
-        let a = self.at(uv, vertex);
+    pub fn opaque(&self, at: &TexCoords, vertex: f32, u: f32) -> bool {
+        let a = self.at(at, vertex);
         match self.mode {
             AlphaMode::Mask { cutoff } => a >= cutoff,
             AlphaMode::Blend => u < a,

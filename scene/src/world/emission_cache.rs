@@ -1,8 +1,7 @@
-use glam::Vec2;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::SceneSpectrum;
 use super::light_choice::Weights;
+use super::{SceneSpectrum, TexCoords};
 
 /// How many of a scene's emission spectra a cache holds (the first ones; the rest are
 /// evaluated every time). Scenes have a handful of emitting materials.
@@ -53,19 +52,19 @@ impl<const N: usize> EmissionCache<N> {
     }
 
     /// Emission spectrum number `index` of the scene's `spectra`, at `wavelengths`, at
-    /// texture coordinate `uv` of the emitter (an emissive texture varies with it, and is
-    /// looked up every time).
+    /// texture coordinates `at` of the emitter (an emissive texture varies with them, and
+    /// is looked up every time).
     pub(crate) fn get(
         &mut self,
         spectra: &[SceneSpectrum],
         index: u32,
         wavelengths: &SampledWavelengths<N>,
-        uv: Vec2,
+        at: &TexCoords,
     ) -> SampledSpectrum<N> {
         let slot = index as usize;
         let spectrum = &spectra[slot];
         if let SceneSpectrum::Texture(texture) = spectrum {
-            return texture.at(uv, wavelengths);
+            return texture.at(*at, wavelengths);
         }
         if slot >= SLOTS {
             return spectrum.at(wavelengths);
@@ -99,7 +98,7 @@ mod tests {
         for _ in 0..2 {
             for wavelengths in [&a, &b, &a] {
                 for (k, s) in spectra.iter().enumerate() {
-                    let cached = cache.get(&spectra, k as u32, wavelengths, Vec2::ZERO);
+                    let cached = cache.get(&spectra, k as u32, wavelengths, &TexCoords::default());
                     assert_eq!(cached, s.at(wavelengths), "spectrum {k}");
                 }
             }

@@ -213,6 +213,7 @@ impl Scene {
             attributes: super::VertexAttributes {
                 normals: loaded.normals,
                 uvs: loaded.uvs,
+                uvs1: loaded.uvs1,
                 tangents: loaded.tangents,
                 normal_maps,
                 alpha,

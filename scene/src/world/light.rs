@@ -125,8 +125,8 @@ pub(crate) struct TriangleShape {
     cross: Vec3,
     pub(crate) normal: Vec3,
     pub(crate) area: f32,
-    /// Texture coordinates at the vertices (an emissive texture is read at the point
-    /// sampled).
+    /// Texture coordinates at the vertices, in the set its emissive texture reads (which
+    /// is read at the point sampled).
     uvs: [Vec2; 3],
 }
 
@@ -229,15 +229,21 @@ impl Lights {
         extent: &[f64],
         emission: &[SceneSpectrum],
         triangles: &[[Vec3; 3]],
-        uvs: &[[Vec2; 3]],
+        attributes: &super::VertexAttributes,
     ) -> Self {
         let mut of_triangle = vec![u32::MAX; triangles.len()];
         let shapes = lights
             .iter()
             .map(|light| match light {
-                Light::Triangle { triangle, .. } => {
+                Light::Triangle {
+                    triangle,
+                    emission: e,
+                    ..
+                } => {
                     let t = *triangle as usize;
-                    TriangleShape::new(triangles[t], uvs.get(t).copied().unwrap_or_default())
+                    let set = emission[*e as usize].tex_coord_set().unwrap_or(0);
+                    let uvs = attributes.uvs_of_set(set).get(t).copied();
+                    TriangleShape::new(triangles[t], uvs.unwrap_or_default())
                 }
                 _ => TriangleShape::default(),
             })
@@ -399,7 +405,7 @@ impl Lights {
                 LightSample {
                     wi,
                     distance,
-                    radiance: cache.get(emission, *e, wavelengths, uv),
+                    radiance: cache.get(emission, *e, wavelengths, &uv.into()),
                     pdf: pmf * pdf,
                     delta: false,
                 }
@@ -594,7 +600,7 @@ pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius:
 /// Chosen by this, the dark parts of a sign or a screen take few light samples.
 pub(crate) fn texture_coverage(
     light: &Light,
-    uvs: &[[Vec2; 3]],
+    attributes: &super::VertexAttributes,
     emission: &[SceneSpectrum],
 ) -> f64 {
     let Light::Triangle {
@@ -605,9 +611,10 @@ pub(crate) fn texture_coverage(
     else {
         return 1.0;
     };
-    let (SceneSpectrum::Texture(texture), Some(uv)) =
-        (&emission[*e as usize], uvs.get(*triangle as usize))
-    else {
+    let SceneSpectrum::Texture(texture) = &emission[*e as usize] else {
+        return 1.0;
+    };
+    let Some(uv) = attributes.uvs_of_set(texture.set()).get(*triangle as usize) else {
         return 1.0;
     };
     let whole = texture.luminance(None);

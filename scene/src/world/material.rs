@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 use prism_sampling::wavelength::ReradiationSampler;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::{RgbTexture, SceneSpectrum};
+use super::{RgbTexture, SceneSpectrum, TexCoords};
 use crate::bsdf::{
     BsdfSample, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, RoughConductor, RoughDielectric,
     TransportMode,
@@ -113,27 +113,27 @@ impl Material {
         matches!(self, Material::Fluorescent { .. })
     }
 
-    /// The BSDF at a hit with texture coordinate `uv`, its parameters sampled at
+    /// The BSDF at a hit with texture coordinates `at`, its parameters sampled at
     /// `wavelengths`. For a fluorescent
     /// material this is its elastic part only: the integrator handles the change of
     /// wavelength itself (it must also change the wavelengths the path carries on with).
     pub fn bsdf<const N: usize>(
         &self,
-        uv: Vec2,
+        at: impl Into<TexCoords>,
         wavelengths: &SampledWavelengths<N>,
     ) -> Bsdf<'_, N> {
-        self.bsdf_for(uv, wavelengths, TransportMode::Radiance)
+        self.bsdf_for(at, wavelengths, TransportMode::Radiance)
     }
 
     /// [`Material::bsdf`] for paths carrying `mode`: light paths transport importance,
     /// which refraction does not scale by 1 / eta^2.
     pub fn bsdf_for<const N: usize>(
         &self,
-        uv: Vec2,
+        at: impl Into<TexCoords>,
         wavelengths: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> Bsdf<'_, N> {
-        self.bsdf_tinted(uv, wavelengths, mode, None)
+        self.bsdf_tinted(at, wavelengths, mode, None)
     }
 
     /// [`Material::bsdf_for`] with the base colour's reflectance (diffuse, metallic-
@@ -141,27 +141,26 @@ impl Material {
     /// colour's spectrum), if any.
     pub fn bsdf_tinted<const N: usize>(
         &self,
-        uv: Vec2,
+        at: impl Into<TexCoords>,
         wavelengths: &SampledWavelengths<N>,
         mode: TransportMode,
         tint: Option<SampledSpectrum<N>>,
     ) -> Bsdf<'_, N> {
-        self.bsdf_at(uv, f32::NEG_INFINITY, wavelengths, mode, tint)
+        self.bsdf_at(&at.into(), wavelengths, mode, tint)
     }
 
-    /// [`Material::bsdf_tinted`] with textures filtered over a footprint of 2^`lod`
-    /// units of texture coordinates (mipmapping; `-inf`: unfiltered texels).
+    /// [`Material::bsdf_tinted`] with textures filtered over the footprints of `at`
+    /// (mipmapping; `-inf`: unfiltered texels).
     pub fn bsdf_at<const N: usize>(
         &self,
-        uv: Vec2,
-        lod: f32,
+        at: &TexCoords,
         wavelengths: &SampledWavelengths<N>,
         mode: TransportMode,
         tint: Option<SampledSpectrum<N>>,
     ) -> Bsdf<'_, N> {
         let base = |s: &SceneSpectrum| match tint {
-            Some(t) => s.at_uv_lod(uv, lod, wavelengths) * t,
-            None => s.at_uv_lod(uv, lod, wavelengths),
+            Some(t) => s.at_uv(*at, wavelengths) * t,
+            None => s.at_uv(*at, wavelengths),
         };
         match self {
             Material::Diffuse { reflectance } => Bsdf::Diffuse(Diffuse::new(base(reflectance))),
@@ -174,7 +173,7 @@ impl Material {
             } => {
                 let (metallic, roughness) = match texture {
                     Some(t) => {
-                        let [_, roughness, metallic] = t.sample_lod(uv, lod + t.log2_resolution());
+                        let [_, roughness, metallic] = t.sample_at(at);
                         (metallic, roughness)
                     }
                     None => (*metallic, *roughness),

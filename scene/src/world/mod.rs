@@ -14,6 +14,7 @@ mod material;
 mod mipmap;
 mod normal_map;
 mod spectrum;
+mod tex_coords;
 mod texture;
 
 pub use alpha::{Alpha, AlphaMode};
@@ -26,6 +27,7 @@ pub use material::{Bsdf, Material};
 pub use normal_map::NormalMap;
 pub(crate) use normal_map::triangle_tangent;
 pub use spectrum::SceneSpectrum;
+pub use tex_coords::{TEX_COORD_SETS, TexCoords};
 pub use texture::{Encoding, RgbTexture, SpectralTexture, UvTransform, Wrap};
 
 use std::sync::Arc;
@@ -81,8 +83,11 @@ pub struct SceneParts {
 pub struct VertexAttributes {
     /// Unit shading normals at the vertices.
     pub normals: Vec<[Vec3; 3]>,
-    /// Texture coordinates at the vertices.
+    /// Texture coordinates at the vertices (the first set).
     pub uvs: Vec<[glam::Vec2; 3]>,
+    /// The second set's, for textures that read it (empty: such textures read the first
+    /// set's; see [`TexCoords`]).
+    pub uvs1: Vec<[glam::Vec2; 3]>,
     /// Unit tangents at the vertices, with glTF's handedness sign in w (bitangent =
     /// normal x tangent times w): only normal maps read them.
     pub tangents: Vec<[glam::Vec4; 3]>,
@@ -99,6 +104,18 @@ pub struct VertexAttributes {
     pub alpha: Vec<Option<Arc<Alpha>>>,
 }
 
+impl VertexAttributes {
+    /// The texture coordinates of texture coordinate set `set` at the vertices: the second
+    /// set's where the scene keeps one, the first's otherwise.
+    pub fn uvs_of_set(&self, set: usize) -> &[[glam::Vec2; 3]] {
+        if set >= 1 && !self.uvs1.is_empty() {
+            &self.uvs1
+        } else {
+            &self.uvs
+        }
+    }
+}
+
 /// Where a ray meets the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {
@@ -110,14 +127,12 @@ pub struct Hit {
     pub normal: Vec3,
     /// Unit shading normal (interpolated vertex normals), on the geometric normal's side.
     pub shading_normal: Vec3,
-    /// Texture coordinates.
-    pub uv: glam::Vec2,
+    /// Texture coordinates in each set, and the hit's footprint in each (textures are
+    /// filtered over it: see [`Scene::set_footprint`]; intersections return `-inf`, which
+    /// reads texels unfiltered).
+    pub tex: TexCoords,
     /// The vertex colour (linear RGBA; white without vertex colours).
     pub color: glam::Vec4,
-    /// The base-2 logarithm of the hit's footprint in texture coordinates (textures are
-    /// filtered over it: see [`Scene::set_footprint`]); `-inf` (as intersections return
-    /// it) reads texels unfiltered.
-    pub lod: f32,
     /// The ray parameter.
     pub t: f32,
     /// The triangle.
@@ -194,6 +209,7 @@ impl Scene {
         for (what, n) in [
             ("shading normals", attributes.normals.len()),
             ("texture coordinates", attributes.uvs.len()),
+            ("second texture coordinates", attributes.uvs1.len()),
             ("tangents", attributes.tangents.len()),
             ("vertex colours", attributes.colors.len()),
         ] {
@@ -285,7 +301,7 @@ impl Scene {
             .iter()
             .map(|l| {
                 light::light_extent(l, &triangles, radius)
-                    * light::texture_coverage(l, &attributes.uvs, &emission)
+                    * light::texture_coverage(l, &attributes, &emission)
             })
             .collect();
         let power: Vec<f64> = lights
@@ -296,14 +312,7 @@ impl Scene {
             })
             .collect();
         let light_wavelengths = guide::light_wavelengths(&materials, &lights, &extent, &emission);
-        let lights = Lights::new(
-            lights,
-            &power,
-            &extent,
-            &emission,
-            &triangles,
-            &attributes.uvs,
-        );
+        let lights = Lights::new(lights, &power, &extent, &emission, &triangles, &attributes);
         Ok(Self {
             bvh,
             triangles,
@@ -401,7 +410,7 @@ impl Scene {
             let passes = match self.attributes.alpha.get(material) {
                 Some(Some(alpha)) => {
                     let u = alpha::blend_number(current.origin, current.direction, hit.triangle);
-                    !alpha.opaque(hit.uv, hit.color.w, u)
+                    !alpha.opaque(&hit.tex, hit.color.w, u)
                 }
                 _ => false,
             };
@@ -445,17 +454,17 @@ impl Scene {
             }
             None => normal,
         };
-        let uv = self
-            .attributes
-            .uvs
-            .get(hit.triangle)
-            .map_or(glam::Vec2::ZERO, |t| {
-                b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
-            });
+        let tex = match self.attributes.uvs.get(hit.triangle) {
+            Some(&first) => {
+                let second = self.attributes.uvs1.get(hit.triangle).copied();
+                TexCoords::interpolate([first, second.unwrap_or(first)], b)
+            }
+            None => TexCoords::default(),
+        };
         let shading_normal = if self.attributes.normal_maps.is_empty() {
             shading_normal
         } else {
-            self.normal_mapped(hit.triangle, b, shading_normal, normal, uv)
+            self.normal_mapped(hit.triangle, b, shading_normal, normal, &tex)
         };
         let color = self
             .attributes
@@ -467,9 +476,8 @@ impl Scene {
             error: triangle_point_error(v, b),
             normal,
             shading_normal,
-            uv,
+            tex,
             color,
-            lod: f32::NEG_INFINITY,
             t: hit.hit.t,
             triangle: hit.triangle as u32,
         })
@@ -486,7 +494,7 @@ impl Scene {
         b: [f32; 3],
         n: Vec3,
         geometric: Vec3,
-        uv: glam::Vec2,
+        tex: &TexCoords,
     ) -> Vec3 {
         let material = self.triangle_material[triangle] as usize;
         let (Some(Some(map)), Some(t)) = (
@@ -496,7 +504,7 @@ impl Scene {
             return n;
         };
         let tangent = b[0] * t[0] + b[1] * t[1] + b[2] * t[2];
-        map.perturb(n, tangent, uv)
+        map.perturb(n, tangent, *tex)
             .filter(|p| p.dot(geometric) > 0.0)
             .unwrap_or(n)
     }
@@ -532,7 +540,7 @@ impl Scene {
                 _ => None,
             };
         self.material(hit)
-            .bsdf_at(hit.uv, hit.lod, wavelengths, mode, tint)
+            .bsdf_at(&hit.tex, wavelengths, mode, tint)
     }
 
     /// Whether any material reads a texture that footprints filter (base colour or
@@ -541,23 +549,26 @@ impl Scene {
         self.filters_textures
     }
 
-    /// Sets `hit.lod` for a footprint `width` wide (world units, across the ray `direction`
-    /// at the hit): the width over the surface's cosine (a glancing footprint spreads),
-    /// in texture coordinates by the triangle's ratio of texture to world area (*Ray
-    /// Tracing Gems* ch. 20, ray cones). Triangles without texture coordinates keep
-    /// `-inf`.
+    /// Sets the footprints of `hit.tex` for a footprint `width` wide (world units, across
+    /// the ray `direction` at the hit): the width over the surface's cosine (a glancing
+    /// footprint spreads), in each set's texture coordinates by the triangle's ratio of
+    /// texture to world area (*Ray Tracing Gems* ch. 20, ray cones). Triangles without
+    /// texture coordinates keep `-inf`.
     pub fn set_footprint(&self, hit: &mut Hit, direction: Vec3, width: f32) {
-        let (Some(uv), Some(v)) = (
-            self.attributes.uvs.get(hit.triangle as usize),
-            self.triangles.get(hit.triangle as usize),
-        ) else {
+        let t = hit.triangle as usize;
+        let (Some(&first), Some(v)) = (self.attributes.uvs.get(t), self.triangles.get(t)) else {
             return;
         };
-        let uv_area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs();
         let world_area = (v[1] - v[0]).cross(v[2] - v[0]).length();
-        let cos = hit.normal.dot(direction).abs().max(0.05);
-        let lod = (width / cos * (uv_area / world_area).sqrt()).log2();
-        hit.lod = if lod.is_nan() { f32::NEG_INFINITY } else { lod };
+        let across = width / hit.normal.dot(direction).abs().max(0.05);
+        let lod = |uv: [Vec2; 3]| {
+            let uv_area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs();
+            let lod = (across * (uv_area / world_area).sqrt()).log2();
+            if lod.is_nan() { f32::NEG_INFINITY } else { lod }
+        };
+        let first = lod(first);
+        let second = self.attributes.uvs1.get(t).map_or(first, |&uv| lod(uv));
+        hit.tex.lod = [first, second];
     }
 
     /// Radiance emitted by the hit surface towards `wo` (unit, pointing away from it).
@@ -579,7 +590,7 @@ impl Scene {
                 two_sided,
                 ..
             } if *two_sided || hit.normal.dot(wo) > 0.0 => {
-                cache.get(&self.emission, *emission, wavelengths, hit.uv)
+                cache.get(&self.emission, *emission, wavelengths, &hit.tex)
             }
             _ => SampledSpectrum::splat(0.0),
         }

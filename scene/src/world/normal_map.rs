@@ -5,7 +5,7 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use super::RgbTexture;
+use super::{RgbTexture, TexCoords};
 use crate::geometry::unit_or_zero;
 
 /// A normal texture and its scale.
@@ -26,11 +26,17 @@ impl NormalMap {
         Ok(Self { texture, scale })
     }
 
-    /// The unit shading normal `n` tilted by the texel at `uv`, in the frame of `tangent`
+    /// The texture coordinate set it reads (its tangents follow that set's u direction).
+    pub fn set(&self) -> usize {
+        self.texture.set()
+    }
+
+    /// The unit shading normal `n` tilted by the texel at `at`, in the frame of `tangent`
     /// (xyz, interpolated; w: the sign of the bitangent). None where the frame or the
     /// tilted normal degenerates (a tangent along `n`, a texel encoding zero): the caller
     /// keeps `n`.
-    pub fn perturb(&self, n: Vec3, tangent: Vec4, uv: Vec2) -> Option<Vec3> {
+    pub fn perturb(&self, n: Vec3, tangent: Vec4, at: impl Into<TexCoords>) -> Option<Vec3> {
+        let (uv, _) = at.into().set(self.texture.set());
         let [x, y, z] = self.texture.sample(uv).map(|c| 2.0 * c - 1.0);
         let t = tangent.truncate();
         let t = unit_or_zero(t - n * n.dot(t));

@@ -65,29 +65,24 @@ impl SceneSpectrum {
         }
     }
 
-    /// The values at texture coordinate `uv` over a footprint of 2^`lod` units of
-    /// texture coordinates (textures are filtered over it; nothing else varies).
-    pub fn at_uv_lod<const N: usize>(
+    /// The values at texture coordinates `at` (textures vary with them and are filtered
+    /// over their footprint; nothing else varies).
+    pub fn at_uv<const N: usize>(
         &self,
-        uv: glam::Vec2,
-        lod: f32,
+        at: impl Into<super::TexCoords>,
         wavelengths: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         match self {
-            SceneSpectrum::Texture(t) => t.at_lod(uv, lod, wavelengths),
+            SceneSpectrum::Texture(t) => t.at(at, wavelengths),
             _ => self.at(wavelengths),
         }
     }
 
-    /// The values at texture coordinate `uv` (textures vary with it, nothing else does).
-    pub fn at_uv<const N: usize>(
-        &self,
-        uv: glam::Vec2,
-        wavelengths: &SampledWavelengths<N>,
-    ) -> SampledSpectrum<N> {
+    /// The texture coordinate set a texture reads (None: the spectrum is no texture).
+    pub fn tex_coord_set(&self) -> Option<usize> {
         match self {
-            SceneSpectrum::Texture(t) => t.at(uv, wavelengths),
-            _ => self.at(wavelengths),
+            SceneSpectrum::Texture(t) => Some(t.set()),
+            _ => None,
         }
     }
 

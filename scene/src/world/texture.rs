@@ -4,6 +4,7 @@
 
 use std::sync::{Arc, LazyLock};
 
+use super::TexCoords;
 use super::mipmap::{Level, pyramid};
 
 use glam::Vec2;
@@ -128,6 +129,8 @@ pub struct RgbTexture {
     nearest: bool,
     /// The mipmap levels below the image, built on the first minified lookup.
     mips: std::sync::OnceLock<Arc<Vec<Level>>>,
+    /// The texture coordinate set it reads (see [`TexCoords`]).
+    set: usize,
 }
 
 impl RgbTexture {
@@ -166,6 +169,7 @@ impl RgbTexture {
             rotation: transform.rotation.sin_cos(),
             nearest: false,
             mips: std::sync::OnceLock::new(),
+            set: 0,
         })
     }
 
@@ -180,6 +184,28 @@ impl RgbTexture {
             nearest: true,
             ..self
         }
+    }
+
+    /// The same texture reading texture coordinate set `set` (of the
+    /// [`TEX_COORD_SETS`](super::TEX_COORD_SETS) a scene keeps; a larger number reads the
+    /// last).
+    pub fn with_set(self, set: usize) -> Self {
+        Self {
+            set: set.min(super::TEX_COORD_SETS - 1),
+            ..self
+        }
+    }
+
+    /// The texture coordinate set it reads.
+    pub fn set(&self) -> usize {
+        self.set
+    }
+
+    /// Linear RGB at `at`, in the set the texture reads, filtered over the footprint
+    /// there (see [`RgbTexture::sample_lod`]), times the factor.
+    pub fn sample_at(&self, at: &TexCoords) -> [f32; 3] {
+        let (uv, lod) = at.set(self.set);
+        self.sample_lod(uv, lod + self.log2_resolution())
     }
 
     /// Whether it is read with nearest-texel filtering.
@@ -449,29 +475,24 @@ impl SpectralTexture {
             .sum()
     }
 
+    /// The texture coordinate set it reads.
+    pub fn set(&self) -> usize {
+        self.rgb.set()
+    }
+
     /// Whether the texture is an emission.
     pub fn emits(&self) -> bool {
         matches!(self.kind, TextureKind::Emission { .. })
     }
 
-    /// The spectrum at `uv`, at the package's wavelengths.
+    /// The spectrum at `at` (in the set the texture reads, filtered over its footprint
+    /// there: see [`RgbTexture::sample_at`]), at the package's wavelengths.
     pub fn at<const N: usize>(
         &self,
-        uv: Vec2,
+        at: impl Into<TexCoords>,
         wavelengths: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        self.at_lod(uv, f32::NEG_INFINITY, wavelengths)
-    }
-
-    /// The spectrum at `uv` filtered over a footprint of 2^`lod` units of texture
-    /// coordinates (see [`RgbTexture::sample_lod`]; `-inf`: the texel itself).
-    pub fn at_lod<const N: usize>(
-        &self,
-        uv: Vec2,
-        lod: f32,
-        wavelengths: &SampledWavelengths<N>,
-    ) -> SampledSpectrum<N> {
-        let rgb = self.rgb.sample_lod(uv, lod + self.rgb.log2_resolution());
+        let rgb = self.rgb.sample_at(&at.into());
         match &self.kind {
             // In f32 lanes, as constant colours are evaluated (RgbSpectrum::evaluate_lanes).
             TextureKind::Reflectance { .. } => reflectance_lanes(rgb, &self.table, wavelengths),
