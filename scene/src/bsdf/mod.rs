@@ -14,6 +14,7 @@ mod metallic_roughness;
 mod microfacet;
 mod rough_conductor;
 mod rough_dielectric;
+mod thin_film;
 
 pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor};
@@ -27,6 +28,7 @@ pub use metallic_roughness::MetallicRoughness;
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
+pub use thin_film::{ThinFilm, conductor_index_from_reflectance};
 
 use glam::Vec3;
 use prism_spectrum::SampledSpectrum;
