@@ -84,7 +84,10 @@ fn vanishing_films_leave_the_bare_base() {
                 },
             ] {
                 let r = film.reflectance(cos, 500.0, 1.0, eta, k);
-                assert!((r - bare).abs() < 1e-5, "{film:?} cos {cos} base {eta}+{k}i: {r} vs {bare}");
+                assert!(
+                    (r - bare).abs() < 1e-5,
+                    "{film:?} cos {cos} base {eta}+{k}i: {r} vs {bare}"
+                );
             }
         }
     }

@@ -59,14 +59,8 @@ impl ThinFilm {
             let r = (r01 + r12 * phase) / (1.0 + r01 * r12 * phase);
             r.norm_sqr()
         };
-        let rs = airy(
-            r_s(n0c, cos0, n1, cos1),
-            r_s(n1, cos1, n2, cos2),
-        );
-        let rp = airy(
-            r_p(n0c, cos0, n1, cos1),
-            r_p(n1, cos1, n2, cos2),
-        );
+        let rs = airy(r_s(n0c, cos0, n1, cos1), r_s(n1, cos1, n2, cos2));
+        let rp = airy(r_p(n0c, cos0, n1, cos1), r_p(n1, cos1, n2, cos2));
         let r = 0.5 * (rs + rp);
         if r.is_finite() {
             r.clamp(0.0, 1.0) as f32
@@ -108,6 +102,10 @@ fn r_p(ni: Complex64, cos_i: Complex64, nj: Complex64, cos_j: Complex64) -> Comp
 /// colour alone; this gives a film over it the phase shifts of a metal rather than of a
 /// dielectric.
 pub fn conductor_index_from_reflectance(f0: f32) -> (f32, f32) {
-    let r = if f0.is_finite() { f0.clamp(0.0, 0.9999) } else { 0.0 };
+    let r = if f0.is_finite() {
+        f0.clamp(0.0, 0.9999)
+    } else {
+        0.0
+    };
     ((1.0 - r) / (1.0 + r), 2.0 * r.sqrt() / (1.0 + r))
 }
