@@ -522,6 +522,26 @@ def multi_uv():
     a.write("multi-uv.gltf")
 
 
+def thin_film():
+    """KHR_materials_iridescence: a smooth black dielectric quad (index 1.5) under a soap-
+    like film (index 1.3, 500 nm: iridescenceThicknessMaximum, no thickness texture),
+    filling an orthographic view that looks straight at it, under a flat spectral
+    environment of 1 W m^-2 sr^-1 nm^-1: what it reflects towards the camera is the film's
+    normal-incidence Airy reflectance, band by band."""
+    a = Asset()
+    a.doc["extensionsUsed"] = ["KHR_materials_iridescence", "PRISM_spectral"]
+    a.doc["extensions"] = {"PRISM_spectral": {"environment": 1.0}}
+    m = a.material(
+        name="film",
+        pbrMetallicRoughness={"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+        extensions={"KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": 1.3, "iridescenceThicknessMaximum": 500.0}},
+    )
+    s = 2.0
+    a.node(mesh=a.mesh([quad_primitive(a, m, [(-s, -s, 0), (s, -s, 0), (s, s, 0), (-s, s, 0)])]))
+    ortho_camera(a)
+    a.write("thin-film.gltf")
+
+
 def grey_sky():
     """An 8 x 4 Radiance .hdr whose texels are all 0.5 (RGBE 128 128 128 128): as an
     environment image it must light the white plane as `--environment 0.5` does."""
@@ -546,6 +566,7 @@ def main():
     sparse_interleaved()
     spec_gloss()
     multi_uv()
+    thin_film()
     checkerboard("checker-minified.gltf", 512)
     checkerboard("checker-magnified.gltf", 1)
     requires_draco()

@@ -9,6 +9,7 @@ pub(crate) const READ: &[&str] = &[
     "KHR_materials_dispersion",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_iridescence",
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_transmission",
     "KHR_materials_unlit",

@@ -256,7 +256,7 @@ pub fn load_scene(
         });
     if let Some(upsampler) = &upsampler {
         let cx = spectral::Context { resolve, upsampler };
-        let textures = super::textures::TextureLoader::new(&buffers, resolve, upsampler);
+        let textures = super::textures::TextureLoader::new(&gltf, &buffers, resolve, upsampler);
         out.materials = gltf
             .materials()
             .map(|m| material(&m, &cx, &textures))

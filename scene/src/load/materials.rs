@@ -9,7 +9,7 @@ use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
-use crate::world::{Alpha, AlphaMode, NormalMap, RgbTexture, SceneSpectrum};
+use crate::world::{Alpha, AlphaMode, IridescenceDesc, NormalMap, RgbTexture, SceneSpectrum};
 
 use super::tex_coord_sets::TexCoordSets;
 use super::textures::TextureLoader;
@@ -61,6 +61,9 @@ pub struct MaterialDesc {
     pub spectral: Option<SpectralMaterial>,
     /// Alpha coverage (`alphaMode` MASK or BLEND), None for OPAQUE.
     pub alpha: Option<Alpha>,
+    /// `KHR_materials_iridescence`: a thin film over the surface (None without the
+    /// extension or with a factor of 0).
+    pub iridescence: Option<IridescenceDesc>,
     /// The brightest channel of the RGB it emits (emissiveFactor times the strength, or
     /// an unlit base colour): at most 1 is a glow (a screen, an indicator), not a lamp.
     pub emission_peak: f32,
@@ -353,7 +356,11 @@ pub(crate) fn material(
     let alpha = alpha(material, base_texture.as_ref(), textures, &sets, base[3])
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let emission_peak = emitted.iter().fold(0.0f64, |a, &c| a.max(c)) as f32;
+    let iridescence = iridescence(material, textures, &sets).map_err(|e| {
+        LoadError::Geometry(format!("material {name}: KHR_materials_iridescence: {e}"))
+    })?;
     let desc = MaterialDesc {
+        iridescence,
         emission_peak,
         alpha,
         name,
@@ -377,6 +384,49 @@ pub(crate) fn material(
         return unlit(desc, material, textures, upsampler);
     }
     Ok(desc)
+}
+
+/// `KHR_materials_iridescence` (the gltf crate does not know it; read from the raw JSON):
+/// None without it or with a factor of 0; an error for a value that is not a finite
+/// number in its range (factor in [0, 1], index > 0, thicknesses >= 0).
+fn iridescence(
+    material: &gltf::Material,
+    textures: &TextureLoader,
+    sets: &TexCoordSets,
+) -> Result<Option<IridescenceDesc>, String> {
+    let Some(ext) = material.extension_value("KHR_materials_iridescence") else {
+        return Ok(None);
+    };
+    let number = |key: &str, default: f32, valid: &dyn Fn(f32) -> bool| -> Result<f32, String> {
+        match ext.get(key) {
+            None => Ok(default),
+            Some(v) => match v.as_f64().map(|x| x as f32) {
+                Some(x) if x.is_finite() && valid(x) => Ok(x),
+                _ => Err(format!("{key} {v} is out of range")),
+            },
+        }
+    };
+    let factor = number("iridescenceFactor", 0.0, &|x| (0.0..=1.0).contains(&x))?;
+    let ior = number("iridescenceIor", 1.3, &|x| x > 0.0)?;
+    let thickness_min_nm = number("iridescenceThicknessMinimum", 100.0, &|x| x >= 0.0)?;
+    let thickness_max_nm = number("iridescenceThicknessMaximum", 400.0, &|x| x >= 0.0)?;
+    if factor == 0.0 {
+        return Ok(None);
+    }
+    let texture = |key: &str| {
+        ext.get(key)
+            .map(|r| textures.extension_texture(r, [1.0; 3], sets).map(Arc::new))
+            .transpose()
+            .map_err(|e| format!("{key}: {e}"))
+    };
+    Ok(Some(IridescenceDesc {
+        factor,
+        factor_texture: texture("iridescenceTexture")?,
+        ior,
+        thickness_min_nm,
+        thickness_max_nm,
+        thickness_texture: texture("iridescenceThicknessTexture")?,
+    }))
 }
 
 /// The base colour factor and texture: `KHR_materials_pbrSpecularGlossiness`'s diffuse

@@ -27,7 +27,8 @@ impl TexCoordSets {
             .iter()
             .flatten()
             .map(info_set)
-            .chain(material.normal_texture().as_ref().map(normal_set));
+            .chain(material.normal_texture().as_ref().map(normal_set))
+            .chain(extension_texture_sets(material));
         for set in named {
             if !sets.contains(&set) {
                 sets.push(set);
@@ -68,6 +69,33 @@ impl TexCoordSets {
             )
         })
     }
+}
+
+/// The material extensions prism reads and the textures each may refer to.
+pub(crate) const EXTENSION_TEXTURES: &[(&str, &[&str])] = &[(
+    "KHR_materials_iridescence",
+    &["iridescenceTexture", "iridescenceThicknessTexture"],
+)];
+
+/// The sets the textures of `material`'s extensions read, in the order of
+/// [`EXTENSION_TEXTURES`] (references that do not parse read none: the material loader
+/// reports them).
+fn extension_texture_sets(material: &gltf::Material) -> Vec<u32> {
+    let mut sets = Vec::new();
+    for (extension, fields) in EXTENSION_TEXTURES {
+        let Some(value) = material.extension_value(extension) else {
+            continue;
+        };
+        for field in *fields {
+            if let Some(info) = value
+                .get(*field)
+                .and_then(|r| super::textures::texture_reference(r).ok())
+            {
+                sets.push(super::textures::reference_set(&info));
+            }
+        }
+    }
+    sets
 }
 
 /// The set a texture reference reads.

@@ -22,6 +22,7 @@ type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>, Option<Arc<Vec<[u8; 3]>>>);
 
 /// Loads textures for one glTF file.
 pub(crate) struct TextureLoader<'a> {
+    pub document: &'a gltf::Document,
     pub buffers: &'a [Vec<u8>],
     pub resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
     pub upsampler: &'a super::Upsampler,
@@ -30,11 +31,13 @@ pub(crate) struct TextureLoader<'a> {
 
 impl<'a> TextureLoader<'a> {
     pub(crate) fn new(
+        document: &'a gltf::Document,
         buffers: &'a [Vec<u8>],
         resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
         upsampler: &'a super::Upsampler,
     ) -> Self {
         Self {
+            document,
             buffers,
             resolve,
             upsampler,
@@ -123,6 +126,37 @@ impl<'a> TextureLoader<'a> {
             .with_set(sets.slot(info_set(info))))
     }
 
+    /// A texture that a material extension refers to (`reference`: glTF's textureInfo
+    /// JSON, `{"index", "texCoord", "extensions"}`), linear, times `factor`: the
+    /// extensions' factor textures (iridescence, clearcoat, sheen...) hold data, not
+    /// colour.
+    pub(crate) fn extension_texture(
+        &self,
+        reference: &serde_json::Value,
+        factor: [f32; 3],
+        sets: &TexCoordSets,
+    ) -> Result<RgbTexture, String> {
+        let info = texture_reference(reference)?;
+        let texture = self
+            .document
+            .textures()
+            .nth(info.index.value())
+            .ok_or_else(|| format!("texture {} does not exist", info.index.value()))?;
+        let transform = info
+            .extensions
+            .as_ref()
+            .and_then(|e| e.texture_transform.as_ref());
+        let uv = transform.map(|t| UvTransform {
+            offset: Vec2::from(t.offset.0),
+            rotation: t.rotation.0,
+            scale: Vec2::from(t.scale.0),
+        });
+        Ok(self
+            .rgb(texture, uv, factor)?
+            .encoded(Encoding::Linear)
+            .with_set(sets.slot(reference_set(&info))))
+    }
+
     /// The alpha channel of a base colour texture times `factor` (baseColorFactor's
     /// alpha), as a linear texture whose channels all hold it; None when the image has no
     /// alpha.
@@ -208,4 +242,21 @@ impl<'a> TextureLoader<'a> {
             .insert(image.index(), entry.clone());
         Ok(entry)
     }
+}
+
+/// A textureInfo as a material extension writes it.
+pub(crate) fn texture_reference(
+    reference: &serde_json::Value,
+) -> Result<gltf::json::texture::Info, String> {
+    serde_json::from_value(reference.clone())
+        .map_err(|e| format!("texture reference {reference}: {e}"))
+}
+
+/// The set a textureInfo reads (its transform's `texCoord` overriding its own).
+pub(crate) fn reference_set(info: &gltf::json::texture::Info) -> u32 {
+    info.extensions
+        .as_ref()
+        .and_then(|e| e.texture_transform.as_ref())
+        .and_then(|t| t.tex_coord)
+        .unwrap_or(info.tex_coord)
 }

@@ -57,7 +57,11 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         };
     }
     let texture = desc.metallic_roughness_texture.clone();
-    if desc.metallic == 0.0 && desc.roughness == 1.0 && texture.is_none() {
+    if desc.metallic == 0.0
+        && desc.roughness == 1.0
+        && texture.is_none()
+        && desc.iridescence.is_none()
+    {
         return Material::Diffuse { reflectance: base };
     }
     Material::MetallicRoughness {
@@ -66,6 +70,7 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         roughness: desc.roughness,
         texture,
         coating: coating_for(desc.ior, coatings),
+        iridescence: desc.iridescence.clone().map(Arc::new),
     }
 }
 
@@ -100,6 +105,7 @@ impl Scene {
                 roughness: 1.0,
                 texture: None,
                 coating: coating_for(1.5, &mut coatings),
+                iridescence: None,
             });
         }
         let mut triangle_material = vec![default_material; loaded.triangles.len()];

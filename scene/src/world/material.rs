@@ -34,6 +34,8 @@ pub enum Material {
         texture: Option<Arc<RgbTexture>>,
         /// The coating's albedo table for its index.
         coating: Arc<CoatingAlbedo>,
+        /// A thin film over it (`KHR_materials_iridescence`), if any.
+        iridescence: Option<Arc<super::IridescenceDesc>>,
     },
     /// A dielectric interface (glass), smooth when `roughness` is 0. The index is inside
     /// over outside, per wavelength when dispersive.
@@ -101,8 +103,15 @@ impl Material {
             Material::Diffuse { reflectance } | Material::Fluorescent { reflectance, .. } => {
                 textured(reflectance)
             }
-            Material::MetallicRoughness { base, texture, .. } => {
-                textured(base) || texture.is_some()
+            Material::MetallicRoughness {
+                base,
+                texture,
+                iridescence,
+                ..
+            } => {
+                textured(base)
+                    || texture.is_some()
+                    || iridescence.as_ref().is_some_and(|i| i.textured())
             }
             _ => false,
         }
@@ -170,6 +179,7 @@ impl Material {
                 roughness,
                 texture,
                 coating,
+                iridescence,
             } => {
                 let (metallic, roughness) = match texture {
                     Some(t) => {
@@ -178,12 +188,11 @@ impl Material {
                     }
                     None => (*metallic, *roughness),
                 };
-                Bsdf::MetallicRoughness(MetallicRoughness::new(
-                    base(base_colour),
-                    metallic,
-                    roughness,
-                    coating,
-                ))
+                let bsdf = MetallicRoughness::new(base(base_colour), metallic, roughness, coating);
+                Bsdf::MetallicRoughness(match iridescence {
+                    Some(film) => bsdf.with_iridescence(film.at(at, wavelengths)),
+                    None => bsdf,
+                })
             }
             Material::Dielectric { ior, roughness, .. } => {
                 let alpha = roughness * roughness;
