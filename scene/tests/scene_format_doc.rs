@@ -1,5 +1,5 @@
 //! Every example in docs/scene-format.md loads: material descriptions on the Cornell box's
-//! "white" material, light descriptions as an added punctual light, root descriptions on
+//! "white" material (glTF material extensions too), light descriptions as an added punctual light, root descriptions on
 //! the root, and overlays against the Cornell box.
 
 use prism_scene::load::{LoadError, LoadOptions, LoadedGeometry, load_scene};
@@ -72,6 +72,17 @@ fn every_documented_example_loads() {
                 .as_array_mut()
                 .unwrap()
                 .push(json!(n));
+        } else if let Some(extensions) = value["extensions"]
+            .as_object()
+            .filter(|e| e.keys().all(|k| k.starts_with("KHR_materials_")))
+        {
+            // A glTF material extension: on the white material, declared as used.
+            doc["extensionsUsed"] = json!(extensions.keys().collect::<Vec<_>>());
+            for m in doc["materials"].as_array_mut().unwrap() {
+                if m["name"] == "white" {
+                    m["extensions"] = value["extensions"].clone();
+                }
+            }
         } else if value.get("extensions").is_some() {
             doc["extensions"] = value["extensions"].clone();
         } else {

@@ -642,3 +642,61 @@ fn unkept_or_missing_texture_coordinate_sets_are_warned_about() {
     // Without the second set, none is kept: textures on it read the first set's.
     assert!(loaded.uvs1.is_empty() && !loaded.uvs.is_empty());
 }
+
+/// KHR_materials_iridescence reads its defaults (index 1.3, 400 nm without a thickness
+/// texture) and its thickness texture (green mixes minimum to maximum), and a factor out
+/// of its range is an error naming the extension.
+#[test]
+fn gltf_iridescence_reads_its_film() {
+    // Green 0 at the left texel, 255 at the right.
+    let image = png(2, 1, &[[0, 0, 0], [0, 255, 0]]);
+    let material = |ext: serde_json::Value| {
+        json!({
+            "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0},
+            "extensions": {"KHR_materials_iridescence": ext}
+        })
+    };
+    let film = |ext: serde_json::Value| {
+        let (doc, bin) = textured_quad(&image, material(ext));
+        let mut doc = doc;
+        doc["samplers"] = json!([{"wrapS": 33071, "wrapT": 33071, "magFilter": 9728}]);
+        doc["textures"][0]["sampler"] = json!(0);
+        let loaded = load_quad(&doc, bin);
+        loaded.materials[0].iridescence.clone()
+    };
+    let plain = film(json!({"iridescenceFactor": 0.5})).expect("a film");
+    assert_eq!(
+        (
+            plain.factor,
+            plain.ior,
+            plain.thickness_min_nm,
+            plain.thickness_max_nm
+        ),
+        (0.5, 1.3, 100.0, 400.0)
+    );
+    let lambdas = SampledWavelengths::new([500.0, 600.0], [1.0; 2]).unwrap();
+    let at = |x: f32| prism_scene::world::TexCoords::new(Vec2::new(x, 0.5));
+    assert_eq!(plain.at(&at(0.1), &lambdas).film.thickness_nm, 400.0);
+    let textured = film(json!({
+        "iridescenceFactor": 1.0,
+        "iridescenceThicknessMinimum": 200.0,
+        "iridescenceThicknessMaximum": 600.0,
+        "iridescenceThicknessTexture": {"index": 0}
+    }))
+    .unwrap();
+    assert!((textured.at(&at(0.1), &lambdas).film.thickness_nm - 200.0).abs() < 1e-3);
+    assert!((textured.at(&at(0.9), &lambdas).film.thickness_nm - 600.0).abs() < 1e-3);
+    assert!(film(json!({"iridescenceFactor": 0.0})).is_none());
+    let (doc, bin) = textured_quad(&image, material(json!({"iridescenceFactor": 2.0})));
+    let error = load_geometry(
+        &serde_json::to_vec(&doc).unwrap(),
+        &move |_| Ok(bin.clone()),
+        None,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        error.contains("KHR_materials_iridescence") && error.contains("iridescenceFactor"),
+        "{error}"
+    );
+}
