@@ -687,6 +687,15 @@ fn gltf_iridescence_reads_its_film() {
     assert!((textured.at(&at(0.1), &lambdas).film.thickness_nm - 200.0).abs() < 1e-3);
     assert!((textured.at(&at(0.9), &lambdas).film.thickness_nm - 600.0).abs() < 1e-3);
     assert!(film(json!({"iridescenceFactor": 0.0})).is_none());
+    // On glass it is not rendered, and the load says so.
+    let mut glass = material(json!({"iridescenceFactor": 1.0}));
+    glass["extensions"]["KHR_materials_transmission"] = json!({"transmissionFactor": 1.0});
+    let (doc, bin) = textured_quad(&image, glass);
+    let warnings = load_quad(&doc, bin).warnings.join("\n");
+    assert!(
+        warnings.contains("transmissive material is not rendered"),
+        "{warnings}"
+    );
     let (doc, bin) = textured_quad(&image, material(json!({"iridescenceFactor": 2.0})));
     let error = load_geometry(
         &serde_json::to_vec(&doc).unwrap(),

@@ -261,6 +261,17 @@ pub fn load_scene(
             .materials()
             .map(|m| material(&m, &cx, &textures))
             .collect::<Result<_, _>>()?;
+        for m in &out.materials {
+            if m.transmission > 0.0 && m.iridescence.is_some() {
+                warn_once(
+                    &mut out.warnings,
+                    &format!(
+                        "material {}: KHR_materials_iridescence on a transmissive material is not rendered (the glass is)",
+                        m.name
+                    ),
+                );
+            }
+        }
         if let Some(v) = root_spectral {
             out.spectral = spectral::scene(v, &cx).map_err(LoadError::Spectral)?;
         }
