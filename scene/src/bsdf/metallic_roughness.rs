@@ -21,14 +21,26 @@ pub struct Iridescence<const N: usize> {
     pub lambdas: [f32; N],
 }
 
-/// What a filmed coating does not reflect, per lane, for the diffuse base's albedo
-/// scaling: 1 - E_film averaged over the hemisphere (cosine-weighted), computed once per
-/// hit.
+/// `KHR_materials_specular` at one hit: the strength (`specularFactor`, times its texture)
+/// and colour (`specularColorFactor` times its texture, upsampled) of the dielectric
+/// base's reflection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Specular<const N: usize> {
+    /// The weight, F90 of the extension: the reflectance at grazing incidence.
+    pub weight: f32,
+    /// The colour per lane, multiplying the reflectance at normal incidence.
+    pub color: SampledSpectrum<N>,
+}
+
+/// The specular extension's Fresnel per lane, as the extension defines its end points and
+/// the exact dielectric Fresnel term shapes the curve between them:
+/// F(cos) = F0' + (F90 - F0') (F_exact(cos) - F0) / (1 - F0), with F0' = min(F0 c, 1) F90
+/// (F0: the exact term at normal incidence). Affine in the exact term, so the coating's
+/// albedo follows exactly from the tabulated ones (E and the mirror's E_1).
 #[derive(Debug, Clone, Copy)]
-struct Filmed<const N: usize> {
-    film: Iridescence<N>,
-    /// 1 - E_film_avg per lane.
-    kept_average: [f32; N],
+struct SpecularLanes<const N: usize> {
+    weight: f32,
+    f0: [f32; N],
 }
 
 /// Gauss-Legendre nodes and weights on [0, 1] (16 points): the average over mu of the
@@ -74,8 +86,17 @@ pub struct MetallicRoughness<'a, const N: usize> {
     base: SampledSpectrum<N>,
     metallic: f32,
     distribution: Ggx,
+    /// The roughness the albedo tables are read at (the isotropic alpha, or the
+    /// root-mean-square of an anisotropic pair).
+    table_alpha: f32,
+    /// cos and sin of the angle from the local frame's x to the anisotropy direction.
+    rotation: Option<Vec2>,
     coating: &'a CoatingAlbedo,
-    iridescence: Option<Filmed<N>>,
+    iridescence: Option<Iridescence<N>>,
+    specular: Option<SpecularLanes<N>>,
+    /// 1 - the coating's average albedo per lane, once a film or the specular extension
+    /// makes it differ from the table's.
+    kept_average: [f32; N],
 }
 
 impl<'a, const N: usize> MetallicRoughness<'a, N> {
@@ -90,13 +111,66 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         let unit = |v: f32| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
         let roughness = unit(roughness);
         let alpha = roughness * roughness;
+        let distribution = Ggx::new(alpha, alpha);
         Self {
             base: base.map(unit),
             metallic: unit(metallic),
-            distribution: Ggx::new(alpha, alpha),
+            distribution,
+            table_alpha: distribution.alpha_x,
+            rotation: None,
             coating,
             iridescence: None,
+            specular: None,
+            kept_average: [1.0 - coating.average(distribution.alpha_x); N],
         }
+    }
+
+    /// The same material with `KHR_materials_specular`'s strength and colour on the
+    /// dielectric base (the metal is not affected, as the extension says).
+    pub fn with_specular(self, specular: Specular<N>) -> Self {
+        let unit = |v: f32| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+        let weight = unit(specular.weight);
+        let f0 = fresnel_dielectric(1.0, self.coating.eta());
+        let lanes = SpecularLanes {
+            weight,
+            f0: std::array::from_fn(|i| {
+                let c = specular.color[i];
+                let c = if c.is_nan() { 0.0 } else { c.max(0.0) };
+                (f0 * c).min(1.0) * weight
+            }),
+        };
+        Self {
+            specular: Some(lanes),
+            ..self
+        }
+        .with_averages()
+    }
+
+    /// The same material made anisotropic (`KHR_materials_anisotropy`): `strength` in
+    /// [0, 1] stretches the roughness along `direction` (a unit vector in the local
+    /// frame's xy plane) to alpha_t = mix(alpha, 1, strength^2), keeping alpha across it.
+    pub fn with_anisotropy(self, strength: f32, direction: Vec2) -> Self {
+        let strength = if strength.is_nan() {
+            0.0
+        } else {
+            strength.clamp(0.0, 1.0)
+        };
+        let Some(direction) = direction.try_normalize() else {
+            return self;
+        };
+        if strength == 0.0 {
+            return self;
+        }
+        let alpha = self.distribution.alpha_y;
+        let along = alpha + (1.0 - alpha) * strength * strength;
+        let table_alpha = ((along * along + alpha * alpha) / 2.0).sqrt();
+        Self {
+            distribution: Ggx::new(along, alpha),
+            table_alpha,
+            rotation: Some(direction),
+            ..self
+        }
+        .with_averages()
     }
 
     /// The same material under a thin film (`factor` clamped into [0, 1]; 0 leaves it
@@ -113,42 +187,124 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
                 ..self
             };
         }
-        let film = Iridescence {
-            factor,
-            ..iridescence
-        };
-        // E_film_avg = E_avg + 2 int (E_film - E) mu dmu: exactly E_avg without a film.
-        let alpha = self.alpha();
+        Self {
+            iridescence: Some(Iridescence {
+                factor,
+                ..iridescence
+            }),
+            ..self
+        }
+        .with_averages()
+    }
+
+    /// Recomputes what the diffuse base keeps on average per lane after a film or the
+    /// specular extension changed the coating: E_avg + 2 int (E' - E) mu dmu by
+    /// quadrature under a film (whose reflectance oscillates with angle), exactly from
+    /// the tables otherwise.
+    fn with_averages(self) -> Self {
+        let alpha = self.table_alpha;
+        let base_average = self.coating.average(alpha);
         let kept_average = std::array::from_fn(|i| {
-            let mut correction = 0.0;
-            for (x, w) in GAUSS_16 {
-                for mu in [0.5 * (1.0 + x), 0.5 * (1.0 - x)] {
-                    let e = self.coating.albedo(mu, alpha);
-                    correction +=
-                        w * 0.5 * 2.0 * (filmed_albedo(&film, self.coating, e, mu, i) - e) * mu;
+            let average = if self.iridescence.is_some() {
+                let mut correction = 0.0;
+                for (x, w) in GAUSS_16 {
+                    for mu in [0.5 * (1.0 + x), 0.5 * (1.0 - x)] {
+                        let e = self.coating.albedo(mu, alpha);
+                        correction += w * (self.coat_albedo(mu, i) - e) * mu;
+                    }
                 }
-            }
-            let average = (self.coating.average(alpha) + correction).clamp(0.0, 0.999);
-            1.0 - average
+                base_average + correction
+            } else if let Some(spec) = &self.specular {
+                spec.albedo(
+                    base_average,
+                    self.coating.mirror_average(alpha),
+                    fresnel_dielectric(1.0, self.coating.eta()),
+                    i,
+                )
+            } else {
+                base_average
+            };
+            1.0 - average.clamp(0.0, 0.999)
         });
         Self {
-            iridescence: Some(Filmed { film, kept_average }),
+            kept_average,
             ..self
         }
     }
 
-    fn alpha(&self) -> f32 {
-        self.distribution.alpha_x
+    /// The coating's reflectance at cos `cos` (of the microfacet normal) in lane `lane`,
+    /// given the bare dielectric's there: the film mixed in by its factor, and the
+    /// specular extension's remapping as a ratio to the bare term.
+    fn coat_fresnel(&self, cos: f32, bare: f32, lane: usize) -> f32 {
+        let eta = self.coating.eta();
+        let mut f = bare;
+        if let Some(film) = &self.iridescence {
+            let filmed = film
+                .film
+                .reflectance(cos, film.lambdas[lane], 1.0, eta, 0.0);
+            f += film.factor * (filmed - bare);
+        }
+        if let Some(spec) = &self.specular {
+            let remapped = spec.fresnel(bare, fresnel_dielectric(1.0, eta), lane);
+            f = if bare > 1e-6 {
+                f * remapped / bare
+            } else {
+                remapped
+            };
+        }
+        f.clamp(0.0, 1.0)
+    }
+
+    /// The coating's directional albedo at `mu` in lane `lane`: the table's; exact under
+    /// the specular extension alone; under a film estimated as E F'(mu) / F(mu) (exact
+    /// for a smooth coating, and equal to E where the film is absent). (Averaging the
+    /// ratio over the microfacet angles a rough coating reflects through did not bring the
+    /// furnace closer to 1: measured, and left out.)
+    fn coat_albedo(&self, mu: f32, lane: usize) -> f32 {
+        let alpha = self.table_alpha;
+        let e = self.coating.albedo(mu, alpha);
+        if self.iridescence.is_some() {
+            let bare = fresnel_dielectric(mu, self.coating.eta());
+            (e * self.coat_fresnel(mu, bare, lane) / bare.max(1e-6)).clamp(0.0, 0.999)
+        } else if let Some(spec) = &self.specular {
+            let f0 = fresnel_dielectric(1.0, self.coating.eta());
+            spec.albedo(e, self.coating.mirror_albedo(mu, alpha), f0, lane)
+                .clamp(0.0, 0.999)
+        } else {
+            e
+        }
     }
 
     /// The probability of sampling the microfacet reflection lobe rather than the diffuse
-    /// base: the metal's share plus the coating's albedo.
+    /// base: the metal's share plus the coating's albedo (the lanes' mean where it
+    /// varies).
     fn specular_probability(&self, mu_o: f32) -> f32 {
-        self.metallic + (1.0 - self.metallic) * self.coating.albedo(mu_o, self.alpha())
+        let coating = if self.iridescence.is_none() && self.specular.is_none() {
+            self.coating.albedo(mu_o, self.table_alpha)
+        } else {
+            (0..N).map(|i| self.coat_albedo(mu_o, i)).sum::<f32>() / N as f32
+        };
+        self.metallic + (1.0 - self.metallic) * coating
+    }
+
+    /// A local direction in the anisotropy's frame (x along its direction), and back.
+    fn aligned(&self, w: Vec3) -> Vec3 {
+        match self.rotation {
+            Some(r) => Vec3::new(r.x * w.x + r.y * w.y, r.x * w.y - r.y * w.x, w.z),
+            None => w,
+        }
+    }
+
+    fn unaligned(&self, w: Vec3) -> Vec3 {
+        match self.rotation {
+            Some(r) => Vec3::new(r.x * w.x - r.y * w.y, r.y * w.x + r.x * w.y, w.z),
+            None => w,
+        }
     }
 
     /// f(wo, wi); reflection only (0 across the surface).
     pub fn f(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
+        let (wo, wi) = (self.aligned(wo), self.aligned(wi));
         if !same_hemisphere(wo, wi) {
             return SampledSpectrum::splat(0.0);
         }
@@ -162,48 +318,48 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         let cos_h = wo.dot(wm).abs();
         let eta = self.coating.eta();
         let bare = fresnel_dielectric(cos_h, eta);
-        let alpha = self.alpha();
-        let diffuse_weight = (1.0 - self.coating.albedo(mu_o, alpha))
-            * (1.0 - self.coating.albedo(mu_i, alpha))
-            / (std::f32::consts::PI * (1.0 - self.coating.average(alpha)));
         let schlick = (1.0 - cos_h).powi(5);
         let m = self.metallic;
-        match &self.iridescence {
-            None => SampledSpectrum::from_fn(|i| {
+        if self.iridescence.is_none() && self.specular.is_none() {
+            let alpha = self.table_alpha;
+            let diffuse_weight = (1.0 - self.coating.albedo(mu_o, alpha))
+                * (1.0 - self.coating.albedo(mu_i, alpha))
+                / (std::f32::consts::PI * (1.0 - self.coating.average(alpha)));
+            return SampledSpectrum::from_fn(|i| {
                 let dielectric = microfacet * bare + self.base[i] * diffuse_weight;
                 let metal = microfacet * (self.base[i] + (1.0 - self.base[i]) * schlick);
                 (1.0 - m) * dielectric + m * metal
-            }),
-            Some(filmed) => {
-                let film = &filmed.film;
-                let (e_o, e_i) = (
-                    self.coating.albedo(mu_o, alpha),
-                    self.coating.albedo(mu_i, alpha),
-                );
-                SampledSpectrum::from_fn(|i| {
-                    let lambda = film.lambdas[i];
-                    let mix = |bare: f32, filmed: f32| bare + film.factor * (filmed - bare);
-                    let coated = mix(bare, film.film.reflectance(cos_h, lambda, 1.0, eta, 0.0));
-                    let diffuse = (1.0 - filmed_albedo(film, self.coating, e_o, mu_o, i))
-                        * (1.0 - filmed_albedo(film, self.coating, e_i, mu_i, i))
-                        / (std::f32::consts::PI * filmed.kept_average[i]);
-                    let dielectric = microfacet * coated + self.base[i] * diffuse;
-                    let metal = if m > 0.0 {
-                        let f0 = self.base[i];
-                        let (eta_m, k_m) = conductor_index_from_reflectance(f0);
-                        let filmed = film.film.reflectance(cos_h, lambda, 1.0, eta_m, k_m);
-                        microfacet * mix(f0 + (1.0 - f0) * schlick, filmed)
-                    } else {
-                        0.0
-                    };
-                    (1.0 - m) * dielectric + m * metal
-                })
-            }
+            });
         }
+        SampledSpectrum::from_fn(|i| {
+            let coated = self.coat_fresnel(cos_h, bare, i);
+            let diffuse = (1.0 - self.coat_albedo(mu_o, i)) * (1.0 - self.coat_albedo(mu_i, i))
+                / (std::f32::consts::PI * self.kept_average[i]);
+            let dielectric = microfacet * coated + self.base[i] * diffuse;
+            let metal = if m > 0.0 {
+                let f0 = self.base[i];
+                let bare_metal = f0 + (1.0 - f0) * schlick;
+                microfacet
+                    * match &self.iridescence {
+                        Some(film) => {
+                            let (eta_m, k_m) = conductor_index_from_reflectance(f0);
+                            let filmed =
+                                film.film
+                                    .reflectance(cos_h, film.lambdas[i], 1.0, eta_m, k_m);
+                            bare_metal + film.factor * (filmed - bare_metal)
+                        }
+                        None => bare_metal,
+                    }
+            } else {
+                0.0
+            };
+            (1.0 - m) * dielectric + m * metal
+        })
     }
 
     /// The density of [`MetallicRoughness::sample`] returning `wi`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let (wo, wi) = (self.aligned(wo), self.aligned(wi));
         if !same_hemisphere(wo, wi) {
             return 0.0;
         }
@@ -223,9 +379,10 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         if wo.z == 0.0 || !wo.is_finite() {
             return None;
         }
+        let wo_aligned = self.aligned(wo);
         let wi = if uc < self.specular_probability(wo.z.abs()) {
-            let wm = self.distribution.sample_visible_normal(wo, u);
-            2.0 * wo.dot(wm) * wm - wo
+            let wm = self.distribution.sample_visible_normal(wo_aligned, u);
+            self.unaligned(2.0 * wo_aligned.dot(wm) * wm - wo_aligned)
         } else {
             let w = cosine_hemisphere(u);
             if wo.z < 0.0 {
@@ -252,21 +409,26 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
     }
 }
 
-/// The filmed coating's albedo at cos(theta) `mu` in lane `lane`, estimated from the bare
-/// coating's albedo `e` there as E F_mix(mu) / F(mu) (F_mix: the film's reflectance mixed
-/// with the bare one by the factor), in [0, 1). (Averaging the ratio over the range of
-/// microfacet angles a rough coating reflects through did not bring the furnace closer
-/// to 1: measured, and left out.)
-fn filmed_albedo<const N: usize>(
-    film: &Iridescence<N>,
-    coating: &CoatingAlbedo,
-    e: f32,
-    mu: f32,
-    lane: usize,
-) -> f32 {
-    let eta = coating.eta();
-    let bare = fresnel_dielectric(mu, eta);
-    let filmed = film.film.reflectance(mu, film.lambdas[lane], 1.0, eta, 0.0);
-    let mixed = bare + film.factor * (filmed - bare);
-    (e * mixed / bare.max(1e-6)).clamp(0.0, 0.999)
+impl<const N: usize> SpecularLanes<N> {
+    /// The remapped reflectance in lane `lane` where the exact term is `exact` (`f0`: the
+    /// exact term at normal incidence).
+    fn fresnel(&self, exact: f32, f0: f32, lane: usize) -> f32 {
+        let shape = if f0 < 1.0 - 1e-4 {
+            ((exact - f0) / (1.0 - f0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        self.f0[lane] + (self.weight - self.f0[lane]) * shape
+    }
+
+    /// The albedo of the remapped lobe from the exact lobe's `e` and the mirror's `e1`:
+    /// F0' E_1 + (F90 - F0') (E - F0 E_1) / (1 - F0).
+    fn albedo(&self, e: f32, e1: f32, f0: f32, lane: usize) -> f32 {
+        let shaped = if f0 < 1.0 - 1e-4 {
+            ((e - f0 * e1) / (1.0 - f0)).max(0.0)
+        } else {
+            0.0
+        };
+        self.f0[lane] * e1 + (self.weight - self.f0[lane]) * shaped
+    }
 }

@@ -24,7 +24,7 @@ pub use fluorescent::{
     FluorescenceError, FluorescentDiffuse, FluorescentSample, fluorescence_matrix,
     reradiation_matrix,
 };
-pub use metallic_roughness::{Iridescence, MetallicRoughness};
+pub use metallic_roughness::{Iridescence, MetallicRoughness, Specular};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
