@@ -6,6 +6,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel_dielectric;
 use super::microfacet::Ggx;
+use super::table::bilinear;
 
 const MU_STEPS: usize = 32;
 const ALPHA_STEPS: usize = 32;
@@ -96,15 +97,9 @@ impl CoatingAlbedo {
     }
 
     fn lookup(table: &[f32], mu: f32, alpha: f32) -> f32 {
-        let x =
-            (mu.abs().clamp(0.0, 1.0) * MU_STEPS as f32 - 0.5).clamp(0.0, (MU_STEPS - 1) as f32);
-        let i = (x as u32 as usize).min(MU_STEPS - 2);
-        let tx = x - i as f32;
-        let (j, ty) = Self::alpha_coordinate(alpha);
-        let at = |i: usize, j: usize| table[j * MU_STEPS + i];
-        let lower = at(i, j) * (1.0 - tx) + at(i + 1, j) * tx;
-        let upper = at(i, j + 1) * (1.0 - tx) + at(i + 1, j + 1) * tx;
-        lower * (1.0 - ty) + upper * ty
+        let x = mu.abs().min(1.0) * MU_STEPS as f32 - 0.5;
+        let y = alpha.clamp(1e-3, 1.0).sqrt() * (ALPHA_STEPS - 1) as f32;
+        bilinear(table, MU_STEPS, x, y)
     }
 
     /// E_avg(alpha).

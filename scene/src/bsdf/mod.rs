@@ -5,17 +5,22 @@
 //! wavelengths (a `SampledSpectrum<N>`), as in *PBR* 4th ed. §9.1: the integrator never
 //! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
 
+mod clearcoat;
 mod coating_albedo;
 mod conductor;
 mod dielectric;
 mod diffuse;
 mod fluorescent;
+mod layered;
 mod metallic_roughness;
 mod microfacet;
 mod rough_conductor;
 mod rough_dielectric;
+mod sheen;
+mod table;
 mod thin_film;
 
+pub use clearcoat::{CLEARCOAT_IOR, Clearcoat, clearcoat_albedo};
 pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
@@ -24,10 +29,12 @@ pub use fluorescent::{
     FluorescenceError, FluorescentDiffuse, FluorescentSample, fluorescence_matrix,
     reradiation_matrix,
 };
+pub use layered::Layered;
 pub use metallic_roughness::{Iridescence, MetallicRoughness, Specular};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
+pub use sheen::{MIN_SHEEN_ROUGHNESS, Sheen};
 pub use thin_film::{ThinFilm, conductor_index_from_reflectance};
 
 use glam::Vec3;
