@@ -90,25 +90,7 @@ const ROULETTE_DEPTH: u32 = 3;
 /// blacklight, for 5-13% fewer paths per second; 0.5 and 0.125 gain less.
 const ROULETTE_THROUGHPUT: f32 = 0.25;
 
-/// An orthonormal frame whose z is a given unit normal.
-pub(crate) struct Frame {
-    x: Vec3,
-    y: Vec3,
-    pub(crate) z: Vec3,
-}
-
-impl Frame {
-    pub(crate) fn from_normal(z: Vec3) -> Self {
-        let (x, y) = z.any_orthonormal_pair();
-        Self { x, y, z }
-    }
-    pub(crate) fn to_local(&self, v: Vec3) -> Vec3 {
-        Vec3::new(v.dot(self.x), v.dot(self.y), v.dot(self.z))
-    }
-    pub(crate) fn to_world(&self, v: Vec3) -> Vec3 {
-        v.x * self.x + v.y * self.y + v.z * self.z
-    }
-}
+pub(crate) use prism_scene::geometry::Frame;
 
 /// The result of one path; its light went to the caller's sink.
 pub(crate) struct PathResult {

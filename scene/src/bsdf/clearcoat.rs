@@ -58,7 +58,7 @@ impl Clearcoat {
         self.factor
     }
 
-    fn to_coat(&self, w: Vec3) -> Vec3 {
+    fn in_coat_frame(&self, w: Vec3) -> Vec3 {
         Vec3::new(
             w.dot(self.tangent),
             w.dot(self.bitangent),
@@ -66,14 +66,14 @@ impl Clearcoat {
         )
     }
 
-    fn from_coat(&self, w: Vec3) -> Vec3 {
+    fn out_of_coat_frame(&self, w: Vec3) -> Vec3 {
         w.x * self.tangent + w.y * self.bitangent + w.z * self.normal
     }
 
     /// What the coat reflects from `w` (its weight times its directional albedo about
     /// its own normal): what the layers below lose, seen from `w`.
     pub fn reflected(&self, w: Vec3) -> f32 {
-        let mu = self.to_coat(w).z;
+        let mu = self.in_coat_frame(w).z;
         if mu <= 0.0 {
             return 0.0;
         }
@@ -87,7 +87,7 @@ impl Clearcoat {
         if wo.z <= 0.0 || wi.z <= 0.0 || self.factor == 0.0 {
             return 0.0;
         }
-        let (o, i) = (self.to_coat(wo), self.to_coat(wi));
+        let (o, i) = (self.in_coat_frame(wo), self.in_coat_frame(wi));
         if o.z <= 0.0 || i.z <= 0.0 {
             return 0.0;
         }
@@ -103,7 +103,7 @@ impl Clearcoat {
 
     /// The density of [`Clearcoat::sample`] returning `wi`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let (o, i) = (self.to_coat(wo), self.to_coat(wi));
+        let (o, i) = (self.in_coat_frame(wo), self.in_coat_frame(wi));
         if o.z <= 0.0 || i.z <= 0.0 {
             return 0.0;
         }
@@ -116,12 +116,12 @@ impl Clearcoat {
 
     /// A direction reflected about a visible microfacet normal of the coat.
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        let o = self.to_coat(wo);
+        let o = self.in_coat_frame(wo);
         if o.z <= 0.0 {
             return None;
         }
         let wm = self.distribution.sample_visible_normal(o, u);
         let i = 2.0 * o.dot(wm) * wm - o;
-        (i.z > 0.0).then(|| self.from_coat(i))
+        (i.z > 0.0).then(|| self.out_of_coat_frame(i))
     }
 }

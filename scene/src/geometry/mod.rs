@@ -1,11 +1,13 @@
 //! Rays, the watertight ray-triangle test, robust spawn offsets and the BVH.
 
 mod bvh;
+mod frame;
 mod offset;
 mod ray;
 mod triangle;
 
 pub use bvh::{Bvh, BvhQuality, SurfaceHit};
+pub use frame::Frame;
 pub use offset::{offset_ray_origin, triangle_point_error};
 pub use ray::Ray;
 pub(crate) use triangle::unit_or_zero;

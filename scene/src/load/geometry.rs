@@ -271,6 +271,15 @@ pub fn load_scene(
                     ),
                 );
             }
+            if m.transmission > 0.0 && m.layers.is_some() {
+                warn_once(
+                    &mut out.warnings,
+                    &format!(
+                        "material {}: KHR_materials_specular, _anisotropy, _clearcoat and _sheen on a transmissive material are not rendered (the glass is)",
+                        m.name
+                    ),
+                );
+            }
         }
         if let Some(v) = root_spectral {
             out.spectral = spectral::scene(v, &cx).map_err(LoadError::Spectral)?;
@@ -752,8 +761,8 @@ fn add_primitive(
     if keep_colors {
         out.colors.resize(first, [Vec4::ONE; 3]);
     }
-    // Tangents serve normal maps only.
-    let normal_mapped = material.normal_texture().is_some();
+    // Tangents serve normal maps, anisotropy and a coat's normal texture.
+    let normal_mapped = material.normal_texture().is_some() || oriented(&material);
     let keep_tangents = normal_mapped || !out.tangents.is_empty();
     if keep_tangents {
         out.tangents.resize(first, [Vec4::ZERO; 3]);
@@ -858,4 +867,15 @@ fn add_primitive(
         count: out.triangles.len() - first,
     });
     Ok(())
+}
+
+/// Whether a material's extensions need the surface's tangents (anisotropy's direction, a
+/// coat's normal texture).
+fn oriented(material: &gltf::Material) -> bool {
+    material
+        .extension_value("KHR_materials_anisotropy")
+        .is_some()
+        || material
+            .extension_value("KHR_materials_clearcoat")
+            .is_some_and(|c| c.get("clearcoatNormalTexture").is_some())
 }

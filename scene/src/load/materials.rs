@@ -9,7 +9,9 @@ use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
-use crate::world::{Alpha, AlphaMode, IridescenceDesc, NormalMap, RgbTexture, SceneSpectrum};
+use crate::world::{
+    Alpha, AlphaMode, IridescenceDesc, Layers, NormalMap, RgbTexture, SceneSpectrum,
+};
 
 use super::tex_coord_sets::TexCoordSets;
 use super::textures::TextureLoader;
@@ -64,6 +66,9 @@ pub struct MaterialDesc {
     /// `KHR_materials_iridescence`: a thin film over the surface (None without the
     /// extension or with a factor of 0).
     pub iridescence: Option<IridescenceDesc>,
+    /// `KHR_materials_specular`, `_anisotropy`, `_clearcoat` and `_sheen` (None without
+    /// any of them).
+    pub layers: Option<Layers>,
     /// The brightest channel of the RGB it emits (emissiveFactor times the strength, or
     /// an unlit base colour): at most 1 is a glow (a screen, an indicator), not a lamp.
     pub emission_peak: f32,
@@ -359,7 +364,10 @@ pub(crate) fn material(
     let iridescence = iridescence(material, textures, &sets).map_err(|e| {
         LoadError::Geometry(format!("material {name}: KHR_materials_iridescence: {e}"))
     })?;
+    let layers = super::material_layers::layers(material, textures, &sets, upsampler)
+        .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let desc = MaterialDesc {
+        layers,
         iridescence,
         emission_peak,
         alpha,

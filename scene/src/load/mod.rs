@@ -10,6 +10,7 @@ mod geometry;
 mod images;
 mod instancing;
 mod lights;
+mod material_layers;
 mod materials;
 mod meshopt;
 mod summary;

@@ -72,10 +72,29 @@ impl TexCoordSets {
 }
 
 /// The material extensions prism reads and the textures each may refer to.
-pub(crate) const EXTENSION_TEXTURES: &[(&str, &[&str])] = &[(
-    "KHR_materials_iridescence",
-    &["iridescenceTexture", "iridescenceThicknessTexture"],
-)];
+pub(crate) const EXTENSION_TEXTURES: &[(&str, &[&str])] = &[
+    (
+        "KHR_materials_iridescence",
+        &["iridescenceTexture", "iridescenceThicknessTexture"],
+    ),
+    (
+        "KHR_materials_specular",
+        &["specularTexture", "specularColorTexture"],
+    ),
+    ("KHR_materials_anisotropy", &["anisotropyTexture"]),
+    (
+        "KHR_materials_clearcoat",
+        &[
+            "clearcoatTexture",
+            "clearcoatRoughnessTexture",
+            "clearcoatNormalTexture",
+        ],
+    ),
+    (
+        "KHR_materials_sheen",
+        &["sheenColorTexture", "sheenRoughnessTexture"],
+    ),
+];
 
 /// The sets the textures of `material`'s extensions read, in the order of
 /// [`EXTENSION_TEXTURES`] (references that do not parse read none: the material loader

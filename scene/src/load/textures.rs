@@ -136,6 +136,49 @@ impl<'a> TextureLoader<'a> {
         factor: [f32; 3],
         sets: &TexCoordSets,
     ) -> Result<RgbTexture, String> {
+        Ok(self
+            .extension_rgb(reference, factor, sets)?
+            .1
+            .encoded(Encoding::Linear))
+    }
+
+    /// A colour texture that a material extension refers to (sRGB-encoded, as glTF's
+    /// colour textures are: `specularColorTexture`, `sheenColorTexture`), times `factor`,
+    /// as reflectance spectra.
+    pub(crate) fn extension_color(
+        &self,
+        reference: &serde_json::Value,
+        factor: [f32; 3],
+        sets: &TexCoordSets,
+    ) -> Result<SceneSpectrum, String> {
+        let (_, rgb) = self.extension_rgb(reference, factor, sets)?;
+        Ok(SceneSpectrum::Texture(Arc::new(SpectralTexture::new(
+            rgb,
+            self.upsampler.table()?,
+        ))))
+    }
+
+    /// The alpha channel of a texture that a material extension refers to, times
+    /// `factor`, linear, in every channel (`specularTexture`, `sheenRoughnessTexture`);
+    /// None when its image has no alpha (which reads as 1).
+    pub(crate) fn extension_alpha(
+        &self,
+        reference: &serde_json::Value,
+        factor: f32,
+        sets: &TexCoordSets,
+    ) -> Result<Option<RgbTexture>, String> {
+        let (texture, colour) = self.extension_rgb(reference, [factor; 3], sets)?;
+        self.alpha_of(&texture, &colour, factor)
+    }
+
+    /// The texture a material extension's textureInfo names, and it read as an sRGB
+    /// texture times `factor` on its set with its transform.
+    fn extension_rgb(
+        &self,
+        reference: &serde_json::Value,
+        factor: [f32; 3],
+        sets: &TexCoordSets,
+    ) -> Result<(gltf::texture::Texture<'a>, RgbTexture), String> {
         let info = texture_reference(reference)?;
         let texture = self
             .document
@@ -151,10 +194,10 @@ impl<'a> TextureLoader<'a> {
             rotation: t.rotation.0,
             scale: Vec2::from(t.scale.0),
         });
-        Ok(self
-            .rgb(texture, uv, factor)?
-            .encoded(Encoding::Linear)
-            .with_set(sets.slot(reference_set(&info))))
+        let rgb = self
+            .rgb(texture.clone(), uv, factor)?
+            .with_set(sets.slot(reference_set(&info)));
+        Ok((texture, rgb))
     }
 
     /// The alpha channel of a base colour texture times `factor` (baseColorFactor's
@@ -166,12 +209,22 @@ impl<'a> TextureLoader<'a> {
         factor: f32,
         sets: &TexCoordSets,
     ) -> Result<Option<RgbTexture>, String> {
-        let texture = info.texture();
+        let colour = self.info(info, [factor; 3], sets)?;
+        self.alpha_of(&info.texture(), &colour, factor)
+    }
+
+    /// The alpha channel of `texture`'s image read as `colour` reads its colour (wrap,
+    /// transform, set, filter), times `factor`; None when the image has no alpha.
+    fn alpha_of(
+        &self,
+        texture: &gltf::texture::Texture,
+        colour: &RgbTexture,
+        factor: f32,
+    ) -> Result<Option<RgbTexture>, String> {
         let (width, height, _, alpha) = self.image(&texture.source())?;
         let Some(alpha) = alpha else {
             return Ok(None);
         };
-        let colour = self.info(info, [factor; 3], sets)?;
         let texture = RgbTexture::new(
             width,
             height,

@@ -61,6 +61,7 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         && desc.roughness == 1.0
         && texture.is_none()
         && desc.iridescence.is_none()
+        && desc.layers.is_none()
     {
         return Material::Diffuse { reflectance: base };
     }
@@ -71,6 +72,7 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         texture,
         coating: coating_for(desc.ior, coatings),
         iridescence: desc.iridescence.clone().map(Arc::new),
+        layers: desc.layers.clone().map(Arc::new),
     }
 }
 
@@ -106,6 +108,7 @@ impl Scene {
                 texture: None,
                 coating: coating_for(1.5, &mut coatings),
                 iridescence: None,
+                layers: None,
             });
         }
         let mut triangle_material = vec![default_material; loaded.triangles.len()];

@@ -6,10 +6,10 @@ use glam::{Vec2, Vec3};
 use prism_sampling::wavelength::ReradiationSampler;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::{RgbTexture, SceneSpectrum, TexCoords};
+use super::{Layers, RgbTexture, SceneSpectrum, SurfaceFrame, TexCoords};
 use crate::bsdf::{
-    BsdfSample, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, RoughConductor, RoughDielectric,
-    TransportMode,
+    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, RoughConductor,
+    RoughDielectric, TransportMode,
 };
 
 /// A surface's material, with spectral parameters not yet sampled.
@@ -36,6 +36,9 @@ pub enum Material {
         coating: Arc<CoatingAlbedo>,
         /// A thin film over it (`KHR_materials_iridescence`), if any.
         iridescence: Option<Arc<super::IridescenceDesc>>,
+        /// The other glTF extensions on it (specular, anisotropy, clear coat, sheen), if
+        /// any.
+        layers: Option<Arc<Layers>>,
     },
     /// A dielectric interface (glass), smooth when `roughness` is 0. The index is inside
     /// over outside, per wavelength when dispersive.
@@ -107,14 +110,22 @@ impl Material {
                 base,
                 texture,
                 iridescence,
+                layers,
                 ..
             } => {
                 textured(base)
                     || texture.is_some()
                     || iridescence.as_ref().is_some_and(|i| i.textured())
+                    || layers.as_ref().is_some_and(|l| l.textured())
             }
             _ => false,
         }
+    }
+
+    /// Whether its BSDF needs the surface's tangent frame at a hit
+    /// ([`Material::bsdf_oriented`]).
+    pub fn oriented(&self) -> bool {
+        matches!(self, Material::MetallicRoughness { layers: Some(l), .. } if l.oriented())
     }
 
     /// Whether the material re-radiates (fluorescence).
@@ -167,6 +178,20 @@ impl Material {
         mode: TransportMode,
         tint: Option<SampledSpectrum<N>>,
     ) -> Bsdf<'_, N> {
+        self.bsdf_oriented(at, wavelengths, mode, tint, None)
+    }
+
+    /// [`Material::bsdf_at`] on a surface oriented by `frame` (what anisotropy and a
+    /// coat's normal texture are read in; without it they are isotropic and follow the
+    /// base).
+    pub fn bsdf_oriented<const N: usize>(
+        &self,
+        at: &TexCoords,
+        wavelengths: &SampledWavelengths<N>,
+        mode: TransportMode,
+        tint: Option<SampledSpectrum<N>>,
+        frame: Option<&SurfaceFrame>,
+    ) -> Bsdf<'_, N> {
         let base = |s: &SceneSpectrum| match tint {
             Some(t) => s.at_uv(*at, wavelengths) * t,
             None => s.at_uv(*at, wavelengths),
@@ -180,6 +205,7 @@ impl Material {
                 texture,
                 coating,
                 iridescence,
+                layers,
             } => {
                 let (metallic, roughness) = match texture {
                     Some(t) => {
@@ -188,11 +214,35 @@ impl Material {
                     }
                     None => (*metallic, *roughness),
                 };
-                let bsdf = MetallicRoughness::new(base(base_colour), metallic, roughness, coating);
-                Bsdf::MetallicRoughness(match iridescence {
-                    Some(film) => bsdf.with_iridescence(film.at(at, wavelengths)),
-                    None => bsdf,
-                })
+                let mut bsdf =
+                    MetallicRoughness::new(base(base_colour), metallic, roughness, coating);
+                if let Some(layers) = layers {
+                    if let Some(specular) = &layers.specular {
+                        bsdf = bsdf.with_specular(specular.at(at, wavelengths));
+                    }
+                    if let Some((strength, direction)) = layers
+                        .anisotropy
+                        .as_ref()
+                        .zip(frame)
+                        .and_then(|(a, frame)| a.at(at, frame))
+                    {
+                        bsdf = bsdf.with_anisotropy(strength, direction);
+                    }
+                }
+                if let Some(film) = iridescence {
+                    bsdf = bsdf.with_iridescence(film.at(at, wavelengths));
+                }
+                match layers {
+                    Some(l) if l.sheen.is_some() || l.clearcoat.is_some() => {
+                        Bsdf::Layered(Layered {
+                            base: bsdf,
+                            sheen: l.sheen.as_ref().map(|s| s.at(at, wavelengths)),
+                            clearcoat: l.clearcoat.as_ref().map(|c| c.at(at, frame)),
+                            mode,
+                        })
+                    }
+                    _ => Bsdf::MetallicRoughness(bsdf),
+                }
             }
             Material::Dielectric { ior, roughness, .. } => {
                 let alpha = roughness * roughness;
@@ -225,6 +275,8 @@ pub enum Bsdf<'a, const N: usize> {
     Diffuse(Diffuse<N>),
     /// glTF metallic-roughness.
     MetallicRoughness(MetallicRoughness<'a, N>),
+    /// glTF metallic-roughness under a sheen or a clear coat.
+    Layered(Layered<'a, N>),
     /// Smooth or rough dielectric.
     Dielectric(RoughDielectric<N>),
     /// Smooth or rough conductor.
@@ -237,6 +289,7 @@ impl<const N: usize> Bsdf<'_, N> {
         match self {
             Bsdf::Diffuse(b) => b.f(wo, wi),
             Bsdf::MetallicRoughness(b) => b.f(wo, wi),
+            Bsdf::Layered(b) => b.f(wo, wi),
             Bsdf::Dielectric(b) => b.f(wo, wi),
             Bsdf::Conductor(b) => b.f(wo, wi),
         }
@@ -247,6 +300,7 @@ impl<const N: usize> Bsdf<'_, N> {
         match self {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
             Bsdf::MetallicRoughness(b) => b.pdf(wo, wi),
+            Bsdf::Layered(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
         }
@@ -257,6 +311,7 @@ impl<const N: usize> Bsdf<'_, N> {
         match self {
             Bsdf::Diffuse(b) => b.sample(wo, u),
             Bsdf::MetallicRoughness(b) => b.sample(wo, uc, u),
+            Bsdf::Layered(b) => b.sample(wo, uc, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
         }

@@ -8,7 +8,7 @@ mod emission_cache;
 mod environment;
 mod from_gltf;
 mod guide;
-mod iridescence;
+mod layers;
 mod light;
 mod light_choice;
 mod material;
@@ -22,7 +22,9 @@ pub use alpha::{Alpha, AlphaMode};
 pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
-pub use iridescence::IridescenceDesc;
+pub use layers::{
+    AnisotropyDesc, ClearcoatDesc, IridescenceDesc, Layers, SheenDesc, SpecularDesc, SurfaceFrame,
+};
 pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
@@ -541,8 +543,32 @@ impl Scene {
                 ),
                 _ => None,
             };
-        self.material(hit)
-            .bsdf_at(&hit.tex, wavelengths, mode, tint)
+        let material = self.material(hit);
+        if material.oriented() {
+            let frame = SurfaceFrame::new(hit.shading_normal, self.tangent_at(hit));
+            return material.bsdf_oriented(&hit.tex, wavelengths, mode, tint, Some(&frame));
+        }
+        material.bsdf_at(&hit.tex, wavelengths, mode, tint)
+    }
+
+    /// The interpolated tangent (xyz, glTF's bitangent sign in w) at a hit; zero where
+    /// the mesh has none.
+    fn tangent_at(&self, hit: &Hit) -> glam::Vec4 {
+        let t = hit.triangle as usize;
+        let (Some(tangents), Some(v)) = (self.attributes.tangents.get(t), self.triangles.get(t))
+        else {
+            return glam::Vec4::ZERO;
+        };
+        // Barycentrics of the hit point from the sub-triangles' areas.
+        let area = |a: Vec3, b: Vec3, c: Vec3| (b - a).cross(c - a).length();
+        let total = area(v[0], v[1], v[2]);
+        if total.is_nan() || total <= 0.0 {
+            return tangents[0];
+        }
+        let b1 = area(v[0], hit.p, v[2]) / total;
+        let b2 = area(v[0], v[1], hit.p) / total;
+        let b0 = (1.0 - b1 - b2).max(0.0);
+        b0 * tangents[0] + b1 * tangents[1] + b2 * tangents[2]
     }
 
     /// Whether any material reads a texture that footprints filter (base colour or

@@ -6,8 +6,8 @@ use std::sync::Arc;
 
 use prism_spectrum::SampledWavelengths;
 
-use super::{RgbTexture, TexCoords};
 use crate::bsdf::{Iridescence, ThinFilm};
+use crate::world::{RgbTexture, TexCoords};
 
 /// A material's thin film.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,0 +1,127 @@
+"""Writes scenes/materials.gltf: the glTF material extensions prism renders per
+wavelength, one sphere each on a grey floor under a sky image and a small warm light:
+
+  plain (the base they all share: a rough red dielectric), clear coat (the same red under
+  a smooth coat), sheen (dark velvet with a pink sheen), specular (a white base whose
+  reflection is tinted blue by specularColorFactor), anisotropy (brushed steel: the
+  highlight stretched around the sphere), and iridescence (a soap bubble's film on a
+  black base, its thickness varying from pole to pole).
+
+Every sphere carries texture coordinates, so MikkTSpace tangents orient the anisotropy.
+Units are metres; y is up. Run from the repository root: python3 scenes/tools/make_materials.py
+"""
+
+import math
+
+from gltf_build import Document, quad, png
+
+RED = [0.6, 0.06, 0.04, 1.0]
+
+
+def uv_sphere(centre, radius, rings=48, segments=96):
+    """A UV sphere as (positions, normals, uvs, indices), wound outwards; u around the
+    axis, v from pole to pole."""
+    positions, normals, uvs = [], [], []
+    for i in range(rings + 1):
+        theta = math.pi * i / rings
+        for j in range(segments + 1):
+            phi = 2 * math.pi * j / segments
+            n = (math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi))
+            positions.append(tuple(centre[k] + radius * n[k] for k in range(3)))
+            normals.append(n)
+            uvs.append((j / segments, i / rings))
+    at = lambda i, j: i * (segments + 1) + j
+    indices = []
+    for i in range(rings):
+        for j in range(segments):
+            a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
+            if i != rings - 1:
+                indices += [a, b, c]
+            if i != 0:
+                indices += [a, c, d]
+    return positions, normals, uvs, indices
+
+
+def base(rgba, metallic=0.0, roughness=0.5):
+    return {"baseColorFactor": rgba, "metallicFactor": metallic, "roughnessFactor": roughness}
+
+
+def main():
+    doc = Document("scenes/tools/make_materials.py")
+    doc.extensions_used += [
+        "KHR_materials_clearcoat",
+        "KHR_materials_sheen",
+        "KHR_materials_specular",
+        "KHR_materials_anisotropy",
+        "KHR_materials_iridescence",
+    ]
+    # The film's thickness: green from 0 at v = 0 to 1 at v = 1 (iridescenceThicknessTexture
+    # reads green), so the bubble's colours band from pole to pole.
+    ramp = doc.texture(png(4, 64, lambda x, y: (0, int(255 * y / 63), 0)), wrap=33071)
+    spheres = [
+        ("plain", {"pbrMetallicRoughness": base(RED)}),
+        (
+            "clear coat",
+            {
+                "pbrMetallicRoughness": base(RED, roughness=0.6),
+                "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.03}},
+            },
+        ),
+        (
+            "sheen",
+            {
+                "pbrMetallicRoughness": base([0.05, 0.02, 0.08, 1.0], roughness=0.9),
+                "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 0.45, 0.75], "sheenRoughnessFactor": 0.35}},
+            },
+        ),
+        (
+            "specular",
+            {
+                "pbrMetallicRoughness": base([0.9, 0.9, 0.9, 1.0], roughness=0.25),
+                "extensions": {"KHR_materials_specular": {"specularFactor": 1.0, "specularColorFactor": [0.2, 0.6, 4.0]}},
+            },
+        ),
+        (
+            "anisotropy",
+            {
+                "pbrMetallicRoughness": base([0.85, 0.85, 0.88, 1.0], metallic=1.0, roughness=0.25),
+                "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.9, "anisotropyRotation": 0.0}},
+            },
+        ),
+        (
+            "iridescence",
+            {
+                "pbrMetallicRoughness": base([0.02, 0.02, 0.02, 1.0], roughness=0.05),
+                "extensions": {
+                    "KHR_materials_iridescence": {
+                        "iridescenceFactor": 1.0,
+                        "iridescenceIor": 1.33,
+                        "iridescenceThicknessMinimum": 150.0,
+                        "iridescenceThicknessMaximum": 700.0,
+                        "iridescenceThicknessTexture": {"index": ramp},
+                    }
+                },
+            },
+        ),
+    ]
+    radius, spacing = 0.4, 1.0
+    first = -spacing * (len(spheres) - 1) / 2
+    for k, (name, fields) in enumerate(spheres):
+        m = doc.material(name, **fields)
+        positions, normals, uvs, indices = uv_sphere((first + k * spacing, radius, 0.0), radius)
+        doc.mesh(f"{name} sphere", positions, m, normals, indices, uvs)
+    floor = doc.material("floor", pbrMetallicRoughness=base([0.35, 0.35, 0.35, 1.0], roughness=1.0))
+    doc.mesh("floor", quad((-5, 0, -4), (-5, 0, 3), (5, 0, 3), (5, 0, -4)), floor)
+    doc.light(
+        "key",
+        (-2.0, 3.5, 3.0),
+        None,
+        {"type": "point", "color": [1.0, 0.85, 0.7], "intensity": 60.0},
+    )
+    doc.camera("camera", (0.0, 1.6, 7.4), (0.0, 0.4, 0.0), {"aspectRatio": 2.4, "yfov": 0.36, "znear": 0.01})
+    doc.root_extension["environment"] = {"image": "sky.hdr", "strength": 0.6}
+    doc.write("scenes/materials.gltf")
+
+
+if __name__ == "__main__":
+    main()
