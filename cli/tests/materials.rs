@@ -90,3 +90,72 @@ fn a_thin_film_reflects_its_airy_reflectance_band_by_band() {
     assert_eq!(checked, 10);
     assert!(lowest < 0.01 && highest > 0.03, "{lowest} {highest}");
 }
+
+/// The white furnace, rendered: six white spheres, one per glTF material extension at
+/// full strength (plain, clear coat, sheen, specular with a coloured F0 above 1,
+/// anisotropy, a thin film), under a uniform white environment (`--environment 1`, which renders a white
+/// Lambertian surface as RGB 1) and nothing else, each render as 1 in every channel wherever they are seen: every layer takes from those
+/// below what it reflects. An extension that added energy (a coat or sheen without its
+/// albedo scaling) or lost it fails. The sphere's rim, where a pixel also sees the
+/// background, is left out.
+#[test]
+fn spheres_with_every_extension_pass_the_white_furnace() {
+    let dir = temp_dir("furnace-spheres");
+    let exr = dir.join("furnace.exr");
+    let (width, height) = (240usize, 40usize);
+    let out = prism(&[
+        "render",
+        &asset("furnace-spheres.gltf"),
+        "--width",
+        &width.to_string(),
+        "--height",
+        &height.to_string(),
+        "--spp",
+        "128",
+        "--environment",
+        "1",
+        "-q",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert_success(&out);
+    let image = decode_exr(&std::fs::read(&exr).unwrap()).unwrap();
+    let names = [
+        "plain",
+        "clear coat",
+        "sheen",
+        "specular",
+        "anisotropy",
+        "iridescence",
+    ];
+    for channel in ["R", "G", "B"] {
+        let values = &image
+            .channels
+            .iter()
+            .find(|(n, _)| n == channel)
+            .unwrap_or_else(|| panic!("no channel {channel}"))
+            .1;
+        for (k, name) in names.iter().enumerate() {
+            // Orthographic: 6 x 1 world units over the image; sphere k at x = -2.5 + k.
+            let (cx, cy) = ((k as f64 + 0.5) * width as f64 / 6.0, height as f64 / 2.0);
+            let radius = 0.45 * height as f64 * 0.8;
+            let mut sum = 0.0f64;
+            let mut count = 0;
+            for y in 0..height {
+                for x in 0..width {
+                    let (dx, dy) = (x as f64 + 0.5 - cx, y as f64 + 0.5 - cy);
+                    if dx * dx + dy * dy < radius * radius {
+                        sum += f64::from(values[y * width + x]);
+                        count += 1;
+                    }
+                }
+            }
+            let mean = sum / f64::from(count);
+            assert!(count > 100, "{name}: {count} pixels");
+            assert!(
+                (mean - 1.0).abs() < 0.025,
+                "{name} sphere, channel {channel}: {mean}"
+            );
+        }
+    }
+}

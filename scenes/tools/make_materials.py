@@ -7,6 +7,8 @@ wavelength, one sphere each on a grey floor under a sky image and a small warm l
   highlight stretched around the sphere), and iridescence (a soap bubble's film on a
   black base, its thickness varying from pole to pole).
 
+It also writes scenes/assets/furnace-spheres.gltf (see `furnace`).
+
 Every sphere carries texture coordinates, so MikkTSpace tangents orient the anisotropy.
 Units are metres; y is up. Run from the repository root: python3 scenes/tools/make_materials.py
 """
@@ -46,15 +48,46 @@ def base(rgba, metallic=0.0, roughness=0.5):
     return {"baseColorFactor": rgba, "metallicFactor": metallic, "roughnessFactor": roughness}
 
 
-def main():
+EXTENSIONS = [
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
+    "KHR_materials_anisotropy",
+    "KHR_materials_iridescence",
+]
+
+
+def furnace():
+    """scenes/assets/furnace-spheres.gltf: six white spheres in a row, one per extension
+    at full strength over a white dielectric base (plain, clear coat, sheen, specular
+    with a coloured F0 above 1, anisotropy, a thin film), seen by an orthographic camera
+    under a uniform environment of 1 and nothing else. Energy conserved, every sphere
+    renders as 1 wherever it is seen (the white furnace)."""
     doc = Document("scenes/tools/make_materials.py")
-    doc.extensions_used += [
-        "KHR_materials_clearcoat",
-        "KHR_materials_sheen",
-        "KHR_materials_specular",
-        "KHR_materials_anisotropy",
-        "KHR_materials_iridescence",
+    doc.extensions_used += EXTENSIONS
+    white = base([1.0, 1.0, 1.0, 1.0], roughness=0.4)
+    spheres = [
+        ("plain", {}),
+        ("clear coat", {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.1}}),
+        ("sheen", {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.4}}),
+        ("specular", {"KHR_materials_specular": {"specularFactor": 1.0, "specularColorFactor": [3.0, 1.0, 6.0]}}),
+        ("anisotropy", {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8, "anisotropyRotation": 0.5}}),
+        ("iridescence", {"KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": 1.6, "iridescenceThicknessMaximum": 300.0}}),
     ]
+    for k, (name, extensions) in enumerate(spheres):
+        m = doc.material(name, pbrMetallicRoughness=white, extensions=extensions)
+        positions, normals, uvs, indices = uv_sphere((-2.5 + k, 0.0, 0.0), 0.45, rings=24, segments=48)
+        doc.mesh(f"{name} sphere", positions, m, normals, indices, uvs)
+    doc.cameras.append({"type": "orthographic", "orthographic": {"xmag": 3.0, "ymag": 0.5, "znear": 0.1, "zfar": 10.0}})
+    doc.nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 0.0, 3.0]})
+    doc.root_extension["environment"] = 1.0
+    doc.write("scenes/assets/furnace-spheres.gltf")
+
+
+def main():
+    furnace()
+    doc = Document("scenes/tools/make_materials.py")
+    doc.extensions_used += EXTENSIONS
     # The film's thickness: green from 0 at v = 0 to 1 at v = 1 (iridescenceThicknessTexture
     # reads green), so the bubble's colours band from pole to pole.
     ramp = doc.texture(png(4, 64, lambda x, y: (0, int(255 * y / 63), 0)), wrap=33071)
