@@ -709,3 +709,107 @@ fn gltf_iridescence_reads_its_film() {
         "{error}"
     );
 }
+
+/// KHR_materials_specular, _clearcoat, _sheen and _anisotropy: each read with its
+/// factors and textures, and each changes the BSDF the loaded scene gives a hit (so an
+/// extension read but dropped on the way fails); a factor texture that is 0 at a texel
+/// removes the layer there; an out-of-range factor is an error naming the extension.
+#[test]
+fn gltf_material_extensions_reach_the_bsdf() {
+    use prism_scene::bsdf::TransportMode;
+    use prism_scene::world::{Scene, SceneOptions};
+    // Red 1 and green 0 at the left texel, red 0 and green 1 at the right.
+    let image = png(2, 1, &[[255, 0, 0], [0, 255, 0]]);
+    let material = |name: &str, ext: serde_json::Value| {
+        let mut m = json!({
+            "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.4, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.5},
+        });
+        if name != "none" {
+            m["extensions"] = json!({ name: ext });
+        }
+        m
+    };
+    let lambdas = SampledWavelengths::new([450.0, 550.0, 650.0, 700.0], [1.0; 4]).unwrap();
+    // The mirror direction, where a coat's highlight is.
+    let wo = Vec3::new(0.6, 0.1, 0.79).normalize();
+    let wi = Vec3::new(-wo.x, -wo.y, wo.z);
+    let f_at = |name: &str, ext: serde_json::Value, x: f32| {
+        let (mut doc, bin) = textured_quad(&image, material(name, ext));
+        doc["samplers"] = json!([{"wrapS": 33071, "wrapT": 33071, "magFilter": 9728}]);
+        doc["textures"][0]["sampler"] = json!(0);
+        let loaded = load_quad(&doc, bin);
+        let scene = Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();
+        // Through the scene's own hit, so that the tangent frame orients anisotropy.
+        let ray = prism_scene::geometry::Ray::new(Vec3::new(x, 0.5, 1.0), -Vec3::Z, f32::INFINITY);
+        let hit = scene.intersect(&ray).expect("the quad");
+        scene
+            .bsdf(&hit, &lambdas, TransportMode::Radiance)
+            .f(wo, wi)
+            .0
+    };
+    let bare = f_at("none", json!({}), 0.25);
+    for (name, ext) in [
+        (
+            "KHR_materials_specular",
+            json!({"specularFactor": 0.3, "specularColorFactor": [2.0, 1.0, 0.5]}),
+        ),
+        (
+            "KHR_materials_clearcoat",
+            json!({"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.2}),
+        ),
+        (
+            "KHR_materials_sheen",
+            json!({"sheenColorFactor": [1.0, 0.5, 0.2], "sheenRoughnessFactor": 0.5}),
+        ),
+        (
+            "KHR_materials_anisotropy",
+            json!({"anisotropyStrength": 0.9, "anisotropyRotation": 0.7}),
+        ),
+    ] {
+        let f = f_at(name, ext.clone(), 0.25);
+        let change = f
+            .iter()
+            .zip(&bare)
+            .map(|(a, b)| (a - b).abs() / b)
+            .fold(0.0f32, f32::max);
+        assert!(change > 0.05, "{name}: {f:?} vs bare {bare:?}");
+    }
+    // Factor textures: the coat's red channel is 0 at the right texel (no coat there),
+    // the sheen's colour texture black there likewise.
+    let coat = json!({"clearcoatFactor": 1.0, "clearcoatTexture": {"index": 0}});
+    assert_ne!(f_at("KHR_materials_clearcoat", coat.clone(), 0.25), bare);
+    let bare_right = f_at("none", json!({}), 0.75);
+    assert_eq!(f_at("KHR_materials_clearcoat", coat, 0.75), bare_right);
+    let sheen = json!({"sheenColorFactor": [1.0, 1.0, 1.0], "sheenColorTexture": {"index": 0}});
+    // A red sheen texel changes the long wavelengths, not the short.
+    let left = f_at("KHR_materials_sheen", sheen.clone(), 0.25);
+    let (short, long) = ((left[0] - bare[0]).abs(), (left[3] - bare[3]).abs());
+    assert!(
+        long > 0.005 * bare[3] && short < 0.2 * long,
+        "{left:?} vs {bare:?}"
+    );
+    // Out of range.
+    for (name, ext) in [
+        ("KHR_materials_clearcoat", json!({"clearcoatFactor": 2.0})),
+        (
+            "KHR_materials_sheen",
+            json!({"sheenColorFactor": [1.0, -1.0, 0.0]}),
+        ),
+        ("KHR_materials_specular", json!({"specularFactor": "a"})),
+        (
+            "KHR_materials_anisotropy",
+            json!({"anisotropyStrength": -0.5}),
+        ),
+    ] {
+        let (doc, bin) = textured_quad(&image, material(name, ext));
+        let error = load_geometry(
+            &serde_json::to_vec(&doc).unwrap(),
+            &move |_| Ok(bin.clone()),
+            None,
+        )
+        .err()
+        .unwrap_or_else(|| panic!("{name} loaded"))
+        .to_string();
+        assert!(error.contains(name), "{error}");
+    }
+}
