@@ -2,7 +2,7 @@
 wavelength, one sphere each on a grey floor under a sky image and a small warm light:
 
   plain (the base they all share: a rough red dielectric), clear coat (the same red under
-  a smooth coat), sheen (dark velvet with a pink sheen), specular (a white base whose
+  a smooth coat), sheen (dark velvet with a pink sheen), specular (a dark base whose
   reflection is tinted blue by specularColorFactor), anisotropy (brushed steel: the
   highlight stretched around the sphere), and iridescence (a soap bubble's film on a
   black base, its thickness varying from pole to pole).
@@ -110,7 +110,7 @@ def main():
         (
             "specular",
             {
-                "pbrMetallicRoughness": base([0.9, 0.9, 0.9, 1.0], roughness=0.25),
+                "pbrMetallicRoughness": base([0.12, 0.12, 0.12, 1.0], roughness=0.2),
                 "extensions": {"KHR_materials_specular": {"specularFactor": 1.0, "specularColorFactor": [0.2, 0.6, 4.0]}},
             },
         ),
