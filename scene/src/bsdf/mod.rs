@@ -18,7 +18,9 @@ mod rough_conductor;
 mod rough_dielectric;
 mod sheen;
 mod table;
+mod thin_dielectric;
 mod thin_film;
+mod transmissive;
 
 pub use clearcoat::{CLEARCOAT_IOR, Clearcoat, clearcoat_albedo};
 pub use coating_albedo::CoatingAlbedo;
@@ -35,7 +37,9 @@ pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use sheen::{MIN_SHEEN_ROUGHNESS, Sheen};
+pub use thin_dielectric::ThinDielectric;
 pub use thin_film::{ThinFilm, conductor_index_from_reflectance};
+pub use transmissive::{Glass, Transmissive};
 
 use glam::Vec3;
 use prism_spectrum::SampledSpectrum;
