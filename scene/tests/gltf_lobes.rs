@@ -450,7 +450,9 @@ mod layers {
 
 mod transmission {
     use super::*;
-    use prism_scene::bsdf::{Ggx, Glass, RoughDielectric, ThinDielectric, Transmissive, TransportMode};
+    use prism_scene::bsdf::{
+        Ggx, Glass, RoughDielectric, ThinDielectric, Transmissive, TransportMode,
+    };
 
     fn thin(roughness: f32) -> ThinDielectric<4> {
         let a = roughness * roughness;
@@ -476,7 +478,11 @@ mod transmission {
             assert!((reflected.pdf[k] + crossed.pdf[k] - 1.0).abs() < 1e-6);
         }
         let head_on = smooth.sample(Vec3::Z, 0.0, Vec2::ZERO).unwrap();
-        assert!((head_on.pdf[0] - 0.08 / 1.04).abs() < 1e-5, "{}", head_on.pdf[0]);
+        assert!(
+            (head_on.pdf[0] - 0.08 / 1.04).abs() < 1e-5,
+            "{}",
+            head_on.pdf[0]
+        );
         for roughness in [0.1f32, 0.3, 0.7] {
             let sheet = thin(roughness);
             for wo in outgoing() {
@@ -491,7 +497,8 @@ mod transmission {
 
     #[test]
     fn sampling_matches_its_density_and_is_reciprocal() {
-        let base = MetallicRoughness::new(SampledSpectrum([0.8, 0.5, 0.3, 0.1]), 0.0, 0.5, &COATING);
+        let base =
+            MetallicRoughness::new(SampledSpectrum([0.8, 0.5, 0.3, 0.1]), 0.0, 0.5, &COATING);
         for (k, glass) in [
             Glass::Thin(thin(0.4)),
             Glass::Thick(RoughDielectric {
@@ -510,9 +517,12 @@ mod transmission {
                     opaque: base,
                     transmission,
                 };
-                for (j, wo) in [Vec3::new(0.5, 0.2, 0.84).normalize(), Vec3::new(0.1, -0.9, -0.4).normalize()]
-                    .into_iter()
-                    .enumerate()
+                for (j, wo) in [
+                    Vec3::new(0.5, 0.2, 0.84).normalize(),
+                    Vec3::new(0.1, -0.9, -0.4).normalize(),
+                ]
+                .into_iter()
+                .enumerate()
                 {
                     chi_square_directions(
                         &format!("transmissive {k} {transmission} wo {j}"),
@@ -535,7 +545,10 @@ mod transmission {
             }
             let (x, y) = (sheet.f(wo, wi), sheet.f(wi, wo));
             for k in 0..4 {
-                assert!((x[k] - y[k]).abs() <= 1e-4 * x[k].abs().max(1.0), "{x:?} {y:?}");
+                assert!(
+                    (x[k] - y[k]).abs() <= 1e-4 * x[k].abs().max(1.0),
+                    "{x:?} {y:?}"
+                );
             }
         }
     }
@@ -554,8 +567,14 @@ mod transmission {
                 transmission,
             };
             for wo in outgoing() {
-                for (k, a) in albedo(|w, uc, u| bsdf.sample(w, uc, u), wo).into_iter().enumerate() {
-                    assert!((a - 1.0).abs() < 8e-3, "t {transmission}, wo {wo}, lane {k}: {a}");
+                for (k, a) in albedo(|w, uc, u| bsdf.sample(w, uc, u), wo)
+                    .into_iter()
+                    .enumerate()
+                {
+                    assert!(
+                        (a - 1.0).abs() < 8e-3,
+                        "t {transmission}, wo {wo}, lane {k}: {a}"
+                    );
                 }
             }
         }

@@ -813,3 +813,63 @@ fn gltf_material_extensions_reach_the_bsdf() {
         assert!(error.contains(name), "{error}");
     }
 }
+
+/// KHR_materials_transmission as glTF defines it: without KHR_materials_volume the glass
+/// is thin-walled (light crosses straight through), with a volume it refracts; the base
+/// colour tints what crosses; `transmissionFactor` and the red channel of
+/// `transmissionTexture` give the glass its share of the surface.
+#[test]
+fn gltf_transmission_is_thin_walled_tinted_and_partial() {
+    use prism_scene::bsdf::TransportMode;
+    use prism_scene::world::{Scene, SceneOptions};
+    let image = png(2, 1, &[[255, 0, 0], [0, 255, 0]]);
+    let lambdas = SampledWavelengths::new([450.0, 550.0, 650.0, 700.0], [1.0; 4]).unwrap();
+    let wo = Vec3::new(0.3, 0.0, 0.954).normalize();
+    let sample = |base: [f32; 4], roughness: f32, ext: serde_json::Value, x: f32, uc: f32| {
+        let material = json!({
+            "pbrMetallicRoughness": {"baseColorFactor": base, "metallicFactor": 0.0, "roughnessFactor": roughness},
+            "extensions": ext,
+        });
+        let (mut doc, bin) = textured_quad(&image, material);
+        doc["samplers"] = json!([{"wrapS": 33071, "wrapT": 33071, "magFilter": 9728}]);
+        doc["textures"][0]["sampler"] = json!(0);
+        let scene = Scene::from_loaded(load_quad(&doc, bin), &SceneOptions::default()).unwrap();
+        let ray = prism_scene::geometry::Ray::new(Vec3::new(x, 0.5, 1.0), -Vec3::Z, f32::INFINITY);
+        let hit = scene.intersect(&ray).expect("the quad");
+        scene
+            .bsdf(&hit, &lambdas, TransportMode::Radiance)
+            .sample(wo, uc, Vec2::new(0.3, 0.6))
+            .expect("a direction")
+    };
+    let white = [1.0, 1.0, 1.0, 1.0];
+    let glass = json!({"KHR_materials_transmission": {"transmissionFactor": 1.0}});
+    let thin = sample(white, 0.0, glass.clone(), 0.25, 0.99);
+    assert!(
+        thin.delta && (thin.wi + wo).length() < 1e-5,
+        "thin: {}",
+        thin.wi
+    );
+    let mut thick_ext = glass.clone();
+    thick_ext["KHR_materials_volume"] = json!({"thicknessFactor": 0.1});
+    let thick = sample(white, 0.0, thick_ext, 0.25, 0.99);
+    assert!(
+        thick.wi.z < 0.0 && (thick.wi.x + wo.x / 1.5).abs() < 1e-4,
+        "thick: {}",
+        thick.wi
+    );
+    // A red base colour tints what crosses, not what is reflected.
+    let red = [1.0, 0.02, 0.02, 1.0];
+    let crossed = sample(red, 0.0, glass.clone(), 0.25, 0.99);
+    assert!(crossed.f[0] < 0.2 * crossed.f[3], "{:?}", crossed.f);
+    let reflected = sample(red, 0.0, glass.clone(), 0.25, 0.0);
+    assert!((reflected.f[0] - reflected.f[1]).abs() < 1e-3 * reflected.f[1]);
+    // Half glass: the lobe choice picks the glass or the (rough) base.
+    let half = json!({"KHR_materials_transmission": {"transmissionFactor": 0.5}});
+    assert!(sample(white, 0.5, half.clone(), 0.25, 0.3).wi.z < 0.0);
+    let base = sample(white, 0.5, half, 0.25, 0.9);
+    assert!(base.wi.z > 0.0 && !base.delta);
+    // The texture's red channel: glass at the left texel, none at the right.
+    let textured = json!({"KHR_materials_transmission": {"transmissionFactor": 1.0, "transmissionTexture": {"index": 0}}});
+    assert!(sample(white, 0.5, textured.clone(), 0.25, 0.5).wi.z < 0.0);
+    assert!(sample(white, 0.5, textured, 0.75, 0.5).wi.z > 0.0);
+}

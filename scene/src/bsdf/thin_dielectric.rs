@@ -90,7 +90,11 @@ impl<const N: usize> ThinDielectric<N> {
             let reflect = uc < reflectance[0];
             let choice = reflectance.map(|r| if reflect { r } else { 1.0 - r });
             return Some(BsdfSample {
-                wi: if reflect { Vec3::new(-wo.x, -wo.y, wo.z) } else { -wo },
+                wi: if reflect {
+                    Vec3::new(-wo.x, -wo.y, wo.z)
+                } else {
+                    -wo
+                },
                 f: SampledSpectrum(choice) / cos,
                 pdf: choice,
                 delta: true,
@@ -104,7 +108,11 @@ impl<const N: usize> ThinDielectric<N> {
             return None;
         }
         let r = sheet_reflectance(wo.dot(wm), self.eta[0]);
-        let wi = if uc < r { reflected } else { mirrored(reflected) };
+        let wi = if uc < r {
+            reflected
+        } else {
+            mirrored(reflected)
+        };
         let pdf = self.pdf(wo, wi);
         if !positive_finite(pdf) {
             return None;

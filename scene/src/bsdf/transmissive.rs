@@ -90,7 +90,11 @@ impl<const N: usize> Transmissive<'_, N> {
     /// glass's deltas.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         let t = self.share();
-        let opaque = if t < 1.0 { self.opaque.pdf(wo, wi) } else { 0.0 };
+        let opaque = if t < 1.0 {
+            self.opaque.pdf(wo, wi)
+        } else {
+            0.0
+        };
         t * self.glass.pdf(wo, wi) + (1.0 - t) * opaque
     }
 

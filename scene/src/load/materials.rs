@@ -31,6 +31,14 @@ pub struct MaterialDesc {
     pub ior: f32,
     /// transmissionFactor (`KHR_materials_transmission`, default 0).
     pub transmission: f32,
+    /// transmissionTexture (linear; red multiplies the factor).
+    pub transmission_texture: Option<Arc<RgbTexture>>,
+    /// Whether transmission is thin-walled: no `KHR_materials_volume` (or a thickness of
+    /// 0) and no `KHR_materials_dispersion` (which only a volume can show, so a file
+    /// asking for it means a volume).
+    pub thin_walled: bool,
+    /// Whether the base colour is white (factor 1, no texture): clear glass, untinted.
+    pub base_white: bool,
     /// emissiveFactor times `KHR_materials_emissive_strength` as an emission spectrum
     /// (sigmoid times the D65 illuminant normalized to luminance 1, so its XYZ is the
     /// colour's), or None when black.
@@ -366,7 +374,20 @@ pub(crate) fn material(
     })?;
     let layers = super::material_layers::layers(material, textures, &sets, upsampler)
         .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let transmission_texture = material
+        .transmission()
+        .and_then(|t| t.transmission_texture())
+        .map(|info| textures.linear(&info, [1.0; 3], &sets).map(Arc::new))
+        .transpose()
+        .map_err(|e| LoadError::Geometry(format!("material {name}: transmissionTexture: {e}")))?;
+    let thin_walled = dispersion == 0.0
+        && material
+            .volume()
+            .is_none_or(|v| v.thickness_factor() <= 0.0);
     let desc = MaterialDesc {
+        transmission_texture,
+        thin_walled,
+        base_white: base_texture.is_none() && base[..3].iter().all(|&c| c == 1.0),
         layers,
         iridescence,
         emission_peak,

@@ -82,6 +82,7 @@ pub(crate) const EXTENSION_TEXTURES: &[(&str, &[&str])] = &[
         &["specularTexture", "specularColorTexture"],
     ),
     ("KHR_materials_anisotropy", &["anisotropyTexture"]),
+    ("KHR_materials_transmission", &["transmissionTexture"]),
     (
         "KHR_materials_clearcoat",
         &[

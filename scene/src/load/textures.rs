@@ -85,9 +85,17 @@ impl<'a> TextureLoader<'a> {
         roughness: f32,
         sets: &TexCoordSets,
     ) -> Result<RgbTexture, String> {
-        Ok(self
-            .info(info, [1.0, roughness, metallic], sets)?
-            .encoded(Encoding::Linear))
+        self.linear(info, [1.0, roughness, metallic], sets)
+    }
+
+    /// A data texture (linear) times `factor` per channel (`transmissionTexture`...).
+    pub(crate) fn linear(
+        &self,
+        info: &gltf::texture::Info,
+        factor: [f32; 3],
+        sets: &TexCoordSets,
+    ) -> Result<RgbTexture, String> {
+        Ok(self.info(info, factor, sets)?.encoded(Encoding::Linear))
     }
 
     /// A normal texture (linear; tangent-space normals encoded as (n + 1) / 2) with its

@@ -4,7 +4,10 @@ use std::sync::Arc;
 
 use prism_spectrum::optics::Cauchy;
 
-use super::{Alpha, AlphaMode, Environment, Light, Material, Scene, SceneParts, SceneSpectrum};
+use super::{
+    Alpha, AlphaMode, Environment, Layers, Light, Material, Scene, SceneParts, SceneSpectrum,
+    TransmissionDesc,
+};
 use crate::bsdf::CoatingAlbedo;
 use crate::geometry::BvhQuality;
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
@@ -26,8 +29,10 @@ pub const DEFAULT_ENVIRONMENT: f64 = 1.0;
 
 /// The material a glTF description becomes.
 ///
-/// - transmissive (`KHR_materials_transmission` > 0): a dielectric of the material's index
-///   and roughness (partial transmission is treated as full: a glass, not a blend);
+/// - transmissive (`KHR_materials_transmission` > 0): clear thick glass (the whole surface,
+///   a white base, a volume) is a dielectric of the material's index and roughness;
+///   anything else is the metallic-roughness BSDF in part glass ([`TransmissionDesc`]:
+///   the share, thin walls, the base colour tinting what crosses);
 /// - metallic 0 and roughness 1: Lambertian. This is what exporters write for a matte
 ///   surface and what the canonical Cornell box means by its walls (Mitsuba's reference
 ///   scene uses diffuse BSDFs there); glTF's rough coating would add a few percent of
@@ -43,6 +48,7 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         Some(texture) => texture.clone(),
         None => SceneSpectrum::Rgb(Arc::new(desc.base_color.clone())),
     };
+    let mut layers = desc.layers.clone();
     if desc.transmission > 0.0 {
         // KHR_materials_dispersion: V_d = 20 / dispersion, Cauchy's law through n_d.
         let abbe = 20.0 / f64::from(desc.dispersion);
@@ -50,18 +56,40 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
             Ok(cauchy) if desc.dispersion > 0.0 => SceneSpectrum::Cauchy(cauchy),
             _ => SceneSpectrum::Constant(f64::from(desc.ior)),
         };
-        return Material::Dielectric {
+        if desc.transmission >= 1.0
+            && desc.transmission_texture.is_none()
+            && !desc.thin_walled
+            && desc.base_white
+        {
+            return Material::Dielectric {
+                ior,
+                roughness: desc.roughness,
+                absorption: desc.absorption.clone(),
+            };
+        }
+        let glass = TransmissionDesc {
+            factor: desc.transmission,
+            texture: desc.transmission_texture.clone(),
             ior,
-            roughness: desc.roughness,
-            absorption: desc.absorption.clone(),
+            thin: desc.thin_walled,
+            absorption: if desc.thin_walled {
+                None
+            } else {
+                desc.absorption.clone()
+            },
         };
+        // Layers on glass are not rendered (loading warned): only the glass share.
+        layers = Some(Layers {
+            transmission: Some(glass),
+            ..Layers::default()
+        });
     }
     let texture = desc.metallic_roughness_texture.clone();
     if desc.metallic == 0.0
         && desc.roughness == 1.0
         && texture.is_none()
         && desc.iridescence.is_none()
-        && desc.layers.is_none()
+        && layers.is_none()
     {
         return Material::Diffuse { reflectance: base };
     }
@@ -72,7 +100,7 @@ fn material(desc: &MaterialDesc, coatings: &mut Vec<(f32, Arc<CoatingAlbedo>)>) 
         texture,
         coating: coating_for(desc.ior, coatings),
         iridescence: desc.iridescence.clone().map(Arc::new),
-        layers: desc.layers.clone().map(Arc::new),
+        layers: layers.map(Arc::new),
     }
 }
 

@@ -8,8 +8,8 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::{Layers, RgbTexture, SceneSpectrum, SurfaceFrame, TexCoords};
 use crate::bsdf::{
-    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, RoughConductor,
-    RoughDielectric, TransportMode,
+    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Glass, Layered, MetallicRoughness, RoughConductor,
+    RoughDielectric, ThinDielectric, Transmissive, TransportMode,
 };
 
 /// A surface's material, with spectral parameters not yet sampled.
@@ -74,16 +74,38 @@ pub enum Material {
 }
 
 impl Material {
-    /// Whether the index of refraction varies with wavelength (dispersion).
+    /// The glass share of a glTF material, if it has one beyond clear thick glass.
+    fn transmission(&self) -> Option<&super::TransmissionDesc> {
+        match self {
+            Material::MetallicRoughness {
+                layers: Some(l), ..
+            } => l.transmission.as_ref(),
+            _ => None,
+        }
+    }
+
+    /// Whether light can cross it (glass, whole or in part).
+    pub fn transmissive(&self) -> bool {
+        matches!(self, Material::Dielectric { .. }) || self.transmission().is_some()
+    }
+
+    /// Whether the index of refraction varies with wavelength (dispersion) where light
+    /// refracts through it.
     pub fn dispersive(&self) -> bool {
-        matches!(self, Material::Dielectric { ior, .. } if !matches!(ior, SceneSpectrum::Constant(_)))
+        let varies = |ior: &SceneSpectrum| !matches!(ior, SceneSpectrum::Constant(_));
+        match self {
+            Material::Dielectric { ior, .. } => varies(ior),
+            _ => self
+                .transmission()
+                .is_some_and(|t| !t.thin && varies(&t.ior)),
+        }
     }
 
     /// The absorption coefficient inside, if the material bounds an absorbing volume.
     pub fn absorption(&self) -> Option<&SceneSpectrum> {
         match self {
             Material::Dielectric { absorption, .. } => absorption.as_ref(),
-            _ => None,
+            _ => self.transmission().and_then(|t| t.absorption.as_ref()),
         }
     }
 
@@ -93,6 +115,12 @@ impl Material {
         match self {
             Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
                 Ggx::new(roughness * roughness, roughness * roughness).effectively_smooth()
+            }
+            Material::MetallicRoughness {
+                roughness, texture, ..
+            } if self.transmission().is_some() => {
+                texture.is_some()
+                    || Ggx::new(roughness * roughness, roughness * roughness).effectively_smooth()
             }
             _ => false,
         }
@@ -233,6 +261,29 @@ impl Material {
                     bsdf = bsdf.with_iridescence(film.at(at, wavelengths));
                 }
                 match layers {
+                    Some(l) if l.transmission.is_some() => {
+                        let t = l.transmission.as_ref().expect("checked");
+                        let alpha = roughness * roughness;
+                        let distribution = Ggx::new(alpha, alpha);
+                        let eta = t.ior.at(wavelengths).0.map(|e| e.max(1e-3));
+                        let glass = if t.thin {
+                            Glass::Thin(ThinDielectric { distribution, eta })
+                        } else {
+                            Glass::Thick(RoughDielectric {
+                                distribution,
+                                eta,
+                                mode,
+                            })
+                        };
+                        Bsdf::Transmissive(Transmissive {
+                            glass,
+                            tint: base(base_colour),
+                            opaque: bsdf,
+                            // Metal does not transmit (glTF's mix of dielectric and
+                            // metal by `metallic`).
+                            transmission: t.factor_at(at) * (1.0 - metallic.clamp(0.0, 1.0)),
+                        })
+                    }
                     Some(l) if l.sheen.is_some() || l.clearcoat.is_some() => {
                         Bsdf::Layered(Layered {
                             base: bsdf,
@@ -277,6 +328,8 @@ pub enum Bsdf<'a, const N: usize> {
     MetallicRoughness(MetallicRoughness<'a, N>),
     /// glTF metallic-roughness under a sheen or a clear coat.
     Layered(Layered<'a, N>),
+    /// glTF metallic-roughness in part (or wholly) glass.
+    Transmissive(Transmissive<'a, N>),
     /// Smooth or rough dielectric.
     Dielectric(RoughDielectric<N>),
     /// Smooth or rough conductor.
@@ -290,6 +343,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Diffuse(b) => b.f(wo, wi),
             Bsdf::MetallicRoughness(b) => b.f(wo, wi),
             Bsdf::Layered(b) => b.f(wo, wi),
+            Bsdf::Transmissive(b) => b.f(wo, wi),
             Bsdf::Dielectric(b) => b.f(wo, wi),
             Bsdf::Conductor(b) => b.f(wo, wi),
         }
@@ -301,6 +355,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
             Bsdf::MetallicRoughness(b) => b.pdf(wo, wi),
             Bsdf::Layered(b) => b.pdf(wo, wi),
+            Bsdf::Transmissive(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
         }
@@ -312,6 +367,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Diffuse(b) => b.sample(wo, u),
             Bsdf::MetallicRoughness(b) => b.sample(wo, uc, u),
             Bsdf::Layered(b) => b.sample(wo, uc, u),
+            Bsdf::Transmissive(b) => b.sample(wo, uc, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
         }
@@ -322,6 +378,7 @@ impl<const N: usize> Bsdf<'_, N> {
         match self {
             Bsdf::Dielectric(b) => b.distribution.effectively_smooth(),
             Bsdf::Conductor(b) => b.distribution.effectively_smooth(),
+            Bsdf::Transmissive(b) => b.is_delta(),
             _ => false,
         }
     }

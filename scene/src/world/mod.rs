@@ -24,6 +24,7 @@ pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
 pub use layers::{
     AnisotropyDesc, ClearcoatDesc, IridescenceDesc, Layers, SheenDesc, SpecularDesc, SurfaceFrame,
+    TransmissionDesc,
 };
 pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
@@ -284,9 +285,7 @@ impl Scene {
         let features = Features {
             dispersion: materials.iter().any(Material::dispersive),
             fluorescence: materials.iter().any(Material::fluorescent),
-            transmission: materials
-                .iter()
-                .any(|m| matches!(m, Material::Dielectric { .. })),
+            transmission: materials.iter().any(Material::transmissive),
             specular: materials.iter().any(Material::specular),
         };
         // Lights are chosen by their power where the scene can see it: the visible

@@ -8,12 +8,14 @@ mod clearcoat;
 mod iridescence;
 mod sheen;
 mod specular;
+mod transmission;
 
 pub use anisotropy::AnisotropyDesc;
 pub use clearcoat::ClearcoatDesc;
 pub use iridescence::IridescenceDesc;
 pub use sheen::SheenDesc;
 pub use specular::SpecularDesc;
+pub use transmission::TransmissionDesc;
 
 use glam::{Vec3, Vec4};
 
@@ -31,6 +33,9 @@ pub struct Layers {
     pub clearcoat: Option<ClearcoatDesc>,
     /// `KHR_materials_sheen`.
     pub sheen: Option<SheenDesc>,
+    /// `KHR_materials_transmission` beyond clear thick glass (a share, a texture, thin
+    /// walls, a tint).
+    pub transmission: Option<TransmissionDesc>,
 }
 
 impl Layers {
@@ -40,6 +45,7 @@ impl Layers {
             && self.anisotropy.is_none()
             && self.clearcoat.is_none()
             && self.sheen.is_none()
+            && self.transmission.is_none()
     }
 
     /// Whether a texture varies any of them.
@@ -51,6 +57,10 @@ impl Layers {
                 .is_some_and(AnisotropyDesc::textured)
             || self.clearcoat.as_ref().is_some_and(ClearcoatDesc::textured)
             || self.sheen.as_ref().is_some_and(SheenDesc::textured)
+            || self
+                .transmission
+                .as_ref()
+                .is_some_and(|t| t.texture.is_some())
     }
 
     /// Whether the BSDF needs the surface's tangent at a hit (an anisotropy direction or
