@@ -91,9 +91,9 @@ fn a_thin_film_reflects_its_airy_reflectance_band_by_band() {
     assert!(lowest < 0.01 && highest > 0.03, "{lowest} {highest}");
 }
 
-/// The white furnace, rendered: six white spheres, one per glTF material extension at
+/// The white furnace, rendered: seven white spheres, one per glTF material extension at
 /// full strength (plain, clear coat, sheen, specular with a coloured F0 above 1,
-/// anisotropy, a thin film), under a uniform white environment (`--environment 1`, which renders a white
+/// anisotropy, a thin film, diffuse transmission into the sphere and out again), under a uniform white environment (`--environment 1`, which renders a white
 /// Lambertian surface as RGB 1) and nothing else, each render as 1 in every channel wherever they are seen: every layer takes from those
 /// below what it reflects. An extension that added energy (a coat or sheen without its
 /// albedo scaling) or lost it fails. The sphere's rim, where a pixel also sees the
@@ -102,7 +102,7 @@ fn a_thin_film_reflects_its_airy_reflectance_band_by_band() {
 fn spheres_with_every_extension_pass_the_white_furnace() {
     let dir = temp_dir("furnace-spheres");
     let exr = dir.join("furnace.exr");
-    let (width, height) = (240usize, 40usize);
+    let (width, height) = (280usize, 40usize);
     let out = prism(&[
         "render",
         &asset("furnace-spheres.gltf"),
@@ -127,6 +127,7 @@ fn spheres_with_every_extension_pass_the_white_furnace() {
         "specular",
         "anisotropy",
         "iridescence",
+        "diffuse transmission",
     ];
     for channel in ["R", "G", "B"] {
         let values = &image
@@ -136,8 +137,8 @@ fn spheres_with_every_extension_pass_the_white_furnace() {
             .unwrap_or_else(|| panic!("no channel {channel}"))
             .1;
         for (k, name) in names.iter().enumerate() {
-            // Orthographic: 6 x 1 world units over the image; sphere k at x = -2.5 + k.
-            let (cx, cy) = ((k as f64 + 0.5) * width as f64 / 6.0, height as f64 / 2.0);
+            // Orthographic: 7 x 1 world units over the image; sphere k at x = -3 + k.
+            let (cx, cy) = ((k as f64 + 0.5) * width as f64 / 7.0, height as f64 / 2.0);
             let radius = 0.45 * height as f64 * 0.8;
             let mut sum = 0.0f64;
             let mut count = 0;

@@ -591,3 +591,114 @@ mod transmission {
         assert!((reflected.f[1] - reflected.f[0]).abs() < 1e-6 && reflected.f[3] > 0.0);
     }
 }
+
+mod diffuse_transmission {
+    use super::*;
+    use prism_scene::bsdf::DiffuseTransmission;
+
+    fn leaf(
+        base: f32,
+        factor: f32,
+        color: [f32; 4],
+        roughness: f32,
+    ) -> MetallicRoughness<'static, 4> {
+        MetallicRoughness::new(SampledSpectrum([base; 4]), 0.0, roughness, &COATING)
+            .with_diffuse_transmission(DiffuseTransmission {
+                factor,
+                color: SampledSpectrum(color),
+            })
+    }
+
+    /// White furnace over both sides: a white base with a white transmission colour
+    /// reflects and transmits everything between them, whatever the share; the share
+    /// moves light from one side to the other.
+    #[test]
+    fn reflection_and_transmission_sum_to_everything() {
+        for factor in [0.25f32, 1.0] {
+            for roughness in [0.3f32, 0.8] {
+                let bsdf = leaf(1.0, factor, [1.0; 4], roughness);
+                for wo in outgoing() {
+                    let a = albedo(|w, uc, u| bsdf.sample(w, uc, u), wo)[0];
+                    assert!(
+                        (a - 1.0).abs() < 8e-3,
+                        "factor {factor}, roughness {roughness}, wo {wo}: {a}"
+                    );
+                }
+            }
+        }
+        // How much crosses: the share of the diffuse base, coloured.
+        let bsdf = leaf(1.0, 0.5, [1.0, 0.5, 0.0, 1.0], 0.5);
+        let (wo, wi) = (
+            Vec3::new(0.2, 0.1, 0.97).normalize(),
+            Vec3::new(-0.3, 0.2, -0.93).normalize(),
+        );
+        let f = bsdf.f(wo, wi);
+        assert!(
+            f[0] > 0.0 && (f[1] / f[0] - 0.5).abs() < 1e-5 && f[2] == 0.0,
+            "{f:?}"
+        );
+        assert_eq!(leaf(1.0, 0.0, [1.0; 4], 0.5).f(wo, wi).0, [0.0; 4]);
+    }
+
+    /// Under a white sheen and a clear coat, a white translucent base still keeps
+    /// everything between reflection and transmission; sampling matches the density.
+    #[test]
+    fn layers_over_a_translucent_base() {
+        use prism_scene::bsdf::{Clearcoat, Layered, Sheen, TransportMode};
+        let bsdf = Layered {
+            base: leaf(1.0, 0.7, [1.0; 4], 0.5),
+            sheen: Some(Sheen::new(SampledSpectrum([1.0; 4]), 0.4)),
+            clearcoat: Some(Clearcoat::new(1.0, 0.1, None)),
+            mode: TransportMode::Radiance,
+        };
+        for wo in outgoing() {
+            let a = albedo(|w, uc, u| bsdf.sample(w, uc, u), wo)[0];
+            assert!((a - 1.0).abs() < 0.015, "wo {wo}: {a}");
+        }
+        let wo = Vec3::new(0.5, 0.2, 0.84).normalize();
+        chi_square_directions(
+            "layered translucent",
+            |u| {
+                let (uc, u) = split(u);
+                bsdf.sample(wo, uc, u).map(|s| s.wi)
+            },
+            |wi| f64::from(bsdf.pdf(wo, wi)),
+        );
+    }
+
+    #[test]
+    fn sampling_matches_its_density_and_is_reciprocal() {
+        let bsdf = leaf(0.7, 0.6, [0.9, 0.6, 0.3, 0.1], 0.4);
+        for (k, wo) in [
+            Vec3::new(0.5, 0.2, 0.84).normalize(),
+            Vec3::new(0.1, -0.9, -0.4).normalize(),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            chi_square_directions(
+                &format!("diffuse transmission wo {k}"),
+                |u| {
+                    let (uc, u) = split(u);
+                    bsdf.sample(wo, uc, u).map(|s| s.wi)
+                },
+                |wi| f64::from(bsdf.pdf(wo, wi)),
+            );
+        }
+        let mut stream = IndependentStream::new(79, 0, 0);
+        for _ in 0..2000 {
+            let wo = prism_sampling::warp::cosine_hemisphere(stream.next_2d());
+            let mut wi = prism_sampling::warp::cosine_hemisphere(stream.next_2d());
+            if stream.next_1d() < 0.5 {
+                wi.z = -wi.z;
+            }
+            let (x, y) = (bsdf.f(wo, wi), bsdf.f(wi, wo));
+            for k in 0..4 {
+                assert!(
+                    (x[k] - y[k]).abs() <= 1e-4 * x[k].abs().max(1.0),
+                    "{x:?} {y:?}"
+                );
+            }
+        }
+    }
+}

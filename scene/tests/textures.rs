@@ -765,6 +765,10 @@ fn gltf_material_extensions_reach_the_bsdf() {
             "KHR_materials_anisotropy",
             json!({"anisotropyStrength": 0.9, "anisotropyRotation": 0.7}),
         ),
+        (
+            "KHR_materials_diffuse_transmission",
+            json!({"diffuseTransmissionFactor": 0.8}),
+        ),
     ] {
         let f = f_at(name, ext.clone(), 0.25);
         let change = f
@@ -799,6 +803,10 @@ fn gltf_material_extensions_reach_the_bsdf() {
         (
             "KHR_materials_anisotropy",
             json!({"anisotropyStrength": -0.5}),
+        ),
+        (
+            "KHR_materials_diffuse_transmission",
+            json!({"diffuseTransmissionFactor": 1.5}),
         ),
     ] {
         let (doc, bin) = textured_quad(&image, material(name, ext));

@@ -50,6 +50,7 @@ def base(rgba, metallic=0.0, roughness=0.5):
 
 EXTENSIONS = [
     "KHR_materials_clearcoat",
+    "KHR_materials_diffuse_transmission",
     "KHR_materials_sheen",
     "KHR_materials_specular",
     "KHR_materials_anisotropy",
@@ -58,9 +59,9 @@ EXTENSIONS = [
 
 
 def furnace():
-    """scenes/assets/furnace-spheres.gltf: six white spheres in a row, one per extension
+    """scenes/assets/furnace-spheres.gltf: seven white spheres in a row, one per extension
     at full strength over a white dielectric base (plain, clear coat, sheen, specular
-    with a coloured F0 above 1, anisotropy, a thin film), seen by an orthographic camera
+    with a coloured F0 above 1, anisotropy, a thin film, diffuse transmission), seen by an orthographic camera
     under a uniform environment of 1 and nothing else. Energy conserved, every sphere
     renders as 1 wherever it is seen (the white furnace)."""
     doc = Document("scenes/tools/make_materials.py")
@@ -73,12 +74,13 @@ def furnace():
         ("specular", {"KHR_materials_specular": {"specularFactor": 1.0, "specularColorFactor": [3.0, 1.0, 6.0]}}),
         ("anisotropy", {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8, "anisotropyRotation": 0.5}}),
         ("iridescence", {"KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": 1.6, "iridescenceThicknessMaximum": 300.0}}),
+        ("diffuse transmission", {"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.6}}),
     ]
     for k, (name, extensions) in enumerate(spheres):
         m = doc.material(name, pbrMetallicRoughness=white, extensions=extensions)
-        positions, normals, uvs, indices = uv_sphere((-2.5 + k, 0.0, 0.0), 0.45, rings=24, segments=48)
+        positions, normals, uvs, indices = uv_sphere((-3.0 + k, 0.0, 0.0), 0.45, rings=24, segments=48)
         doc.mesh(f"{name} sphere", positions, m, normals, indices, uvs)
-    doc.cameras.append({"type": "orthographic", "orthographic": {"xmag": 3.0, "ymag": 0.5, "znear": 0.1, "zfar": 10.0}})
+    doc.cameras.append({"type": "orthographic", "orthographic": {"xmag": 3.5, "ymag": 0.5, "znear": 0.1, "zfar": 10.0}})
     doc.nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 0.0, 3.0]})
     doc.root_extension["environment"] = 1.0
     doc.write("scenes/assets/furnace-spheres.gltf")

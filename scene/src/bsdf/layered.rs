@@ -7,7 +7,7 @@ use prism_sampling::distribution::positive_finite;
 use prism_sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 use prism_spectrum::SampledSpectrum;
 
-use super::{BsdfSample, Clearcoat, MetallicRoughness, Sheen, TransportMode, same_hemisphere};
+use super::{BsdfSample, Clearcoat, MetallicRoughness, Sheen, TransportMode};
 
 /// A metallic-roughness base under a sheen and a clear coat (either may be absent):
 ///
@@ -44,8 +44,8 @@ impl<const N: usize> Layered<'_, N> {
 
     /// f(wo, wi) per lane; reflection only.
     pub fn f(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
-        if !same_hemisphere(wo, wi) {
-            return SampledSpectrum::splat(0.0);
+        if wo.z * wi.z <= 0.0 {
+            return self.f_through(wo, wi);
         }
         let mut f = self.base.f(wo, wi);
         let (wo, wi) = Self::upper(wo, wi);
@@ -68,6 +68,28 @@ impl<const N: usize> Layered<'_, N> {
         f
     }
 
+    /// What the base transmits through the surface (diffuse transmission), through the
+    /// layers on the camera's side: each keeps what it does not reflect.
+    fn f_through(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
+        if wo.z * wi.z >= 0.0 {
+            return SampledSpectrum::splat(0.0);
+        }
+        let f = self.base.f(wo, wi);
+        if f.is_black() {
+            return f;
+        }
+        let camera = match self.mode {
+            TransportMode::Radiance => wo,
+            TransportMode::Importance => wi,
+        };
+        let view = Vec3::new(camera.x, camera.y, camera.z.abs());
+        let coat = self.clearcoat.map_or(0.0, |c| c.reflected(view));
+        SampledSpectrum::from_fn(|i| {
+            let sheen = self.sheen.map_or(0.0, |s| s.color[i] * s.albedo(view.z));
+            f[i] * (1.0 - coat) * (1.0 - sheen)
+        })
+    }
+
     /// The probabilities of sampling the coat and the sheen from `wo` (upper hemisphere):
     /// what each reflects.
     fn lobe_probabilities(&self, wo: Vec3) -> (f32, f32) {
@@ -81,12 +103,12 @@ impl<const N: usize> Layered<'_, N> {
 
     /// The density of [`Layered::sample`] returning `wi`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if !same_hemisphere(wo, wi) {
-            return 0.0;
-        }
         let base = self.base.pdf(wo, wi);
         let (wo, wi) = Self::upper(wo, wi);
         let (p_coat, p_sheen) = self.lobe_probabilities(wo);
+        if wi.z <= 0.0 {
+            return (1.0 - p_coat - p_sheen) * base;
+        }
         let coat = self.clearcoat.map_or(0.0, |c| c.pdf(wo, wi));
         p_coat * coat + p_sheen * cosine_hemisphere_pdf(wi) + (1.0 - p_coat - p_sheen) * base
     }
@@ -110,7 +132,7 @@ impl<const N: usize> Layered<'_, N> {
             let uc = ((uc - p_coat - p_sheen) / rest).clamp(0.0, 1.0 - f32::EPSILON);
             self.base.sample(wo, uc, u)?.wi
         };
-        if !same_hemisphere(wo, wi) {
+        if wi.z * wo.z == 0.0 {
             return None;
         }
         let pdf = self.pdf(wo, wi);

@@ -32,6 +32,16 @@ pub struct Specular<const N: usize> {
     pub color: SampledSpectrum<N>,
 }
 
+/// `KHR_materials_diffuse_transmission` at one hit: the share of the diffuse base that
+/// leaves through the other side, and its colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiffuseTransmission<const N: usize> {
+    /// `diffuseTransmissionFactor` (times its texture), in [0, 1].
+    pub factor: f32,
+    /// `diffuseTransmissionColorFactor` (times its texture) per lane, in [0, 1].
+    pub color: SampledSpectrum<N>,
+}
+
 /// The specular extension's Fresnel per lane, as the extension defines its end points and
 /// the exact dielectric Fresnel term shapes the curve between them:
 /// F(cos) = F0' + (F90 - F0') (F_exact(cos) - F0) / (1 - F0), with F0' = min(F0 c, 1) F90
@@ -94,6 +104,7 @@ pub struct MetallicRoughness<'a, const N: usize> {
     coating: &'a CoatingAlbedo,
     iridescence: Option<Iridescence<N>>,
     specular: Option<SpecularLanes<N>>,
+    diffuse_transmission: Option<DiffuseTransmission<N>>,
     /// 1 - the coating's average albedo per lane, once a film or the specular extension
     /// makes it differ from the table's.
     kept_average: [f32; N],
@@ -121,6 +132,7 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             coating,
             iridescence: None,
             specular: None,
+            diffuse_transmission: None,
             kept_average: [1.0 - coating.average(distribution.alpha_x); N],
         }
     }
@@ -144,6 +156,47 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             ..self
         }
         .with_averages()
+    }
+
+    /// The same material with `KHR_materials_diffuse_transmission`: a share `factor` of
+    /// its diffuse base leaves through the other side, coloured, as Lambertian
+    /// transmission (the coating above it on both sides, in the same albedo-scaling form as
+    /// the reflection: a white base with a white transmission colour reflects and
+    /// transmits everything between them).
+    pub fn with_diffuse_transmission(self, transmission: DiffuseTransmission<N>) -> Self {
+        let unit = |v: f32| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+        let factor = unit(transmission.factor);
+        if factor == 0.0 {
+            return self;
+        }
+        Self {
+            diffuse_transmission: Some(DiffuseTransmission {
+                factor,
+                color: transmission.color.map(unit),
+            }),
+            ..self
+        }
+    }
+
+    /// The share of the diffuse base that is transmitted.
+    fn transmitted_share(&self) -> f32 {
+        self.diffuse_transmission.map_or(0.0, |d| d.factor)
+    }
+
+    /// The diffuse base's transmission lobe for directions on opposite sides.
+    fn f_transmitted(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
+        let Some(dt) = &self.diffuse_transmission else {
+            return SampledSpectrum::splat(0.0);
+        };
+        let (mu_o, mu_i) = (wo.z.abs(), wi.z.abs());
+        let weight = (1.0 - self.metallic) * dt.factor / std::f32::consts::PI;
+        SampledSpectrum::from_fn(|i| {
+            weight
+                * dt.color[i]
+                * (1.0 - self.coat_albedo(mu_o, i))
+                * (1.0 - self.coat_albedo(mu_i, i))
+                / self.kept_average[i]
+        })
     }
 
     /// The same material made anisotropic (`KHR_materials_anisotropy`): `strength` in
@@ -306,6 +359,9 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
     pub fn f(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
         let (wo, wi) = (self.aligned(wo), self.aligned(wi));
         if !same_hemisphere(wo, wi) {
+            if wo.z * wi.z < 0.0 {
+                return self.f_transmitted(wo, wi);
+            }
             return SampledSpectrum::splat(0.0);
         }
         let (mu_o, mu_i) = (wo.z.abs(), wi.z.abs());
@@ -320,7 +376,10 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         let bare = fresnel_dielectric(cos_h, eta);
         let schlick = (1.0 - cos_h).powi(5);
         let m = self.metallic;
-        if self.iridescence.is_none() && self.specular.is_none() {
+        if self.iridescence.is_none()
+            && self.specular.is_none()
+            && self.diffuse_transmission.is_none()
+        {
             let alpha = self.table_alpha;
             let diffuse_weight = (1.0 - self.coating.albedo(mu_o, alpha))
                 * (1.0 - self.coating.albedo(mu_i, alpha))
@@ -335,7 +394,8 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             let coated = self.coat_fresnel(cos_h, bare, i);
             let diffuse = (1.0 - self.coat_albedo(mu_o, i)) * (1.0 - self.coat_albedo(mu_i, i))
                 / (std::f32::consts::PI * self.kept_average[i]);
-            let dielectric = microfacet * coated + self.base[i] * diffuse;
+            let reflected = self.base[i] * (1.0 - self.transmitted_share());
+            let dielectric = microfacet * coated + reflected * diffuse;
             let metal = if m > 0.0 {
                 let f0 = self.base[i];
                 let bare_metal = f0 + (1.0 - f0) * schlick;
@@ -361,6 +421,11 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         let (wo, wi) = (self.aligned(wo), self.aligned(wi));
         if !same_hemisphere(wo, wi) {
+            if wo.z * wi.z < 0.0 && self.diffuse_transmission.is_some() {
+                let q = self.specular_probability(wo.z.abs());
+                let diffuse = cosine_hemisphere_pdf(Vec3::new(wi.x, wi.y, wi.z.abs()));
+                return (1.0 - q) * self.transmitted_share() * diffuse;
+            }
             return 0.0;
         }
         let Some(wm) = (wo + wi).try_normalize() else {
@@ -370,6 +435,9 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         let specular = self.distribution.d_visible(wo, wm) / (4.0 * wo.dot(wm).abs());
         let diffuse = cosine_hemisphere_pdf(Vec3::new(wi.x, wi.y, wi.z.abs()));
         let q = self.specular_probability(wo.z.abs());
+        if self.diffuse_transmission.is_some() {
+            return q * specular + (1.0 - q) * (1.0 - self.transmitted_share()) * diffuse;
+        }
         q * specular + (1.0 - q) * diffuse
     }
 
@@ -380,18 +448,25 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             return None;
         }
         let wo_aligned = self.aligned(wo);
-        let wi = if uc < self.specular_probability(wo.z.abs()) {
+        let q = self.specular_probability(wo.z.abs());
+        let wi = if uc < q {
             let wm = self.distribution.sample_visible_normal(wo_aligned, u);
-            self.unaligned(2.0 * wo_aligned.dot(wm) * wm - wo_aligned)
+            let wi = self.unaligned(2.0 * wo_aligned.dot(wm) * wm - wo_aligned);
+            if !same_hemisphere(wo, wi) {
+                return None;
+            }
+            wi
         } else {
             let w = cosine_hemisphere(u);
-            if wo.z < 0.0 {
+            // Through the surface with the transmitted share's probability.
+            let through = (uc - q) / (1.0 - q) < self.transmitted_share();
+            if (wo.z < 0.0) != through {
                 Vec3::new(w.x, w.y, -w.z)
             } else {
                 w
             }
         };
-        if !same_hemisphere(wo, wi) {
+        if wi.z * wo.z == 0.0 || (!same_hemisphere(wo, wi) && self.diffuse_transmission.is_none()) {
             return None;
         }
         let pdf = self.pdf(wo, wi);

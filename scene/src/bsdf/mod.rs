@@ -32,7 +32,7 @@ pub use fluorescent::{
     reradiation_matrix,
 };
 pub use layered::Layered;
-pub use metallic_roughness::{Iridescence, MetallicRoughness, Specular};
+pub use metallic_roughness::{DiffuseTransmission, Iridescence, MetallicRoughness, Specular};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;

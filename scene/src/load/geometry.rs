@@ -275,7 +275,7 @@ pub fn load_scene(
                 warn_once(
                     &mut out.warnings,
                     &format!(
-                        "material {}: KHR_materials_specular, _anisotropy, _clearcoat and _sheen on a transmissive material are not rendered (the glass is)",
+                        "material {}: KHR_materials_specular, _anisotropy, _clearcoat, _sheen and _diffuse_transmission on a transmissive material are not rendered (the glass is)",
                         m.name
                     ),
                 );

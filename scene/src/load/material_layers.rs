@@ -11,7 +11,8 @@ use super::Upsampler;
 use super::tex_coord_sets::TexCoordSets;
 use super::textures::TextureLoader;
 use crate::world::{
-    AnisotropyDesc, ClearcoatDesc, Layers, NormalMap, SceneSpectrum, SheenDesc, SpecularDesc,
+    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, Layers, NormalMap, SceneSpectrum,
+    SheenDesc, SpecularDesc,
 };
 
 /// One extension's JSON object and what reading it needs.
@@ -129,6 +130,7 @@ pub(crate) fn layers(
     textures: &TextureLoader,
     sets: &TexCoordSets,
     upsampler: &Upsampler,
+    volume: Option<SceneSpectrum>,
 ) -> Result<Option<Layers>, String> {
     let extension = |name: &'static str| {
         material.extension_value(name).map(|json| Extension {
@@ -205,6 +207,25 @@ pub(crate) fn layers(
                 )?,
                 roughness,
                 roughness_texture: e.alpha("sheenRoughnessTexture", roughness)?,
+            });
+        }
+    }
+    if let Some(e) = extension("KHR_materials_diffuse_transmission") {
+        let factor = e.number("diffuseTransmissionFactor", 0.0, &|x| {
+            (0.0..=1.0).contains(&x)
+        })?;
+        let colour = e.colour("diffuseTransmissionColorFactor", [1.0; 3])?;
+        if factor > 0.0 {
+            layers.diffuse_transmission = Some(DiffuseTransmissionDesc {
+                factor,
+                texture: e.alpha("diffuseTransmissionTexture", factor)?,
+                color: e.spectrum(
+                    "diffuseTransmissionColorFactor",
+                    "diffuseTransmissionColorTexture",
+                    colour.map(|c| c.min(1.0)),
+                    upsampler,
+                )?,
+                absorption: volume.clone(),
             });
         }
     }

@@ -372,8 +372,9 @@ pub(crate) fn material(
     let iridescence = iridescence(material, textures, &sets).map_err(|e| {
         LoadError::Geometry(format!("material {name}: KHR_materials_iridescence: {e}"))
     })?;
-    let layers = super::material_layers::layers(material, textures, &sets, upsampler)
-        .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let layers =
+        super::material_layers::layers(material, textures, &sets, upsampler, absorption.clone())
+            .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
     let transmission_texture = material
         .transmission()
         .and_then(|t| t.transmission_texture())

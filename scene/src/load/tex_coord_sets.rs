@@ -84,6 +84,13 @@ pub(crate) const EXTENSION_TEXTURES: &[(&str, &[&str])] = &[
     ("KHR_materials_anisotropy", &["anisotropyTexture"]),
     ("KHR_materials_transmission", &["transmissionTexture"]),
     (
+        "KHR_materials_diffuse_transmission",
+        &[
+            "diffuseTransmissionTexture",
+            "diffuseTransmissionColorTexture",
+        ],
+    ),
+    (
         "KHR_materials_clearcoat",
         &[
             "clearcoatTexture",

@@ -84,9 +84,21 @@ impl Material {
         }
     }
 
-    /// Whether light can cross it (glass, whole or in part).
+    /// The diffuse transmission of a glTF material, if any.
+    fn diffuse_transmission(&self) -> Option<&super::DiffuseTransmissionDesc> {
+        match self {
+            Material::MetallicRoughness {
+                layers: Some(l), ..
+            } => l.diffuse_transmission.as_ref(),
+            _ => None,
+        }
+    }
+
+    /// Whether light can cross it (glass, whole or in part, or diffuse transmission).
     pub fn transmissive(&self) -> bool {
-        matches!(self, Material::Dielectric { .. }) || self.transmission().is_some()
+        matches!(self, Material::Dielectric { .. })
+            || self.transmission().is_some()
+            || self.diffuse_transmission().is_some()
     }
 
     /// Whether the index of refraction varies with wavelength (dispersion) where light
@@ -105,7 +117,10 @@ impl Material {
     pub fn absorption(&self) -> Option<&SceneSpectrum> {
         match self {
             Material::Dielectric { absorption, .. } => absorption.as_ref(),
-            _ => self.transmission().and_then(|t| t.absorption.as_ref()),
+            _ => self
+                .transmission()
+                .and_then(|t| t.absorption.as_ref())
+                .or_else(|| self.diffuse_transmission()?.absorption.as_ref()),
         }
     }
 
@@ -247,6 +262,9 @@ impl Material {
                 if let Some(layers) = layers {
                     if let Some(specular) = &layers.specular {
                         bsdf = bsdf.with_specular(specular.at(at, wavelengths));
+                    }
+                    if let Some(dt) = &layers.diffuse_transmission {
+                        bsdf = bsdf.with_diffuse_transmission(dt.at(at, wavelengths));
                     }
                     if let Some((strength, direction)) = layers
                         .anisotropy

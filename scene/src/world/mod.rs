@@ -23,8 +23,8 @@ pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
 pub use layers::{
-    AnisotropyDesc, ClearcoatDesc, IridescenceDesc, Layers, SheenDesc, SpecularDesc, SurfaceFrame,
-    TransmissionDesc,
+    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, Layers, SheenDesc,
+    SpecularDesc, SurfaceFrame, TransmissionDesc,
 };
 pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;

@@ -5,6 +5,7 @@
 
 mod anisotropy;
 mod clearcoat;
+mod diffuse_transmission;
 mod iridescence;
 mod sheen;
 mod specular;
@@ -12,6 +13,7 @@ mod transmission;
 
 pub use anisotropy::AnisotropyDesc;
 pub use clearcoat::ClearcoatDesc;
+pub use diffuse_transmission::DiffuseTransmissionDesc;
 pub use iridescence::IridescenceDesc;
 pub use sheen::SheenDesc;
 pub use specular::SpecularDesc;
@@ -36,6 +38,8 @@ pub struct Layers {
     /// `KHR_materials_transmission` beyond clear thick glass (a share, a texture, thin
     /// walls, a tint).
     pub transmission: Option<TransmissionDesc>,
+    /// `KHR_materials_diffuse_transmission`.
+    pub diffuse_transmission: Option<DiffuseTransmissionDesc>,
 }
 
 impl Layers {
@@ -46,6 +50,7 @@ impl Layers {
             && self.clearcoat.is_none()
             && self.sheen.is_none()
             && self.transmission.is_none()
+            && self.diffuse_transmission.is_none()
     }
 
     /// Whether a texture varies any of them.
@@ -61,6 +66,10 @@ impl Layers {
                 .transmission
                 .as_ref()
                 .is_some_and(|t| t.texture.is_some())
+            || self
+                .diffuse_transmission
+                .as_ref()
+                .is_some_and(DiffuseTransmissionDesc::textured)
     }
 
     /// Whether the BSDF needs the surface's tangent at a hit (an anisotropy direction or
