@@ -181,6 +181,7 @@ fn zero_quantum_yield_renders_like_diffuse() {
                 reradiation: Arc::new(ReradiationSampler::new(range, BINS, &m).unwrap()),
             }),
             emission: None,
+            ..SpectralMaterial::default()
         });
     });
     assert!(!Renderer::new(&plain, &settings).unwrap().fluorescence());

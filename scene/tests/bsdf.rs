@@ -516,7 +516,39 @@ mod metallic_roughness {
             factor,
             film: ThinFilm { ior, thickness_nm },
             lambdas: [450.0, 520.0, 590.0, 660.0],
+            iors: None,
         }
+    }
+
+    /// A film's index per lane (a measured spectrum) is what each lane sees: the same
+    /// index in every lane is the constant film exactly; another index in one lane
+    /// changes that lane only.
+    #[test]
+    fn a_spectral_film_index_acts_per_lane() {
+        let base = MetallicRoughness::new(SampledSpectrum([0.0; 4]), 0.0, 0.3, &COATING);
+        let (wo, wi) = (
+            Vec3::new(0.3, 0.0, 0.954).normalize(),
+            Vec3::new(-0.3, 0.0, 0.954).normalize(),
+        );
+        let constant = base.with_iridescence(film(1.6, 300.0, 1.0)).f(wo, wi);
+        let same = base
+            .with_iridescence(Iridescence {
+                iors: Some([1.6; 4]),
+                ..film(1.6, 300.0, 1.0)
+            })
+            .f(wo, wi);
+        assert_eq!(constant.0, same.0);
+        let varied = base
+            .with_iridescence(Iridescence {
+                iors: Some([1.6, 1.6, 1.6, 2.1]),
+                ..film(1.6, 300.0, 1.0)
+            })
+            .f(wo, wi);
+        assert_eq!(&varied.0[..3], &constant.0[..3]);
+        assert!(
+            (varied[3] - constant[3]).abs() > 0.02 * constant[3],
+            "{varied:?} {constant:?}"
+        );
     }
 
     static COATING: LazyLock<CoatingAlbedo> = LazyLock::new(|| CoatingAlbedo::new(1.5));

@@ -72,11 +72,13 @@ fn every_documented_example_loads() {
                 .as_array_mut()
                 .unwrap()
                 .push(json!(n));
-        } else if let Some(extensions) = value["extensions"]
-            .as_object()
-            .filter(|e| e.keys().all(|k| k.starts_with("KHR_materials_")))
-        {
-            // A glTF material extension: on the white material, declared as used.
+        } else if let Some(extensions) = value["extensions"].as_object().filter(|e| {
+            e.keys().any(|k| k.starts_with("KHR_materials_"))
+                && e.keys()
+                    .all(|k| k.starts_with("KHR_materials_") || k == "PRISM_spectral")
+        }) {
+            // A glTF material extension (with a PRISM_spectral description beside it): on
+            // the white material, declared as used.
             doc["extensionsUsed"] = json!(extensions.keys().collect::<Vec<_>>());
             for m in doc["materials"].as_array_mut().unwrap() {
                 if m["name"] == "white" {

@@ -483,3 +483,93 @@ fn scenes_can_describe_a_camera_response() {
     doc["extensions"] = json!({"PRISM_spectral": {"camera_response": {"r": 1.0, "g": 1.0}}});
     assert!(error(load(&doc, None, &[])).contains("camera_response needs 'b'"));
 }
+
+/// Measured spectra for the glTF extensions' colours and index: `sheen_color` replaces
+/// KHR_materials_sheen's colour, `specular_color` KHR_materials_specular's (adding the
+/// extension at its defaults), `film_ior` the film's index (per wavelength at a hit);
+/// asking for a sheen or a film the material lacks is an error naming it; the TOML
+/// overlay says the same.
+#[test]
+fn spectral_colours_and_indices_replace_the_extensions() {
+    let with = |khr: Value, spectral: Value| {
+        let mut doc = cornell_json();
+        for m in doc["materials"].as_array_mut().unwrap() {
+            if m["name"] == "white" {
+                let mut ext = khr.clone();
+                ext["PRISM_spectral"] = spectral.clone();
+                m["extensions"] = ext;
+            }
+        }
+        doc
+    };
+    let white = |loaded: &LoadedGeometry| {
+        loaded
+            .materials
+            .iter()
+            .find(|m| m.name == "white")
+            .unwrap()
+            .clone()
+    };
+    let sheen = json!({"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5}});
+    let loaded = load(
+        &with(
+            sheen.clone(),
+            json!({"sheen_color": [[400, 0.1], [700, 0.9]]}),
+        ),
+        None,
+        &[],
+    )
+    .unwrap();
+    let layers = white(&loaded).layers.expect("layers");
+    let colour = &layers.sheen.as_ref().unwrap().color;
+    assert!(
+        (colour.evaluate(400.0) - 0.1).abs() < 1e-9 && (colour.evaluate(700.0) - 0.9).abs() < 1e-9
+    );
+    let loaded = load(
+        &with(
+            json!({}),
+            json!({"specular_color": [[400, 2.0], [700, 0.5]]}),
+        ),
+        None,
+        &[],
+    )
+    .unwrap();
+    let specular = white(&loaded).layers.unwrap().specular.unwrap();
+    assert_eq!(specular.factor, 1.0);
+    assert!((specular.color.evaluate(400.0) - 2.0).abs() < 1e-9);
+    let film = json!({"KHR_materials_iridescence": {"iridescenceFactor": 1.0}});
+    let loaded = load(
+        &with(film.clone(), json!({"film_ior": "glass:sf11"})),
+        None,
+        &[],
+    )
+    .unwrap();
+    let desc = white(&loaded).iridescence.unwrap();
+    let lambdas = prism_spectrum::SampledWavelengths::new([450.0, 650.0], [1.0; 2]).unwrap();
+    let at = prism_scene::world::TexCoords::default();
+    let iors = desc.at(&at, &lambdas).iors.expect("a spectral index");
+    assert!(iors[0] > iors[1] + 0.01 && iors[1] > 1.7, "{iors:?}");
+    for (khr, spectral, missing) in [
+        (
+            json!({}),
+            json!({"sheen_color": 0.5}),
+            "KHR_materials_sheen",
+        ),
+        (
+            json!({}),
+            json!({"film_ior": 1.4}),
+            "KHR_materials_iridescence",
+        ),
+    ] {
+        let e = error(load(&with(khr, spectral), None, &[]));
+        assert!(e.contains(missing) && e.contains("white"), "{e}");
+    }
+    // The overlay, on a file that has the film.
+    let loaded = load(
+        &with(film, json!({})),
+        Some("[materials.white]\nfilm_ior = \"glass:bk7\"\n"),
+        &[],
+    )
+    .unwrap();
+    assert!(white(&loaded).iridescence.unwrap().ior_spectrum.is_some());
+}

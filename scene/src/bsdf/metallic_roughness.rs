@@ -19,6 +19,21 @@ pub struct Iridescence<const N: usize> {
     pub film: ThinFilm,
     /// The path's wavelengths (nm), lane by lane: the film's colour depends on them.
     pub lambdas: [f32; N],
+    /// The film's index per lane where it is a measured spectrum (`film.ior` otherwise).
+    pub iors: Option<[f32; N]>,
+}
+
+impl<const N: usize> Iridescence<N> {
+    /// The film lane `lane` sees.
+    pub fn film_at(&self, lane: usize) -> ThinFilm {
+        match &self.iors {
+            Some(iors) => ThinFilm {
+                ior: iors[lane],
+                ..self.film
+            },
+            None => self.film,
+        }
+    }
 }
 
 /// `KHR_materials_specular` at one hit: the strength (`specularFactor`, times its texture)
@@ -293,7 +308,7 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         let mut f = bare;
         if let Some(film) = &self.iridescence {
             let filmed = film
-                .film
+                .film_at(lane)
                 .reflectance(cos, film.lambdas[lane], 1.0, eta, 0.0);
             f += film.factor * (filmed - bare);
         }
@@ -403,9 +418,13 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
                     * match &self.iridescence {
                         Some(film) => {
                             let (eta_m, k_m) = conductor_index_from_reflectance(f0);
-                            let filmed =
-                                film.film
-                                    .reflectance(cos_h, film.lambdas[i], 1.0, eta_m, k_m);
+                            let filmed = film.film_at(i).reflectance(
+                                cos_h,
+                                film.lambdas[i],
+                                1.0,
+                                eta_m,
+                                k_m,
+                            );
                             bare_metal + film.factor * (filmed - bare_metal)
                         }
                         None => bare_metal,

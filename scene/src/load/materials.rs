@@ -375,6 +375,8 @@ pub(crate) fn material(
     let layers =
         super::material_layers::layers(material, textures, &sets, upsampler, absorption.clone())
             .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+    let (layers, iridescence) = spectral_layers(spectral.as_ref(), layers, iridescence)
+        .map_err(|e| LoadError::Spectral(format!("material {name}: {e}")))?;
     let transmission_texture = material
         .transmission()
         .and_then(|t| t.transmission_texture())
@@ -414,6 +416,43 @@ pub(crate) fn material(
         return unlit(desc, material, textures, upsampler);
     }
     Ok(desc)
+}
+
+/// `PRISM_spectral`'s measured spectra in place of the extensions' colours and index: a
+/// sheen colour (the material needs `KHR_materials_sheen`), a specular colour (adding
+/// `KHR_materials_specular` at its defaults where absent), a film index (the material
+/// needs `KHR_materials_iridescence`).
+fn spectral_layers(
+    spectral: Option<&SpectralMaterial>,
+    layers: Option<Layers>,
+    mut iridescence: Option<IridescenceDesc>,
+) -> Result<(Option<Layers>, Option<IridescenceDesc>), String> {
+    let Some(spectral) = spectral else {
+        return Ok((layers, iridescence));
+    };
+    let mut layers = layers.unwrap_or_default();
+    if let Some(color) = &spectral.sheen_color {
+        let sheen = layers
+            .sheen
+            .as_mut()
+            .ok_or("PRISM_spectral sheen_color needs KHR_materials_sheen (with a sheen colour) on the material")?;
+        sheen.color = color.clone();
+    }
+    if let Some(color) = &spectral.specular_color {
+        let specular = layers.specular.get_or_insert(crate::world::SpecularDesc {
+            factor: 1.0,
+            texture: None,
+            color: SceneSpectrum::Constant(1.0),
+        });
+        specular.color = color.clone();
+    }
+    if let Some(ior) = &spectral.film_ior {
+        let film = iridescence
+            .as_mut()
+            .ok_or("PRISM_spectral film_ior needs KHR_materials_iridescence on the material")?;
+        film.ior_spectrum = Some(ior.clone());
+    }
+    Ok(((!layers.is_empty()).then_some(layers), iridescence))
 }
 
 /// `KHR_materials_iridescence` (the gltf crate does not know it; read from the raw JSON):
@@ -456,6 +495,7 @@ fn iridescence(
         thickness_min_nm,
         thickness_max_nm,
         thickness_texture: texture("iridescenceThicknessTexture")?,
+        ior_spectrum: None,
     }))
 }
 

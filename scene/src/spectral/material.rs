@@ -25,6 +25,13 @@ pub struct SpectralMaterial {
     pub surface: Option<Material>,
     /// Emitted radiance, W m^-2 sr^-1 nm^-1, replacing glTF's emissive colour.
     pub emission: Option<SceneSpectrum>,
+    /// A measured spectrum replacing `KHR_materials_sheen`'s sheen colour.
+    pub sheen_color: Option<SceneSpectrum>,
+    /// A measured spectrum replacing `KHR_materials_specular`'s specular colour.
+    pub specular_color: Option<SceneSpectrum>,
+    /// A spectral index (a named glass, a table, Cauchy or Sellmeier coefficients)
+    /// replacing `KHR_materials_iridescence`'s film index.
+    pub film_ior: Option<SceneSpectrum>,
 }
 
 /// Parses a material's description.
@@ -37,10 +44,24 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
         .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("emission: {e}")))
         .transpose()?;
     let Some(kind) = map.get("type") else {
-        only_keys(map, &["emission"])?;
+        only_keys(
+            map,
+            &["emission", "sheen_color", "specular_color", "film_ior"],
+        )?;
+        let optional = |key: &str, role: Role| {
+            map.get(key)
+                .map(|v| spectrum(v, role, cx).map_err(|e| format!("{key}: {e}")))
+                .transpose()
+        };
         return Ok(SpectralMaterial {
             surface: None,
             emission,
+            sheen_color: optional("sheen_color", Role::Fraction)?,
+            specular_color: optional("specular_color", Role::Plain)?,
+            film_ior: map
+                .get("film_ior")
+                .map(|v| ior(v, cx).map_err(|e| format!("film_ior: {e}")))
+                .transpose()?,
         });
     };
     let field = |key: &str, role: Role| -> Result<SceneSpectrum, String> {
@@ -97,6 +118,7 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
     Ok(SpectralMaterial {
         surface: Some(surface),
         emission,
+        ..SpectralMaterial::default()
     })
 }
 

@@ -7,10 +7,10 @@ use std::sync::Arc;
 use prism_spectrum::SampledWavelengths;
 
 use crate::bsdf::{Iridescence, ThinFilm};
-use crate::world::{RgbTexture, TexCoords};
+use crate::world::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// A material's thin film.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct IridescenceDesc {
     /// `iridescenceFactor`, in [0, 1] (default 0: no film).
     pub factor: f32,
@@ -18,6 +18,8 @@ pub struct IridescenceDesc {
     pub factor_texture: Option<Arc<RgbTexture>>,
     /// `iridescenceIor`, the film's index (default 1.3).
     pub ior: f32,
+    /// A measured spectral index replacing it (`PRISM_spectral`'s `film_ior`).
+    pub ior_spectrum: Option<SceneSpectrum>,
     /// `iridescenceThicknessMinimum` in nanometres (default 100).
     pub thickness_min_nm: f32,
     /// `iridescenceThicknessMaximum` in nanometres (default 400).
@@ -53,6 +55,7 @@ impl IridescenceDesc {
                 thickness_nm,
             },
             lambdas: *wavelengths.lambdas(),
+            iors: self.ior_spectrum.as_ref().map(|s| s.at(wavelengths).0),
         }
     }
 
