@@ -530,8 +530,12 @@ mod metallic_roughness {
             Vec3::new(0.3, 0.0, 0.954).normalize(),
             Vec3::new(-0.3, 0.0, 0.954).normalize(),
         );
-        let constant = base.with_iridescence(film(1.6, 300.0, 1.0)).f(wo, wi);
+        let constant = base
+            .clone()
+            .with_iridescence(film(1.6, 300.0, 1.0))
+            .f(wo, wi);
         let same = base
+            .clone()
             .with_iridescence(Iridescence {
                 iors: Some([1.6; 4]),
                 ..film(1.6, 300.0, 1.0)
@@ -650,8 +654,8 @@ mod metallic_roughness {
     #[test]
     fn films_colour_reflections_and_factor_zero_is_bare() {
         let bare = MetallicRoughness::new(SampledSpectrum([0.0; 4]), 0.0, 0.3, &COATING);
-        let filmed = bare.with_iridescence(film(2.0, 300.0, 1.0));
-        let off = bare.with_iridescence(film(2.0, 300.0, 0.0));
+        let filmed = bare.clone().with_iridescence(film(2.0, 300.0, 1.0));
+        let off = bare.clone().with_iridescence(film(2.0, 300.0, 0.0));
         let (wo, wi) = (
             Vec3::new(0.3, 0.0, 0.954).normalize(),
             Vec3::new(-0.3, 0.0, 0.954).normalize(),

@@ -19,7 +19,7 @@ use super::{BsdfSample, Clearcoat, MetallicRoughness, Sheen, TransportMode};
 /// cosine of the direction towards the camera (wo on camera paths, wi on light paths, so
 /// that both transport the same adjoint): the extension's simplified albedo scaling, per
 /// wavelength rather than by the colour's largest channel.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Layered<'a, const N: usize> {
     /// The base.
     pub base: MetallicRoughness<'a, N>,

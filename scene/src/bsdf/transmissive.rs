@@ -50,7 +50,7 @@ impl<const N: usize> Glass<N> {
 /// f = t tint(wi) f_glass + (1 - t) f_opaque, with tint the base colour for directions
 /// across the surface and 1 for reflections; sampled by choosing the glass with
 /// probability t.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Transmissive<'a, const N: usize> {
     /// The glass.
     pub glass: Glass<N>,

@@ -8,8 +8,8 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::{Layers, RgbTexture, SceneSpectrum, SurfaceFrame, TexCoords};
 use crate::bsdf::{
-    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Glass, Layered, MetallicRoughness, RoughConductor,
-    RoughDielectric, ThinDielectric, Transmissive, TransportMode,
+    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, RoughConductor,
+    RoughDielectric, Transmissive, TransportMode,
 };
 
 /// A surface's material, with spectral parameters not yet sampled.
@@ -214,6 +214,7 @@ impl Material {
 
     /// [`Material::bsdf_tinted`] with textures filtered over the footprints of `at`
     /// (mipmapping; `-inf`: unfiltered texels).
+    #[inline(always)]
     pub fn bsdf_at<const N: usize>(
         &self,
         at: &TexCoords,
@@ -227,6 +228,7 @@ impl Material {
     /// [`Material::bsdf_at`] on a surface oriented by `frame` (what anisotropy and a
     /// coat's normal texture are read in; without it they are isotropic and follow the
     /// base).
+    #[inline(always)]
     pub fn bsdf_oriented<const N: usize>(
         &self,
         at: &TexCoords,
@@ -257,61 +259,25 @@ impl Material {
                     }
                     None => (*metallic, *roughness),
                 };
-                let mut bsdf =
-                    MetallicRoughness::new(base(base_colour), metallic, roughness, coating);
-                if let Some(layers) = layers {
-                    if let Some(specular) = &layers.specular {
-                        bsdf = bsdf.with_specular(specular.at(at, wavelengths));
-                    }
-                    if let Some(dt) = &layers.diffuse_transmission {
-                        bsdf = bsdf.with_diffuse_transmission(dt.at(at, wavelengths));
-                    }
-                    if let Some((strength, direction)) = layers
-                        .anisotropy
-                        .as_ref()
-                        .zip(frame)
-                        .and_then(|(a, frame)| a.at(at, frame))
-                    {
-                        bsdf = bsdf.with_anisotropy(strength, direction);
-                    }
+                let colour = base(base_colour);
+                let bsdf = MetallicRoughness::new(colour, metallic, roughness, coating);
+                if layers.is_none() && iridescence.is_none() {
+                    return Bsdf::MetallicRoughness(bsdf);
                 }
-                if let Some(film) = iridescence {
-                    bsdf = bsdf.with_iridescence(film.at(at, wavelengths));
-                }
-                match layers {
-                    Some(l) if l.transmission.is_some() => {
-                        let t = l.transmission.as_ref().expect("checked");
-                        let alpha = roughness * roughness;
-                        let distribution = Ggx::new(alpha, alpha);
-                        let eta = t.ior.at(wavelengths).0.map(|e| e.max(1e-3));
-                        let glass = if t.thin {
-                            Glass::Thin(ThinDielectric { distribution, eta })
-                        } else {
-                            Glass::Thick(RoughDielectric {
-                                distribution,
-                                eta,
-                                mode,
-                            })
-                        };
-                        Bsdf::Transmissive(Transmissive {
-                            glass,
-                            tint: base(base_colour),
-                            opaque: bsdf,
-                            // Metal does not transmit (glTF's mix of dielectric and
-                            // metal by `metallic`).
-                            transmission: t.factor_at(at) * (1.0 - metallic.clamp(0.0, 1.0)),
-                        })
-                    }
-                    Some(l) if l.sheen.is_some() || l.clearcoat.is_some() => {
-                        Bsdf::Layered(Layered {
-                            base: bsdf,
-                            sheen: l.sheen.as_ref().map(|s| s.at(at, wavelengths)),
-                            clearcoat: l.clearcoat.as_ref().map(|c| c.at(at, frame)),
-                            mode,
-                        })
-                    }
-                    _ => Bsdf::MetallicRoughness(bsdf),
-                }
+                super::layers::extended_bsdf(
+                    bsdf,
+                    super::layers::HitParameters {
+                        layers: layers.as_deref(),
+                        iridescence: iridescence.as_deref(),
+                        at,
+                        frame,
+                        mode,
+                        base: colour,
+                        metallic,
+                        roughness,
+                    },
+                    wavelengths,
+                )
             }
             Material::Dielectric { ior, roughness, .. } => {
                 let alpha = roughness * roughness;
@@ -338,16 +304,16 @@ impl Material {
 }
 
 /// A BSDF at one hit, in the local frame whose z is the surface normal.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub enum Bsdf<'a, const N: usize> {
     /// Lambertian.
     Diffuse(Diffuse<N>),
     /// glTF metallic-roughness.
     MetallicRoughness(MetallicRoughness<'a, N>),
     /// glTF metallic-roughness under a sheen or a clear coat.
-    Layered(Layered<'a, N>),
+    Layered(Box<Layered<'a, N>>),
     /// glTF metallic-roughness in part (or wholly) glass.
-    Transmissive(Transmissive<'a, N>),
+    Transmissive(Box<Transmissive<'a, N>>),
     /// Smooth or rough dielectric.
     Dielectric(RoughDielectric<N>),
     /// Smooth or rough conductor.
@@ -356,6 +322,7 @@ pub enum Bsdf<'a, const N: usize> {
 
 impl<const N: usize> Bsdf<'_, N> {
     /// f(wo, wi) per lane.
+    #[inline]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
         match self {
             Bsdf::Diffuse(b) => b.f(wo, wi),
@@ -368,6 +335,7 @@ impl<const N: usize> Bsdf<'_, N> {
     }
 
     /// The solid-angle density of sampling `wi` (the hero lane's, where lanes differ).
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         match self {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
@@ -380,6 +348,7 @@ impl<const N: usize> Bsdf<'_, N> {
     }
 
     /// Samples an incident direction with `uc` (lobe choice) and `u`.
+    #[inline(always)]
     pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2) -> Option<BsdfSample<N>> {
         match self {
             Bsdf::Diffuse(b) => b.sample(wo, u),

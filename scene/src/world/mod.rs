@@ -187,6 +187,9 @@ pub struct Scene {
     lit_by_default: bool,
     /// Whether a material has a base colour or metallic-roughness texture.
     filters_textures: bool,
+    /// Whether any material reads the surface's tangent frame (anisotropy, a coat's
+    /// normal texture): only then does [`Scene::bsdf`] look.
+    oriented_materials: bool,
 }
 
 impl Scene {
@@ -269,6 +272,7 @@ impl Scene {
         }
         let filters_textures =
             !attributes.uvs.is_empty() && materials.iter().any(Material::textured);
+        let oriented_materials = materials.iter().any(Material::oriented);
         let bvh = Bvh::build(&triangles, quality);
         let (lo, hi) = triangles
             .iter()
@@ -331,6 +335,7 @@ impl Scene {
             light_wavelengths,
             lit_by_default: false,
             filters_textures,
+            oriented_materials,
         })
     }
 
@@ -543,11 +548,25 @@ impl Scene {
                 _ => None,
             };
         let material = self.material(hit);
-        if material.oriented() {
-            let frame = SurfaceFrame::new(hit.shading_normal, self.tangent_at(hit));
-            return material.bsdf_oriented(&hit.tex, wavelengths, mode, tint, Some(&frame));
+        if self.oriented_materials && material.oriented() {
+            return self.bsdf_in_tangent_frame(hit, material, wavelengths, mode, tint);
         }
         material.bsdf_at(&hit.tex, wavelengths, mode, tint)
+    }
+
+    /// [`Scene::bsdf`] for a material read in the surface's tangent frame. Out of line,
+    /// so that scenes without such materials keep their code as it was.
+    #[inline(never)]
+    fn bsdf_in_tangent_frame<'s, const N: usize>(
+        &self,
+        hit: &Hit,
+        material: &'s Material,
+        wavelengths: &SampledWavelengths<N>,
+        mode: crate::bsdf::TransportMode,
+        tint: Option<SampledSpectrum<N>>,
+    ) -> Bsdf<'s, N> {
+        let frame = SurfaceFrame::new(hit.shading_normal, self.tangent_at(hit));
+        material.bsdf_oriented(&hit.tex, wavelengths, mode, tint, Some(&frame))
     }
 
     /// The interpolated tangent (xyz, glTF's bitangent sign in w) at a hit; zero where
