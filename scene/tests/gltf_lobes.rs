@@ -715,3 +715,86 @@ fn a_bsdf_without_extensions_stays_small() {
     let size = std::mem::size_of::<prism_scene::world::Bsdf<'static, 8>>();
     assert!(size <= 96, "Bsdf<8> is {size} bytes");
 }
+
+/// No NaN or infinity escapes the extensions' lobes, for any parameters (including NaN,
+/// infinities and values out of range) and any directions, including grazing ones and
+/// directions on either side.
+mod extremes {
+    use super::*;
+    use prism_scene::bsdf::{
+        Clearcoat, DiffuseTransmission, Ggx, Glass, Iridescence, Layered, RoughDielectric, Sheen,
+        ThinDielectric, ThinFilm, Transmissive, TransportMode,
+    };
+    use proptest::prelude::*;
+
+    fn any_f32() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            -2.0f32..3.0,
+            Just(f32::NAN),
+            Just(f32::INFINITY),
+            Just(f32::NEG_INFINITY),
+            Just(0.0f32),
+            Just(1.0f32),
+        ]
+    }
+
+    fn direction() -> impl Strategy<Value = Vec3> {
+        (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
+            .prop_map(|(x, y, z)| Vec3::new(x, y, z).normalize_or(Vec3::new(1.0, 0.0, 1e-7)))
+    }
+
+    fn finite(s: &SampledSpectrum<4>) -> bool {
+        s.0.iter().all(|v| v.is_finite() && *v >= 0.0)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        #[test]
+        fn every_lobe_stays_finite(
+            params in proptest::collection::vec(any_f32(), 12),
+            wo in direction(),
+            wi in direction(),
+            uc in 0.0f32..1.0,
+            u in (0.0f32..1.0, 0.0f32..1.0),
+        ) {
+            let p = |i: usize| params[i];
+            let base = MetallicRoughness::new(SampledSpectrum([p(0); 4]), p(1), p(2), &COATING)
+                .with_specular(Specular { weight: p(3), color: SampledSpectrum([p(4); 4]) })
+                .with_diffuse_transmission(DiffuseTransmission { factor: p(5), color: SampledSpectrum([p(6); 4]) })
+                .with_anisotropy(p(7), Vec2::new(p(8), p(9)))
+                .with_iridescence(Iridescence {
+                    factor: p(10),
+                    film: ThinFilm { ior: p(11), thickness_nm: p(9) * 500.0 },
+                    lambdas: [450.0, 520.0, 590.0, 660.0],
+                    iors: None,
+                });
+            let layered = Layered {
+                base: base.clone(),
+                sheen: Some(Sheen::new(SampledSpectrum([p(6); 4]), p(7))),
+                clearcoat: Some(Clearcoat::new(p(8), p(9), Some(Vec3::new(p(10), p(11), p(0))))),
+                mode: TransportMode::Radiance,
+            };
+            let a = p(2) * p(2);
+            let glass = |thin: bool| if thin {
+                Glass::Thin(ThinDielectric { distribution: Ggx::new(a, a), eta: [p(11).abs().max(1e-3); 4] })
+            } else {
+                // The thick dielectric's own tests cover its index; the scene gives it a
+                // finite one.
+                Glass::Thick(RoughDielectric { distribution: Ggx::new(a, a), eta: [if p(11).is_finite() { p(11).abs().clamp(1e-3, 10.0) } else { 1.5 }; 4], mode: TransportMode::Radiance })
+            };
+            let u = Vec2::new(u.0, u.1);
+            for thin in [true, false] {
+                let t = Transmissive { glass: glass(thin), tint: SampledSpectrum([p(4); 4]), opaque: base.clone(), transmission: p(3) };
+                prop_assert!(finite(&t.f(wo, wi)) && t.pdf(wo, wi).is_finite());
+                if let Some(s) = t.sample(wo, uc, u) {
+                    prop_assert!(finite(&s.f) && s.pdf.iter().all(|v| v.is_finite()) && s.wi.is_finite());
+                }
+            }
+            prop_assert!(finite(&base.f(wo, wi)) && base.pdf(wo, wi).is_finite());
+            prop_assert!(finite(&layered.f(wo, wi)) && layered.pdf(wo, wi).is_finite());
+            for s in [base.sample(wo, uc, u), layered.sample(wo, uc, u)].into_iter().flatten() {
+                prop_assert!(finite(&s.f) && s.pdf.iter().all(|v| v.is_finite()) && s.wi.is_finite());
+            }
+        }
+    }
+}

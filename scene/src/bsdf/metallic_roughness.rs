@@ -424,6 +424,12 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         let wm = if wm.z < 0.0 { -wm } else { wm };
         let d = &self.distribution;
         let microfacet = d.d(wm) * d.g(wo, wi) / (4.0 * mu_o * mu_i);
+        // At grazing angles of a near-smooth lobe the quotient over- or underflows.
+        let microfacet = if microfacet.is_finite() {
+            microfacet
+        } else {
+            0.0
+        };
         let cos_h = wo.dot(wm).abs();
         let eta = self.coating.eta();
         let bare = fresnel_dielectric(cos_h, eta);

@@ -26,7 +26,16 @@ pub struct ThinDielectric<const N: usize> {
 
 /// The sheet's reflectance at cos `cos` for index `eta`.
 pub(crate) fn sheet_reflectance(cos: f32, eta: f32) -> f32 {
-    let r = fresnel_dielectric(cos.abs(), eta);
+    // A non-finite or non-positive index is no interface, as for the smooth dielectric.
+    let eta = if eta.is_finite() && eta > 0.0 {
+        eta
+    } else {
+        1.0
+    };
+    let r = fresnel_dielectric(cos.abs().min(1.0), eta);
+    if !r.is_finite() {
+        return 0.0;
+    }
     if r >= 1.0 { 1.0 } else { 2.0 * r / (1.0 + r) }
 }
 

@@ -72,7 +72,13 @@ impl<const N: usize> Transmissive<'_, N> {
     }
 
     fn tinted(&self, f: SampledSpectrum<N>, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
-        if wo.z * wi.z < 0.0 { f * self.tint } else { f }
+        if wo.z * wi.z < 0.0 {
+            f * self
+                .tint
+                .map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 })
+        } else {
+            f
+        }
     }
 
     /// f(wo, wi) per lane, without the glass's deltas.
