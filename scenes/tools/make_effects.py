@@ -3,13 +3,21 @@ effects an RGB renderer cannot show, side by side on one stage.
 
 - Left, a light booth of two bays, lit from above by a 2700 K blackbody panel and by a
   CIE D65 panel of the same luminance: the same white and coloured objects under each.
-- Middle front, a cabinet lined with black felt under a 365 nm UV tube: of the two
-  spheres inside, the fluorescent one glows green (absorbed UV re-emitted around 515
-  nm), the white one beside it stays dark.
+- Middle, a cabinet lined with black felt under a 365 nm UV panel: of the two spheres
+  inside, split by a felt divider, the fluorescent one glows green (absorbed UV
+  re-emitted around 515 nm); the white one beside it shows only the room's light.
 - Right, white light (a narrow 5500 K spot) through a 60-degree SF11 prism: the beam
   leaves at minimum deviation and meets the back wall at a grazing angle, which spreads
   its spectrum, violet to red, over about a metre of the wall (a caustic seen directly,
   found by light paths).
+- In front, the glTF material extensions (make_materials.py has the full set): a red
+  base under a clear coat, velvet with a pink sheen, brushed steel (anisotropy), a soap
+  film (iridescence), a blue specular tint on a dark base.
+
+A large daylight panel high over the front lights the stage, from an area large enough
+to be clean at the default 64 spp (the booth's and the cabinet's panels cover their
+ceilings for the same reason), and meets the mid-grey back wall at a grazing angle, so
+the spectrum on it keeps its contrast.
 
 Units are metres; y is up; the back wall is the plane z = BACK. Run from the repository
 root: python3 scenes/tools/make_effects.py
@@ -17,7 +25,8 @@ root: python3 scenes/tools/make_effects.py
 
 import math
 
-from gltf_build import Document, box, facing, quad, sphere
+from gltf_build import Document, box, facing, png, quad, sphere
+from make_materials import uv_sphere
 from make_prism import minimum_deviation_geometry, prism_solid
 
 BACK = -3.0
@@ -30,7 +39,8 @@ GRAZING = math.radians(62.0)
 THROW = 4.2
 PRISM_HALF_HEIGHT = 0.3
 CABINET_X = 0.5
-UV_RADIANCE = 4.0  # W m^-2 sr^-1 nm^-1 at the LED's peak
+UV_RADIANCE = 1.0  # W m^-2 sr^-1 nm^-1 at the LED's peak
+SOFTBOX = 6e-4  # the daylight panel's scale (of the CIE daylight spectrum)
 
 # Luminance integrals (cd m^-2 per unit of the spectrum's scale) of the booth's light
 # spectra, so the two panels can be set to the same luminance: the integral of the CIE
@@ -99,18 +109,22 @@ def main():
     dark = doc.material("dark", **matte([0.05, 0.05, 0.05]))
 
     doc.mesh("floor", upward(quad((-7, 0, BACK), (7, 0, BACK), (7, 0, 6), (-7, 0, 6))), floor)
-    doc.mesh("back wall", facing(quad((-7, 0, BACK), (7, 0, BACK), (7, 4, BACK), (-7, 4, BACK)), lambda c: [0, 0, 1]), white)
+    # A mid-grey back wall: the room light leaves it dim, so the spectrum on it shows.
+    wall = doc.material("wall", **matte([0.35, 0.35, 0.35]))
+    doc.mesh("back wall", facing(quad((-7, 0, BACK), (7, 0, BACK), (7, 5, BACK), (-7, 5, BACK)), lambda c: [0, 0, 1]), wall)
 
     # The light booth: two bays under a shared top, split by a divider.
-    x0, x1, depth, height = -3.8, -1.6, 1.5, 1.3
+    x0, x1, depth, height = -4.0, -1.8, 1.5, 1.3
     xm = (x0 + x1) / 2
     z0, z1 = BACK, BACK + depth
     booth = box((x0 - 0.04, 0, z0), (x0, height, z1)) + box((x1, 0, z0), (x1 + 0.04, height, z1))
     booth += box((xm - 0.02, 0, z0), (xm + 0.02, height, z1)) + box((x0 - 0.04, height, z0), (x1 + 0.04, height + 0.04, z1))
     doc.mesh("booth", booth, white)
     warm = D65_Y_INTEGRAL / luminance_of_blackbody(2700.0)
-    panel = lambda a, b: downward(quad((a + 0.15, height - 0.001, z0 + 0.25), (b - 0.15, height - 0.001, z0 + 0.25), (b - 0.15, height - 0.001, z1 - 0.35), (a + 0.15, height - 0.001, z1 - 0.35)))
-    scale = 0.0005
+    # Panels covering most of each bay's ceiling: large sources light the bays evenly at
+    # few samples.
+    panel = lambda a, b: downward(quad((a + 0.06, height - 0.001, z0 + 0.1), (b - 0.06, height - 0.001, z0 + 0.1), (b - 0.06, height - 0.001, z1 - 0.15), (a + 0.06, height - 0.001, z1 - 0.15)))
+    scale = 0.0003
     doc.mesh("2700 K panel", panel(x0, xm), doc.material("2700 K", **emitter("blackbody:2700", scale * warm)))
     doc.mesh("D65 panel", panel(xm, x1), doc.material("D65", **emitter("illuminant:D65", scale)))
     red = doc.material("red", **matte([0.7, 0.08, 0.06]))
@@ -147,11 +161,14 @@ def main():
     for name, dx, material in [("fluorescent sphere", -0.42, fluorescent), ("white sphere", 0.42, white)]:
         positions, normals, indices = sphere((cx + dx, 0.01 + 0.32, (cz0 + cz1) / 2), 0.32)
         doc.mesh(name, positions, material, normals, indices)
+    # A felt divider between them: the white sphere shows what the UV does to a plain
+    # white (nothing), not the green glow its neighbour throws on it.
+    doc.mesh("cabinet divider", box((cx - 0.015, 0.01, cz0), (cx + 0.015, ch, cz1 - 0.25)), felt)
     # The blacklight: a UV tube (a 365 nm LED band) along the cabinet's ceiling. An area
     # light rather than a spot, so that camera paths leaving the fluorescent sphere find
     # it by BSDF sampling as well as by light sampling (MIS).
     zc = (cz0 + cz1) / 2
-    tube = downward(quad((cx - 0.6, ch - 0.005, zc - 0.12), (cx + 0.6, ch - 0.005, zc - 0.12), (cx + 0.6, ch - 0.005, zc + 0.12), (cx - 0.6, ch - 0.005, zc + 0.12)))
+    tube = downward(quad((cx - 0.85, ch - 0.005, zc - 0.35), (cx + 0.85, ch - 0.005, zc - 0.35), (cx + 0.85, ch - 0.005, zc + 0.35), (cx - 0.85, ch - 0.005, zc + 0.35)))
     doc.mesh("blacklight", tube, doc.material("UV tube", **emitter("gaussian:365:12", UV_RADIANCE)))
 
     # The prism on a dark stand, and the beam that enters it.
@@ -173,9 +190,49 @@ def main():
         },
     )
 
-    doc.camera("camera", (0.0, 1.3, 5.6), (0.0, 0.85, -1.0), {"aspectRatio": 4 / 3, "yfov": 0.66, "znear": 0.01})
+    materials_row(doc)
+    # A soft daylight panel high over the front of the stage: it lights the material row
+    # and the floor from a large area (clean at few samples), and the back wall only at a
+    # grazing angle, so the spectrum there keeps its contrast.
+    doc.mesh(
+        "softbox",
+        downward(quad((-4.5, 4.2, 2.5), (4.5, 4.2, 2.5), (4.5, 4.2, 6.0), (-4.5, 4.2, 6.0))),
+        doc.material("softbox", **emitter("daylight:6500", SOFTBOX)),
+    )
+    doc.camera("camera", (0.0, 1.8, 7.6), (0.0, 0.6, -1.0), {"aspectRatio": 4 / 3, "yfov": 0.74, "znear": 0.01})
     doc.root_extension["environment"] = {"spectrum": "daylight:6500", "scale": 1e-6}
     doc.write("scenes/effects.gltf")
+
+
+def materials_row(doc):
+    """The glTF material extensions, one sphere each along the front of the stage: a red
+    base under a clear coat, velvet with a sheen, brushed steel (anisotropy), a soap film
+    (iridescence) and a blue specular tint on a dark base."""
+    ramp = doc.texture(png(4, 64, lambda x, y: (0, int(255 * y / 63), 0)), wrap=33071)
+    doc.extensions_used += [
+        "KHR_materials_clearcoat",
+        "KHR_materials_sheen",
+        "KHR_materials_anisotropy",
+        "KHR_materials_iridescence",
+        "KHR_materials_specular",
+    ]
+    pbr = lambda rgb, metallic, roughness: {"baseColorFactor": [*rgb, 1], "metallicFactor": metallic, "roughnessFactor": roughness}
+    spheres = [
+        ("clear coat", pbr([0.6, 0.05, 0.04], 0.0, 0.6), {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.03}}),
+        ("sheen", pbr([0.05, 0.02, 0.08], 0.0, 0.9), {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 0.45, 0.75], "sheenRoughnessFactor": 0.35}}),
+        ("anisotropy", pbr([0.85, 0.85, 0.88], 1.0, 0.3), {"KHR_materials_anisotropy": {"anisotropyStrength": 0.9}}),
+        (
+            "iridescence",
+            pbr([0.02, 0.02, 0.02], 0.0, 0.05),
+            {"KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": 1.33, "iridescenceThicknessMinimum": 150.0, "iridescenceThicknessMaximum": 700.0, "iridescenceThicknessTexture": {"index": ramp}}},
+        ),
+        ("specular", pbr([0.12, 0.12, 0.12], 0.0, 0.2), {"KHR_materials_specular": {"specularColorFactor": [0.2, 0.6, 4.0]}}),
+    ]
+    radius = 0.25
+    for k, (name, base, extensions) in enumerate(spheres):
+        m = doc.material(name, pbrMetallicRoughness=base, extensions=extensions)
+        positions, normals, uvs, indices = uv_sphere((-2.0 + 1.0 * k, radius, 1.9), radius)
+        doc.mesh(f"{name} sphere", positions, m, normals, indices, uvs)
 
 
 if __name__ == "__main__":
