@@ -59,6 +59,12 @@ mod render;
 mod sample_value;
 mod settings;
 
+/// glam, whose types appear in this crate's and prism-scene's public APIs.
+pub use glam;
+/// prism-scene, whose `Scene` this crate renders (re-exported so that callers name the same
+/// version).
+pub use prism_scene;
+
 pub use accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
     settings_difference,

@@ -116,6 +116,53 @@ impl Camera {
         })
     }
 
+    /// A perspective camera at `eye` looking at `target`, `up` giving the view's vertical
+    /// (glTF's convention: the camera looks down its -z with +y up), with vertical field of
+    /// view `yfov` in radians. glam dropped `Mat4::look_at_rh` in 0.34; this builds the
+    /// camera-to-world matrix from the three directions. Degenerate inputs (`eye` at
+    /// `target`, `up` along the view, non-finite values) fall back to looking down -z from
+    /// `eye` with +y up.
+    ///
+    /// ```
+    /// use prism_scene::camera::{Camera, Projection};
+    /// use glam::Vec3;
+    ///
+    /// let camera = Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 1.0, 0.0), Vec3::Y, 0.7);
+    /// // The centre of the film looks from the eye at the target.
+    /// let ray = camera.generate_ray(glam::Vec2::splat(0.5), 1.0);
+    /// assert!((ray.origin - Vec3::new(0.0, 1.0, 5.0)).length() < 1e-6);
+    /// assert!((ray.direction.normalize() - Vec3::NEG_Z).length() < 1e-6);
+    /// assert!(matches!(camera.projection, Projection::Perspective { .. }));
+    /// ```
+    pub fn look_at(eye: Vec3, target: Vec3, up: Vec3, yfov: f32) -> Self {
+        let fallback = Mat4::from_translation(if eye.is_finite() { eye } else { Vec3::ZERO });
+        let to_world = (target - eye)
+            .try_normalize()
+            .and_then(|forward| {
+                let right = forward.cross(up).try_normalize()?;
+                let true_up = right.cross(forward);
+                Some(Mat4::from_cols(
+                    right.extend(0.0),
+                    true_up.extend(0.0),
+                    (-forward).extend(0.0),
+                    eye.extend(1.0),
+                ))
+            })
+            .filter(|m| m.is_finite())
+            .unwrap_or(fallback);
+        let yfov = if yfov.is_finite() && yfov > 0.0 && yfov < std::f32::consts::PI {
+            yfov
+        } else {
+            45f32.to_radians()
+        };
+        Self {
+            name: "look_at".into(),
+            to_world,
+            projection: Projection::Perspective { yfov },
+            aspect_ratio: None,
+        }
+    }
+
     /// A perspective camera (45 degree vertical field of view) looking down -z at the box
     /// `[lo, hi]`, as the glTF Sample Viewer frames a model (`fitDistanceToExtents`): the
     /// larger of the box's x and y extents fills the view (at any aspect >= 1) with a 5%

@@ -4,8 +4,10 @@
 //! spawn offsets, a four-wide BVH collapsed from obvhs's binary one), glTF loading (`load`: node
 //! hierarchies, transforms, GLB, data URIs, cameras, metallic-roughness materials with RGB
 //! upsampled to spectra, emissive and `KHR_lights_punctual` lights), BSDFs (Lambertian,
-//! conductors, dielectrics with per-wavelength IOR, glTF metallic-roughness, fluorescent
-//! diffuse), spectral descriptions (`spectral`: the `PRISM_spectral` extension and TOML
+//! conductors, dielectrics with per-wavelength IOR, glTF metallic-roughness with the
+//! material extensions layered per wavelength: specular, anisotropy, clear coat, sheen,
+//! thin-film iridescence solved exactly, thin-walled and partial transmission, diffuse
+//! transmission; fluorescent diffuse), spectral descriptions (`spectral`: the `PRISM_spectral` extension and TOML
 //! overlays, see docs/scene-format.md), and the render-ready scene (`world`) the
 //! integrator consumes, with shading normals, base colour textures (RGB filtered, then
 //! upsampled per lookup through a coefficient table fitted at load when a texture needs
@@ -63,6 +65,10 @@
 //! - M. Hullin et al., "Acquisition and analysis of bispectral bidirectional reflectance
 //!   and reradiation distribution functions", ACM TOG 29(4), 2010 (measured re-radiation
 //!   matrices, the full-matrix form).
+
+/// glam, whose vector and matrix types are in this crate's public API (re-exported so
+/// that callers use the same version).
+pub use glam;
 
 pub mod bsdf;
 pub mod camera;

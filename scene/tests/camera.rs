@@ -128,3 +128,42 @@ fn the_default_camera_frames_the_scene() {
         (yfov / 2.0).tan()
     );
 }
+
+/// `Camera::look_at` points the film's centre at the target from the eye, keeps `up`
+/// upwards on the film, and survives degenerate input (no NaN in its matrix).
+#[test]
+fn look_at_points_the_view_at_the_target() {
+    let eye = Vec3::new(3.0, 2.0, 4.0);
+    let target = Vec3::new(-1.0, 0.5, -2.0);
+    let camera = Camera::look_at(eye, target, Vec3::Y, 0.6);
+    let centre = camera.generate_ray(Vec2::splat(0.5), 1.5);
+    assert!((centre.origin - eye).length() < 1e-5);
+    assert!((centre.direction.normalize() - (target - eye).normalize()).length() < 1e-5);
+    // The top of the film looks higher than its bottom.
+    let top = camera
+        .generate_ray(Vec2::new(0.5, 0.0), 1.5)
+        .direction
+        .normalize();
+    let bottom = camera
+        .generate_ray(Vec2::new(0.5, 1.0), 1.5)
+        .direction
+        .normalize();
+    assert!(top.y > bottom.y);
+    // The target projects to the film's centre.
+    let seen = camera.project(target, 1.5).expect("in view");
+    assert!(
+        (seen.film - Vec2::splat(0.5)).length() < 1e-4,
+        "{}",
+        seen.film
+    );
+    for (eye, target, up, yfov) in [
+        (Vec3::ZERO, Vec3::ZERO, Vec3::Y, 0.6),
+        (Vec3::ZERO, Vec3::Y, Vec3::Y, 0.6),
+        (Vec3::splat(f32::NAN), Vec3::ONE, Vec3::Y, f32::NAN),
+        (Vec3::ZERO, Vec3::NEG_Z, Vec3::ZERO, 10.0),
+    ] {
+        let c = Camera::look_at(eye, target, up, yfov);
+        assert!(c.to_world.is_finite(), "{eye} {target} {up}");
+        assert!(c.generate_ray(Vec2::splat(0.5), 1.0).direction.is_finite());
+    }
+}

@@ -4,6 +4,7 @@
 //! evaluate, never RGB.
 
 mod alpha;
+mod builder;
 mod emission_cache;
 mod environment;
 mod from_gltf;
@@ -19,6 +20,7 @@ mod tex_coords;
 mod texture;
 
 pub use alpha::{Alpha, AlphaMode};
+pub use builder::SceneBuilder;
 pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
