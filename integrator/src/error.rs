@@ -3,6 +3,7 @@ use std::fmt;
 /// Why a render could not be set up or its output encoded. Each variant is one line naming
 /// the offending input.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum RenderError {
     /// A setting out of its range.
     Setting(String),

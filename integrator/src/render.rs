@@ -50,14 +50,7 @@ impl<'a> Renderer<'a> {
             .lights()
             .all()
             .iter()
-            .filter_map(|l| match l {
-                Light::Point { intensity: s, .. }
-                | Light::Spot { intensity: s, .. }
-                | Light::Directional { irradiance: s, .. }
-                | Light::Environment { radiance: s } => Some(s),
-                Light::EnvironmentMap { map } => Some(map.mean()),
-                Light::Triangle { .. } => None,
-            })
+            .filter_map(Light::spectrum)
             .chain(scene.emission_spectra())
             .collect();
         let closures: Vec<Box<dyn Fn(f64) -> f64 + '_>> = light_spectra

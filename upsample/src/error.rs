@@ -4,6 +4,7 @@ use std::fmt;
 
 /// Why an RGB colour could not be turned into a spectrum.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum UpsampleError {
     /// A component is NaN or infinite.
     NonFinite([f64; 3]),

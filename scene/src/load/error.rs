@@ -3,6 +3,7 @@ use std::fmt;
 /// Why a scene could not be loaded. Every variant names the problem in one line; the
 /// caller prefixes the file name.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum LoadError {
     /// Not valid glTF (JSON syntax, schema, GLB framing), as the gltf crate reports it.
     Invalid(String),

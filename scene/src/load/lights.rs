@@ -14,6 +14,7 @@ use super::LoadError;
 
 /// A light of the scene.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum LightDesc {
     /// The triangles of an emissive instance: `instance` indexes
     /// [`super::LoadedGeometry::instances`]; they emit from their front face only unless

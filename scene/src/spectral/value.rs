@@ -27,6 +27,7 @@ pub const IOR_FORMS: &str = "a number >= 1, \"glass:NAME\", {\"sellmeier\": {\"B
 
 /// What a spectrum is for: it decides how RGB is upsampled and which values are allowed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Role {
     /// A fraction of light (reflectance, absorption): values in [0, 1].
     Fraction,

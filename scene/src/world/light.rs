@@ -22,6 +22,7 @@ use crate::geometry::{
 
 /// One light.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum Light {
     /// An emissive triangle with radiance `emission` (index into the scene's emission
     /// spectra), from its front face (the side its counter-clockwise winding faces) only
@@ -72,6 +73,21 @@ pub enum Light {
         /// The image.
         map: Arc<EnvironmentMap>,
     },
+}
+
+impl Light {
+    /// The spectrum that sets the light's colour (an environment image's mean); None for
+    /// an emissive triangle, whose spectrum is the scene's emission spectrum it names.
+    pub fn spectrum(&self) -> Option<&SceneSpectrum> {
+        match self {
+            Light::Point { intensity: s, .. }
+            | Light::Spot { intensity: s, .. }
+            | Light::Directional { irradiance: s, .. }
+            | Light::Environment { radiance: s } => Some(s),
+            Light::EnvironmentMap { map } => Some(map.mean()),
+            Light::Triangle { .. } => None,
+        }
+    }
 }
 
 /// A light sample seen from a point.

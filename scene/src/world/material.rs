@@ -14,6 +14,7 @@ use crate::bsdf::{
 
 /// A surface's material, with spectral parameters not yet sampled.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum Material {
     /// Lambertian reflection.
     Diffuse {
@@ -305,6 +306,7 @@ impl Material {
 
 /// A BSDF at one hit, in the local frame whose z is the surface normal.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum Bsdf<'a, const N: usize> {
     /// Lambertian.
     Diffuse(Diffuse<N>),

@@ -12,6 +12,7 @@ use prism_upsample::RgbSpectrum;
 /// blackbody, times `scale`. One closed enum rather than a trait object so that sampling
 /// at a package of wavelengths is a match and a loop, with no dynamic dispatch per lane.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum SceneSpectrum {
     /// The same value at every wavelength.
     Constant(f64),

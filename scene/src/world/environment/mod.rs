@@ -33,6 +33,7 @@ pub fn grey_environment(value: f64) -> SceneSpectrum {
 
 /// What lights a scene from infinity.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum Environment {
     /// The same radiance from every direction.
     Uniform(SceneSpectrum),
