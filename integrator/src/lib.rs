@@ -1,4 +1,6 @@
-//! # prism-integrator
+#![doc = include_str!("../README.md")]
+//!
+//! ## In detail
 //!
 //! Renders a [`prism_scene::world::Scene`] by solving the rendering equation per
 //! wavelength: unidirectional path tracing with next-event estimation and multiple

@@ -1,4 +1,6 @@
-//! # prism-scene
+#![doc = include_str!("../README.md")]
+//!
+//! ## In detail
 //!
 //! The world prism renders: the geometry (rays, the watertight ray-triangle test, robust
 //! spawn offsets, a four-wide BVH collapsed from obvhs's binary one), glTF loading (`load`: node
