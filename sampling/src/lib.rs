@@ -1,4 +1,6 @@
-//! # prism-sampling
+#![doc = include_str!("../README.md")]
+//!
+//! ## In detail
 //!
 //! The Monte Carlo machinery of the prism spectral renderer, usable on its own: it knows
 //! nothing of scenes or spectrum types (wavelength data comes in as closures and tables),

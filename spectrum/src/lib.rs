@@ -1,4 +1,6 @@
-//! # prism-spectrum
+#![doc = include_str!("../README.md")]
+//!
+//! ## In detail
 //!
 //! Spectra and colorimetry for spectral rendering, usable on its own: the leaf crate of
 //! [prism](https://github.com/prism-render/prism), with no dependencies.

@@ -1,4 +1,6 @@
-//! # prism-upsample
+#![doc = include_str!("../README.md")]
+//!
+//! ## In detail
 //!
 //! RGB to smooth spectra with the model of W. Jakob and J. Hanika, "A low-dimensional
 //! function space for efficient spectral upsampling", Computer Graphics Forum 38(2), 2019:
