@@ -77,6 +77,14 @@ def sphere(centre, radius, rings=32, segments=64):
     return positions, normals, indices
 
 
+def uv_sphere(centre, radius, rings=48, segments=96):
+    """`sphere` with texture coordinates: (positions, normals, uvs, indices), u around the
+    axis, v from pole to pole (what MikkTSpace tangents need)."""
+    positions, normals, indices = sphere(centre, radius, rings, segments)
+    uvs = [(j / segments, i / rings) for i in range(rings + 1) for j in range(segments + 1)]
+    return positions, normals, uvs, indices
+
+
 def quaternion_mul(a, b):
     ax, ay, az, aw = a
     bx, by, bz, bw = b

@@ -25,8 +25,7 @@ root: python3 scenes/tools/make_effects.py
 
 import math
 
-from gltf_build import Document, box, facing, png, quad, sphere
-from make_materials import uv_sphere
+from gltf_build import Document, box, facing, png, quad, sphere, uv_sphere
 from make_prism import minimum_deviation_geometry, prism_solid
 
 BACK = -3.0

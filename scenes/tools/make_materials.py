@@ -13,35 +13,10 @@ Every sphere carries texture coordinates, so MikkTSpace tangents orient the anis
 Units are metres; y is up. Run from the repository root: python3 scenes/tools/make_materials.py
 """
 
-import math
 
-from gltf_build import Document, quad, png
+from gltf_build import Document, png, quad, uv_sphere
 
 RED = [0.6, 0.06, 0.04, 1.0]
-
-
-def uv_sphere(centre, radius, rings=48, segments=96):
-    """A UV sphere as (positions, normals, uvs, indices), wound outwards; u around the
-    axis, v from pole to pole."""
-    positions, normals, uvs = [], [], []
-    for i in range(rings + 1):
-        theta = math.pi * i / rings
-        for j in range(segments + 1):
-            phi = 2 * math.pi * j / segments
-            n = (math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi))
-            positions.append(tuple(centre[k] + radius * n[k] for k in range(3)))
-            normals.append(n)
-            uvs.append((j / segments, i / rings))
-    at = lambda i, j: i * (segments + 1) + j
-    indices = []
-    for i in range(rings):
-        for j in range(segments):
-            a, b, c, d = at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)
-            if i != rings - 1:
-                indices += [a, b, c]
-            if i != 0:
-                indices += [a, c, d]
-    return positions, normals, uvs, indices
 
 
 def base(rgba, metallic=0.0, roughness=0.5):
