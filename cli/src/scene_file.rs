@@ -47,11 +47,10 @@ pub fn load_with(
         let file = dir.join(uri);
         std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
     };
-    let options = LoadOptions {
-        scene,
-        overlay: overlay.as_ref(),
-        upsampling,
-    };
+    let options = LoadOptions::default()
+        .scene(scene)
+        .overlay(overlay.as_ref())
+        .upsampling(upsampling);
     let loaded =
         load_scene(&bytes, &resolve, &options).map_err(|e| format!("'{}': {e}", path.display()))?;
     for warning in &loaded.warnings {

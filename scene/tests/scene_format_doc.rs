@@ -35,10 +35,7 @@ fn load(doc: &Value, overlay: Option<&Overlay>) -> Result<LoadedGeometry, LoadEr
     load_scene(
         &bytes,
         &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        &LoadOptions {
-            overlay,
-            ..LoadOptions::default()
-        },
+        &LoadOptions::default().overlay(overlay),
     )
 }
 
@@ -122,10 +119,7 @@ fn the_repository_overlays_load() {
             let loaded = load_scene(
                 &bytes,
                 &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-                &LoadOptions {
-                    overlay: Some(&overlay),
-                    ..LoadOptions::default()
-                },
+                &LoadOptions::default().overlay(Some(&overlay)),
             )
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             Scene::from_loaded(loaded, &SceneOptions::default()).unwrap();

@@ -34,10 +34,7 @@ fn load(
             Some((_, text)) => Ok(text.clone().into_bytes()),
             None => std::fs::read(scenes_dir().join(uri)).map_err(|e| e.to_string()),
         },
-        &LoadOptions {
-            overlay: overlay.as_ref(),
-            ..LoadOptions::default()
-        },
+        &LoadOptions::default().overlay(overlay.as_ref()),
     )
 }
 

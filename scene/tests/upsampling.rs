@@ -9,10 +9,7 @@ fn cornell(upsampling: Upsampling) -> LoadedGeometry {
     load_scene(
         &bytes,
         &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        &LoadOptions {
-            upsampling,
-            ..LoadOptions::default()
-        },
+        &LoadOptions::default().upsampling(upsampling),
     )
     .unwrap()
 }
@@ -62,4 +59,46 @@ fn mode_names() {
             "{bad}"
         );
     }
+}
+
+fn vertex_colors(options: &LoadOptions) -> Result<LoadedGeometry, prism_scene::load::LoadError> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/assets");
+    let bytes = std::fs::read(dir.join("vertex-colors.gltf")).unwrap();
+    load_scene(
+        &bytes,
+        &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+        options,
+    )
+}
+
+#[test]
+fn tables_come_from_the_caller_else_the_crate_and_are_never_fitted_when_one_is_there() {
+    use prism_spectrum::color::RgbSpaceId;
+    use prism_upsample::{CoefficientTable, FitContext};
+    use std::sync::Arc;
+
+    let shipped = CoefficientTable::shipped(RgbSpaceId::Srgb).unwrap();
+    let loaded = vertex_colors(&LoadOptions::default()).unwrap();
+    assert!(Arc::ptr_eq(loaded.color_table.as_ref().unwrap(), &shipped));
+
+    let srgb = RgbSpaceId::Srgb;
+    let context = FitContext::new(srgb.space(), &srgb.illuminant()).unwrap();
+    let (mine, _) = CoefficientTable::fit(&context, 8, &|_| {}).unwrap();
+    let mine = Arc::new(mine);
+    let loaded = vertex_colors(&LoadOptions::default().table(Some(mine.clone()))).unwrap();
+    assert!(Arc::ptr_eq(loaded.color_table.as_ref().unwrap(), &mine));
+
+    // A table of another resolution than the mode names, or of another space, is refused.
+    let wrong_size = LoadOptions::default()
+        .table(Some(mine.clone()))
+        .upsampling(Upsampling::Table(16));
+    let message = vertex_colors(&wrong_size).unwrap_err().to_string();
+    assert!(message.contains("8^3") && message.contains("table16"), "{message}");
+    let p3 = RgbSpaceId::DisplayP3;
+    let p3_context = FitContext::new(p3.space(), &p3.illuminant()).unwrap();
+    let (other, _) = CoefficientTable::fit(&p3_context, 4, &|_| {}).unwrap();
+    let message = vertex_colors(&LoadOptions::default().table(Some(Arc::new(other))))
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("not linear sRGB"), "{message}");
 }

@@ -60,6 +60,8 @@ pub use fit::{Fit, FitContext, denormalize, normalize};
 pub use model::{SigmoidPolynomial, inverse_sigmoid};
 pub use rgb::{RgbKind, RgbSpectrum, normalized_illuminant};
 pub use table::{CoefficientTable, FitStatistics};
+mod shipped;
 mod table_file;
+pub use shipped::SHIPPED_RESOLUTION;
 pub use table::TableSpace;
 pub use table_file::FORMAT_VERSION;

@@ -120,14 +120,6 @@ fn sampler_name(s: LambdaSampler) -> &'static str {
     }
 }
 
-fn upsampling_name(u: Upsampling) -> String {
-    match u {
-        Upsampling::Exact => "exact".into(),
-        Upsampling::Table(r) => format!("table{r}"),
-        Upsampling::Refined(r) => format!("refined{r}"),
-    }
-}
-
 /// The sweeps: (sweep, setting, knobs without spp).
 fn sweeps() -> Vec<(&'static str, String, Knobs)> {
     let mut out = Vec::new();
@@ -165,7 +157,7 @@ fn sweeps() -> Vec<(&'static str, String, Knobs)> {
     ] {
         out.push((
             "upsampling",
-            upsampling_name(u),
+            u.name(),
             Knobs {
                 upsampling: u,
                 ..DEFAULT_KNOBS

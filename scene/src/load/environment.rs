@@ -133,7 +133,7 @@ pub fn environment_map(
     strength: f64,
 ) -> Result<Arc<EnvironmentMap>, LoadError> {
     let image = decode_hdr_image(bytes).map_err(LoadError::Scene)?;
-    let upsampler = Upsampler::new(Upsampling::Exact)?;
+    let upsampler = Upsampler::new(Upsampling::Exact, None)?;
     upsampler
         .environment_map(EnvironmentImage {
             image,

@@ -131,8 +131,18 @@ pub fn load_geometry(
     )
 }
 
-/// Choices made while loading.
-#[derive(Debug, Clone, Copy, Default)]
+/// Choices made while loading: start from the default and change what you need (the
+/// struct is `#[non_exhaustive]`, so options can be added without breaking callers).
+///
+/// ```
+/// use prism_scene::load::{LoadOptions, Upsampling};
+///
+/// let options = LoadOptions::default().scene(Some(0)).upsampling(Upsampling::Table(32));
+/// assert_eq!(options.scene, Some(0));
+/// assert!(options.table.is_none()); // the table prism-upsample ships is used
+/// ```
+#[derive(Debug, Clone, Default)]
+#[non_exhaustive]
 pub struct LoadOptions<'a> {
     /// The glTF scene to load (default: the file's default scene, else scene 0).
     pub scene: Option<usize>,
@@ -140,6 +150,40 @@ pub struct LoadOptions<'a> {
     pub overlay: Option<&'a Overlay>,
     /// How constant RGB colours become spectra.
     pub upsampling: super::Upsampling,
+    /// A linear sRGB coefficient table to use for textures, vertex colours and the
+    /// table modes, instead of the one prism-upsample ships (or, without its
+    /// `srgb-table` feature or at another resolution, fits on first use). It must be
+    /// for linear sRGB, and of the resolution `upsampling` names if it names one.
+    pub table: Option<std::sync::Arc<prism_upsample::CoefficientTable>>,
+}
+
+impl<'a> LoadOptions<'a> {
+    /// With [`LoadOptions::scene`] set.
+    pub fn scene(mut self, scene: Option<usize>) -> Self {
+        self.scene = scene;
+        self
+    }
+
+    /// With [`LoadOptions::overlay`] set.
+    pub fn overlay(mut self, overlay: Option<&'a Overlay>) -> Self {
+        self.overlay = overlay;
+        self
+    }
+
+    /// With [`LoadOptions::upsampling`] set.
+    pub fn upsampling(mut self, upsampling: super::Upsampling) -> Self {
+        self.upsampling = upsampling;
+        self
+    }
+
+    /// With [`LoadOptions::table`] set.
+    pub fn table(
+        mut self,
+        table: Option<std::sync::Arc<prism_upsample::CoefficientTable>>,
+    ) -> Self {
+        self.table = table;
+        self
+    }
 }
 
 /// [`load_geometry`] with options: an optional TOML overlay applied to the document first
@@ -234,7 +278,7 @@ pub fn load_scene(
     let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
     let root_spectral = gltf.extension_value(spectral::EXTENSION);
     let upsampler = (gltf.materials().len() > 0 || has_lights || root_spectral.is_some())
-        .then(|| Upsampler::new(options.upsampling))
+        .then(|| Upsampler::new(options.upsampling, options.table.clone()))
         .transpose()?;
     // The raw `PRISM_spectral` of each punctual light (the gltf crate keeps light
     // extensions as raw JSON).
@@ -345,7 +389,7 @@ pub fn load_scene(
     if !out.colors.is_empty() {
         let fitted = match &upsampler {
             Some(u) => u.table(),
-            None => Upsampler::new(options.upsampling)?.table(),
+            None => Upsampler::new(options.upsampling, options.table.clone())?.table(),
         };
         out.color_table = Some(fitted.map_err(LoadError::Scene)?);
     }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::spectra::DenselySampled;
-use prism_upsample::{FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
+use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
 use crate::spectral::{self, SpectralMaterial};
@@ -185,6 +185,15 @@ impl Upsampling {
         }
     }
 
+    /// The name [`Upsampling::from_name`] reads.
+    pub fn name(self) -> String {
+        match self {
+            Upsampling::Exact => "exact".into(),
+            Upsampling::Table(r) => format!("table{r}"),
+            Upsampling::Refined(r) => format!("refined{r}"),
+        }
+    }
+
     /// The table resolution this mode uses, if any.
     fn resolution(self) -> Option<usize> {
         match self {
@@ -194,33 +203,66 @@ impl Upsampling {
     }
 }
 
-/// The table textures use when the mode names none: 32^3 fits in about 0.6 s on two
-/// cores and stays within 1% of exact fits' error in rendered images, where 16^3 does
-/// not (docs/trade-offs.md).
-const TEXTURE_TABLE_RESOLUTION: usize = 32;
+/// The table textures use when the mode names none: 32^3 stays within 1% of exact fits'
+/// error in rendered images, where 16^3 does not (docs/trade-offs.md), and it is the
+/// resolution prism-upsample ships, so it costs no fitting.
+const TEXTURE_TABLE_RESOLUTION: usize = prism_upsample::SHIPPED_RESOLUTION;
 
 /// Everything upsampling needs, built once per load: glTF colours are linear sRGB.
 pub(crate) struct Upsampler {
     pub(crate) context: Arc<FitContext>,
     pub(crate) illuminant: Arc<DenselySampled>,
     mode: Upsampling,
-    table: std::cell::OnceCell<Arc<prism_upsample::CoefficientTable>>,
+    /// The caller's table ([`super::LoadOptions::table`]), used when it fits the mode.
+    given: Option<Arc<CoefficientTable>>,
+    table: std::cell::OnceCell<Arc<CoefficientTable>>,
 }
 
 impl Upsampler {
-    /// The coefficient table of the mode's resolution (or the texture default), fitted
-    /// on first use.
-    pub(crate) fn table(&self) -> Result<Arc<prism_upsample::CoefficientTable>, String> {
+    /// The coefficient table of the mode's resolution (or the texture default): the
+    /// caller's, else the one prism-upsample ships, else fitted on first use.
+    pub(crate) fn table(&self) -> Result<Arc<CoefficientTable>, String> {
         if let Some(t) = self.table.get() {
             return Ok(t.clone());
         }
-        let resolution = self.mode.resolution().unwrap_or(TEXTURE_TABLE_RESOLUTION);
-        let (table, _) = prism_upsample::CoefficientTable::fit(&self.context, resolution, &|_| {})
-            .map_err(|e| format!("fitting the sRGB upsampling table: {e}"))?;
-        Ok(self.table.get_or_init(|| Arc::new(table)).clone())
+        let table = match (&self.given, self.mode.resolution()) {
+            (Some(given), wanted) => {
+                if !given.space().matches(&self.context) {
+                    return Err(format!(
+                        "the coefficient table given is for '{}', not linear sRGB",
+                        given.space().name
+                    ));
+                }
+                if let Some(r) = wanted.filter(|r| *r != given.resolution()) {
+                    return Err(format!(
+                        "the coefficient table given is {0}^3; upsampling {1} needs {r}^3",
+                        given.resolution(),
+                        self.mode.name()
+                    ));
+                }
+                given.clone()
+            }
+            (None, wanted) => {
+                let resolution = wanted.unwrap_or(TEXTURE_TABLE_RESOLUTION);
+                match CoefficientTable::shipped(RgbSpaceId::Srgb)
+                    .filter(|t| t.resolution() == resolution)
+                {
+                    Some(shipped) => shipped,
+                    None => Arc::new(
+                        CoefficientTable::fit(&self.context, resolution, &|_| {})
+                            .map_err(|e| format!("fitting the sRGB upsampling table: {e}"))?
+                            .0,
+                    ),
+                }
+            }
+        };
+        Ok(self.table.get_or_init(|| table).clone())
     }
 
-    pub(crate) fn new(mode: Upsampling) -> Result<Self, LoadError> {
+    pub(crate) fn new(
+        mode: Upsampling,
+        given: Option<Arc<CoefficientTable>>,
+    ) -> Result<Self, LoadError> {
         let id = RgbSpaceId::Srgb;
         let to_error = |e: prism_upsample::UpsampleError| {
             LoadError::Geometry(format!("upsampling setup: {e}"))
@@ -229,6 +271,7 @@ impl Upsampler {
             context: Arc::new(FitContext::new(id.space(), &id.illuminant()).map_err(to_error)?),
             illuminant: normalized_illuminant(&id.illuminant()).map_err(to_error)?,
             mode,
+            given,
             table: std::cell::OnceCell::new(),
         })
     }

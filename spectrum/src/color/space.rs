@@ -87,6 +87,19 @@ impl RgbColorSpace {
     }
 
     /// Linear RGB of `xyz` (no chromatic adaptation: XYZ is taken as absolute).
+    ///
+    /// ```
+    /// use prism_spectrum::color::RgbSpaceId;
+    ///
+    /// let srgb = RgbSpaceId::Srgb.space();
+    /// // The white maps to RGB (1, 1, 1); a round trip returns what went in.
+    /// let white = srgb.xyz_to_rgb(srgb.white().xyz());
+    /// assert!(white.iter().all(|c| (c - 1.0).abs() < 1e-12));
+    /// let back = srgb.xyz_to_rgb(srgb.rgb_to_xyz([0.2, 0.5, 0.8]));
+    /// assert!((back[1] - 0.5).abs() < 1e-12);
+    /// // Encoded for display with the space's transfer function.
+    /// assert!((srgb.transfer().encode(0.5) - 0.7354).abs() < 1e-4);
+    /// ```
     pub fn xyz_to_rgb(&self, xyz: Xyz) -> [f64; 3] {
         self.xyz_to_rgb.apply(xyz.to_array())
     }

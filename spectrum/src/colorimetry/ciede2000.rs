@@ -13,6 +13,16 @@ const COMPONENT_LIMIT: f64 = 1e100;
 /// finite inputs: achromatic colours (C' = 0) take hue 0 as the paper prescribes, the hue
 /// mean and difference follow its discontinuity rules, components with magnitude above
 /// 1e100 are clamped, and NaN components are treated as 0.
+///
+/// ```
+/// use prism_spectrum::colorimetry::{ciede2000, Lab};
+///
+/// // The first pair of Sharma, Wu and Dalal's Table 1.
+/// let first = Lab { l: 50.0, a: 2.6772, b: -79.7751 };
+/// let second = Lab { l: 50.0, a: 0.0, b: -82.7485 };
+/// assert!((ciede2000(first, second) - 2.0425).abs() < 1e-4);
+/// assert_eq!(ciede2000(first, second), ciede2000(second, first));
+/// ```
 pub fn ciede2000(first: Lab, second: Lab) -> f64 {
     let sanitize = |lab: Lab| {
         let c = |v: f64| {

@@ -3,6 +3,24 @@ use crate::error::SpectrumError;
 
 /// A reference white: XYZ with Y = 1 and X, Z positive. The type guarantees what CIELAB
 /// and chromatic adaptation divide by is never zero.
+///
+/// ```
+/// use prism_spectrum::color::RgbSpaceId;
+/// use prism_spectrum::colorimetry::{emission_xyz, Lab, Observer, WhitePoint, Xyz};
+/// use prism_spectrum::illuminant::StandardIlluminant;
+///
+/// // sRGB's white is the rounded D65 of the standards...
+/// assert_eq!(RgbSpaceId::Srgb.space().white(), WhitePoint::D65);
+/// // ...which is not quite the white of the CIE D65 spectrum.
+/// let spectral = WhitePoint::from_xyz(emission_xyz(
+///     &StandardIlluminant::D65.spectrum(),
+///     Observer::Cie1931,
+/// ))?;
+/// let grey = Xyz::new(0.2, 0.2, 0.2);
+/// let (a, b) = (Lab::from_xyz(grey, WhitePoint::D65), Lab::from_xyz(grey, spectral));
+/// assert!((a.a - b.a).abs() > 1e-3 && (a.a - b.a).abs() < 0.05);
+/// # Ok::<(), prism_spectrum::SpectrumError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WhitePoint {
     xyz: Xyz,
@@ -10,6 +28,30 @@ pub struct WhitePoint {
 }
 
 impl WhitePoint {
+    /// CIE D65 as the RGB standards round it, xy (0.3127, 0.3290): the white of sRGB,
+    /// Rec.709, Display P3, Rec.2020 and Adobe RGB, so it is what
+    /// `RgbSpaceId::Srgb.space().white()` returns. The CIE D65 *spectrum* integrates to
+    /// (0.31272, 0.32903); the two whites give CIELAB values that differ by about 0.01,
+    /// so use the space's white when comparing with RGB tools and
+    /// [`WhitePoint::from_xyz`] of the spectrum when comparing with spectral ones.
+    pub const D65: WhitePoint = WhitePoint::from_xy_const(0.3127, 0.3290);
+    /// CIE D50 as ICC profiles and ProPhoto RGB round it, xy (0.3457, 0.3585).
+    pub const D50: WhitePoint = WhitePoint::from_xy_const(0.3457, 0.3585);
+    /// The equal-energy white E, xy (1/3, 1/3).
+    pub const E: WhitePoint = WhitePoint::from_xy_const(1.0 / 3.0, 1.0 / 3.0);
+    /// The ACES white (SMPTE ST 2065-1), xy (0.32168, 0.33767).
+    pub const ACES: WhitePoint = WhitePoint::from_xy_const(0.32168, 0.33767);
+    /// The DCI theatrical white (SMPTE RP 431-2), xy (0.314, 0.351).
+    pub const DCI: WhitePoint = WhitePoint::from_xy_const(0.314, 0.351);
+
+    /// For the named constants, whose chromaticities are valid by inspection.
+    const fn from_xy_const(x: f64, y: f64) -> Self {
+        Self {
+            xyz: Xyz::new(x / y, 1.0, (1.0 - x - y) / y),
+            xy: Chromaticity::new(x, y),
+        }
+    }
+
     /// The white with chromaticity `xy` (needs x > 0, y > 0, x + y < 1, all finite).
     pub fn from_xy(xy: Chromaticity) -> Result<Self, SpectrumError> {
         let ok = xy.x.is_finite() && xy.y.is_finite() && xy.x > 0.0 && xy.y > 0.0;
@@ -102,5 +144,23 @@ impl Lab {
     /// Chroma C*ab.
     pub fn chroma(self) -> f64 {
         self.a.hypot(self.b)
+    }
+}
+
+#[cfg(test)]
+mod named_whites {
+    use super::{Chromaticity, WhitePoint};
+
+    #[test]
+    fn constants_equal_the_validated_constructor() {
+        for (named, x, y) in [
+            (WhitePoint::D65, 0.3127, 0.3290),
+            (WhitePoint::D50, 0.3457, 0.3585),
+            (WhitePoint::E, 1.0 / 3.0, 1.0 / 3.0),
+            (WhitePoint::ACES, 0.32168, 0.33767),
+            (WhitePoint::DCI, 0.314, 0.351),
+        ] {
+            assert_eq!(named, WhitePoint::from_xy(Chromaticity::new(x, y)).unwrap());
+        }
     }
 }

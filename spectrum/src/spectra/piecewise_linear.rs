@@ -94,6 +94,19 @@ impl PiecewiseLinear {
     /// a comma, semicolon, tab or spaces; blank lines and lines starting with `#` are
     /// skipped, and so are lines before the first data row that do not start with a number
     /// (headers).
+    ///
+    /// ```
+    /// use prism_spectrum::spectra::{Extrapolation, PiecewiseLinear};
+    /// use prism_spectrum::Spectrum;
+    ///
+    /// let csv = "wavelength,reflectance\n400,0.1\n500,0.3\n700,0.9\n";
+    /// let red = PiecewiseLinear::from_csv_str(csv, Extrapolation::Clamp)?;
+    /// assert!((red.evaluate(450.0) - 0.2).abs() < 1e-12);
+    /// assert_eq!(red.evaluate(800.0), 0.9);
+    /// // Rows out of order are an error naming them, not a silently wrong spectrum.
+    /// assert!(PiecewiseLinear::from_csv_str("500,1\n400,1\n", Extrapolation::Zero).is_err());
+    /// # Ok::<(), prism_spectrum::SpectrumError>(())
+    /// ```
     pub fn from_csv_str(text: &str, extrapolation: Extrapolation) -> Result<Self, SpectrumError> {
         let mut lambdas = Vec::new();
         let mut values = Vec::new();
