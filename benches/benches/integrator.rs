@@ -13,12 +13,8 @@ use prism_scene::world::Scene;
 fn scene(name: &str) -> Scene {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let bytes = std::fs::read(dir.join(name)).expect("the scene file");
-    let loaded = load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
-    .expect("the scene loads");
+    let loaded =
+        load_geometry(&bytes, &|uri| std::fs::read(dir.join(uri)), None).expect("the scene loads");
     Scene::from_loaded(loaded, &Default::default()).expect("the scene builds")
 }
 

@@ -16,13 +16,9 @@ use prism_scene::load::load_geometry;
 fn triangles(scene: &str) -> Vec<[Vec3; 3]> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let bytes = std::fs::read(dir.join(scene)).expect("the scene is in scenes/");
-    load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
-    .expect("the scene loads")
-    .triangles
+    load_geometry(&bytes, &|uri| std::fs::read(dir.join(uri)), None)
+        .expect("the scene loads")
+        .triangles
 }
 
 /// Uniform numbers in [0, 1) from a xorshift generator seeded with `seed`.

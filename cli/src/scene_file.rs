@@ -43,10 +43,7 @@ pub fn load_with(
     };
     let bytes = read(&gltf_path)?;
     let dir = gltf_path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let resolve = move |uri: &str| {
-        let file = dir.join(uri);
-        std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
-    };
+    let resolve = move |uri: &str| std::fs::read(dir.join(uri));
     let options = LoadOptions::default()
         .scene(scene)
         .overlay(overlay.as_ref())

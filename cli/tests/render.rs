@@ -333,11 +333,11 @@ fn compare_measures_and_thresholds() {
         (&["compare", &path("a.exr"), &path("none.exr")], "none.exr"),
         (
             &["compare", &path("a.png"), &path("a.exr")],
-            "a.png': image encoding: EXR: not an OpenEXR file",
+            "a.png': cannot read: not an OpenEXR file",
         ),
         (
             &["merge", &path("a.png"), "-o", &path("merged.exr")],
-            "not a prism accumulation file: not an OpenEXR file",
+            "cannot read: not a prism accumulation file: not an OpenEXR file",
         ),
         (
             &[

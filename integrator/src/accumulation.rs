@@ -162,7 +162,7 @@ pub fn encode_accumulation(
     image
         .write()
         .to_buffered(&mut bytes)
-        .map_err(|e| RenderError::Encode(format!("accumulation EXR: {e}")))?;
+        .map_err(|e| RenderError::exr_encode("accumulation EXR", e))?;
     Ok(bytes.into_inner())
 }
 
@@ -175,8 +175,17 @@ fn fact<'a>(facts: &'a str, key: &str) -> Option<&'a str> {
 /// Reads an accumulation file. Errors (never panics) on anything that is not one: another
 /// EXR, a truncated or corrupted file, missing channels or facts, non-finite sums.
 pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
-    let bad = |m: String| RenderError::Encode(format!("not a prism accumulation file: {m}"));
-    let image = read_flat(bytes).map_err(bad)?;
+    let bad = |m: String| RenderError::Decode {
+        reason: format!("not a prism accumulation file: {m}"),
+        source: None,
+    };
+    let image = read_flat(bytes).map_err(|e| match e {
+        RenderError::Decode { reason, source } => RenderError::Decode {
+            reason: format!("not a prism accumulation file: {reason}"),
+            source,
+        },
+        other => other,
+    })?;
     // Written as an image attribute; a reader may file it under the (only) layer.
     let key = Text::from(FACTS);
     let stored =
@@ -321,7 +330,7 @@ pub fn merge_accumulations(parts: &[Accumulation]) -> Result<Accumulation, Rende
     order.sort_by_key(|p| p.samples.start);
     let mut film = first.film.black_like();
     for part in order {
-        film.merge(&part.film).map_err(RenderError::Setting)?;
+        film.merge(&part.film)?;
     }
     Ok(Accumulation {
         film,

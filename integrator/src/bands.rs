@@ -12,6 +12,16 @@ pub struct SpectralBands {
 
 impl SpectralBands {
     /// Bands over `[min, max)`: 1 to 4096 of them, 0 < min < max, finite.
+    ///
+    /// ```
+    /// use prism_integrator::SpectralBands;
+    ///
+    /// let bands = SpectralBands::new(400.0, 700.0, 30)?;
+    /// assert_eq!(bands.range(), (400.0, 700.0));
+    /// assert!(SpectralBands::new(700.0, 400.0, 30).is_err());
+    /// assert!(SpectralBands::new(400.0, 700.0, 0).is_err());
+    /// # Ok::<(), prism_integrator::RenderError>(())
+    /// ```
     pub fn new(min: f32, max: f32, count: usize) -> Result<Self, RenderError> {
         if !(min.is_finite() && max.is_finite() && min > 0.0 && min < max) {
             return Err(RenderError::Setting(format!(

@@ -21,11 +21,14 @@ pub struct ChannelImage {
 pub(crate) type FlatImage = Image<Layer<AnyChannels<FlatSamples>>>;
 
 /// Reads an EXR's first valid layer from bytes: every channel as stored, all attributes.
-pub(crate) fn read_flat(bytes: &[u8]) -> Result<FlatImage, String> {
+pub(crate) fn read_flat(bytes: &[u8]) -> Result<FlatImage, RenderError> {
     // OpenEXR's magic number first: the reader's own complaint ("file identifier
     // missing") would not say that a PNG, say, is the wrong kind of file.
     if !bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
-        return Err("not an OpenEXR file".into());
+        return Err(RenderError::Decode {
+            reason: "not an OpenEXR file".into(),
+            source: None,
+        });
     }
     read()
         .no_deep_data()
@@ -34,12 +37,15 @@ pub(crate) fn read_flat(bytes: &[u8]) -> Result<FlatImage, String> {
         .first_valid_layer()
         .all_attributes()
         .from_buffered(Cursor::new(bytes))
-        .map_err(|e| e.to_string())
+        .map_err(|e| RenderError::Decode {
+            reason: format!("EXR: {e}"),
+            source: Some(std::sync::Arc::new(e)),
+        })
 }
 
 /// Reads every channel of an EXR's first layer as f32 (f16 and u32 samples converted).
 pub fn decode_exr(bytes: &[u8]) -> Result<ChannelImage, RenderError> {
-    let image = read_flat(bytes).map_err(|e| RenderError::Encode(format!("EXR: {e}")))?;
+    let image = read_flat(bytes)?;
     let layer = image.layer_data;
     let channels = layer
         .channel_data

@@ -322,12 +322,39 @@ impl Film {
     }
 
     /// Adds another film of the same size (sample ranges rendered apart).
-    pub fn merge(&mut self, other: &Film) -> Result<(), String> {
+    ///
+    /// ```
+    /// # use prism_integrator::glam::Vec3;
+    /// # use prism_integrator::prism_scene::camera::Camera;
+    /// # use prism_integrator::prism_scene::world::{Material, SceneBuilder, SceneSpectrum};
+    /// # let v = Vec3::new;
+    /// # let mut builder = SceneBuilder::new(Camera::look_at(v(0.0, 1.0, 3.0), Vec3::ZERO, Vec3::Y, 0.8));
+    /// # let grey = builder.material(Material::Diffuse { reflectance: SceneSpectrum::Constant(0.5) });
+    /// # builder.triangles(&[[v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0)], [v(-2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]], grey);
+    /// # builder.emitter(&[[v(-0.5, 2.0, -0.5), v(0.5, 2.0, -0.5), v(0.5, 2.0, 0.5)]], SceneSpectrum::Constant(1.0), false);
+    /// # let scene = builder.build().unwrap();
+    /// use prism_integrator::{render, RenderSettings};
+    ///
+    /// // Samples 0..8 rendered in two halves (on two machines, say) and merged are the
+    /// // image of samples 0..8 rendered at once.
+    /// let half = |samples| RenderSettings { width: 8, height: 6, samples, ..RenderSettings::default() };
+    /// let (mut film, _) = render(&scene, &half(0..4))?;
+    /// film.merge(&render(&scene, &half(4..8))?.0)?;
+    /// let (whole, _) = render(&scene, &half(0..8))?;
+    /// assert_eq!(film.samples(), whole.samples());
+    /// let (a, b) = (film.xyz(4, 5).y, whole.xyz(4, 5).y);
+    /// assert!(b > 0.0 && (a - b).abs() <= 1e-9 * b);
+    /// // Films of different sizes do not add up.
+    /// let small = render(&scene, &RenderSettings { width: 4, ..half(0..1) })?.0;
+    /// assert!(film.merge(&small).is_err());
+    /// # Ok::<(), prism_integrator::RenderError>(())
+    /// ```
+    pub fn merge(&mut self, other: &Film) -> Result<(), crate::RenderError> {
         if (self.width, self.height) != (other.width, other.height) {
-            return Err(format!(
+            return Err(crate::RenderError::Merge(format!(
                 "film sizes differ: {}x{} and {}x{}",
                 self.width, self.height, other.width, other.height
-            ));
+            )));
         }
         match (&mut self.spectral, &other.spectral) {
             (Some((mine, a)), Some((theirs, b))) if mine == theirs => {
@@ -336,10 +363,16 @@ impl Film {
                 }
             }
             (None, None) => {}
-            _ => return Err("films differ in their spectral bands".into()),
+            _ => {
+                return Err(crate::RenderError::Merge(
+                    "films differ in their spectral bands".into(),
+                ));
+            }
         }
         if self.raw != other.raw {
-            return Err("one film holds a camera's raw channels and the other XYZ".into());
+            return Err(crate::RenderError::Merge(
+                "one film holds a camera's raw channels and the other XYZ".into(),
+            ));
         }
         match (&mut self.energy, &other.energy) {
             (Some(a), Some(b)) => {
@@ -349,7 +382,11 @@ impl Film {
                 }
             }
             (None, None) => {}
-            _ => return Err("one film records energy and the other does not".into()),
+            _ => {
+                return Err(crate::RenderError::Merge(
+                    "one film records energy and the other does not".into(),
+                ));
+            }
         }
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
             for (acc, v) in a.iter_mut().zip(b) {

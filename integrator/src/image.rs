@@ -40,6 +40,32 @@ pub struct ExrMetadata {
 /// prism's facts (`spp=N;...`) go in the typed `comments` attribute: the exr crate keeps
 /// other attributes in a HashMap whose order changes per process, so each of its maps holds
 /// at most one entry and the file's bytes stay a function of the image.
+///
+/// ```
+/// # use prism_integrator::glam::Vec3;
+/// # use prism_integrator::prism_scene::camera::Camera;
+/// # use prism_integrator::prism_scene::world::{Material, SceneBuilder, SceneSpectrum};
+/// # let v = Vec3::new;
+/// # let mut builder = SceneBuilder::new(Camera::look_at(v(0.0, 1.0, 3.0), Vec3::ZERO, Vec3::Y, 0.8));
+/// # let grey = builder.material(Material::Diffuse { reflectance: SceneSpectrum::Constant(0.5) });
+/// # builder.triangles(&[[v(-2.0, 0.0, 2.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, -2.0)], [v(-2.0, 0.0, 2.0), v(2.0, 0.0, -2.0), v(-2.0, 0.0, -2.0)]], grey);
+/// # builder.emitter(&[[v(-0.5, 2.0, -0.5), v(0.5, 2.0, -0.5), v(0.5, 2.0, 0.5)]], SceneSpectrum::Constant(1.0), false);
+/// # let scene = builder.build().unwrap();
+/// use prism_integrator::{compare_images, decode_exr, encode_exr, render, ExrMetadata, RenderSettings};
+/// use prism_spectrum::color::RgbSpaceId;
+///
+/// let settings = RenderSettings { width: 8, height: 6, samples: 0..4, ..RenderSettings::default() };
+/// let (film, _) = render(&scene, &settings)?;
+/// let metadata = ExrMetadata { spp: 4, ..ExrMetadata::default() };
+/// let bytes = encode_exr(&film, RgbSpaceId::Srgb.space(), &metadata)?;
+/// let image = decode_exr(&bytes)?;
+/// assert_eq!((image.width, image.height), (8, 6));
+/// assert!(["R", "G", "B", "A"].iter().all(|c| image.channels.iter().any(|(n, _)| n == c)));
+/// // An image compared with itself has no error.
+/// let same = compare_images(&image, &image)?;
+/// assert!(same.relmse == 0.0);
+/// # Ok::<(), prism_integrator::RenderError>(())
+/// ```
 pub fn encode_exr(
     film: &Film,
     space: &RgbColorSpace,
@@ -131,7 +157,7 @@ pub fn encode_exr(
     image
         .write()
         .to_buffered(&mut bytes)
-        .map_err(|e| RenderError::Encode(format!("EXR: {e}")))?;
+        .map_err(|e| RenderError::exr_encode("EXR", e))?;
     Ok(bytes.into_inner())
 }
 

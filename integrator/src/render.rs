@@ -233,7 +233,7 @@ impl<'a> Renderer<'a> {
         let count = samples.end.saturating_sub(samples.start);
         let nonfinite = nonfinite.into_inner();
         pass.finish_pass(count, nonfinite);
-        film.merge(&pass).map_err(RenderError::Setting)?;
+        film.merge(&pass)?;
         Ok(Some(RenderStats {
             paths: count * u64::from(settings.width) * u64::from(settings.height),
             rays: rays.into_inner(),

@@ -123,6 +123,17 @@ pub const MAX_THREADS: usize = 1024;
 
 impl RenderSettings {
     /// Checks every setting, naming the first one out of range.
+    ///
+    /// ```
+    /// use prism_integrator::RenderSettings;
+    ///
+    /// let defaults = RenderSettings::default();
+    /// assert_eq!((defaults.width, defaults.height, defaults.samples.clone()), (512, 512, 0..64));
+    /// assert_eq!((defaults.wavelengths, defaults.max_depth, defaults.light_paths), (8, None, true));
+    /// assert!(defaults.validate().is_ok());
+    /// let empty = RenderSettings { samples: 5..5, ..RenderSettings::default() };
+    /// assert!(empty.validate().unwrap_err().to_string().contains("sample"));
+    /// ```
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |m: String| Err(RenderError::Setting(m));
         if self.width == 0 || self.height == 0 {

@@ -53,3 +53,5 @@ pub mod warp;
 pub mod wavelength;
 
 pub use error::SamplingError;
+/// glam, whose vectors are in this crate's public API (warps take and return them).
+pub use glam;

@@ -4,6 +4,15 @@
 /// The balance heuristic weight of technique f (`nf` samples of density `f_pdf`) against
 /// technique g: nf f / (nf f + ng g). An infinite `f_pdf` (a delta) gets weight 1;
 /// both densities zero gives 0.
+///
+/// ```
+/// use prism_sampling::mis::balance_heuristic;
+///
+/// // One light sample and one BSDF sample: the weights of the two sum to 1.
+/// let (light, bsdf) = (balance_heuristic(1, 2.0, 1, 6.0), balance_heuristic(1, 6.0, 1, 2.0));
+/// assert_eq!((light, bsdf), (0.25, 0.75));
+/// assert_eq!(balance_heuristic(1, f32::INFINITY, 1, 6.0), 1.0);
+/// ```
 pub fn balance_heuristic(nf: u32, f_pdf: f32, ng: u32, g_pdf: f32) -> f32 {
     weight(nf as f32 * f_pdf, ng as f32 * g_pdf)
 }

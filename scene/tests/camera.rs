@@ -8,12 +8,7 @@ use prism_scene::load::load_geometry;
 fn cornell() -> prism_scene::load::LoadedGeometry {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let bytes = std::fs::read(dir.join("cornell-box.gltf")).unwrap();
-    load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
-    .unwrap()
+    load_geometry(&bytes, &|uri| std::fs::read(dir.join(uri)), None).unwrap()
 }
 
 #[test]

@@ -12,11 +12,7 @@ fn scenes_dir() -> std::path::PathBuf {
 fn load_file(name: &str) -> Result<LoadedGeometry, LoadError> {
     let dir = scenes_dir();
     let bytes = std::fs::read(dir.join(name)).unwrap();
-    load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
+    load_geometry(&bytes, &|uri| std::fs::read(dir.join(uri)), None)
 }
 
 fn load_json(doc: &Value, bin: &[u8]) -> Result<LoadedGeometry, LoadError> {
@@ -324,12 +320,25 @@ fn broken_files_are_clear_errors() {
     assert!(e.contains("not finite") || e.contains("invalid"), "{e}");
     // A missing external buffer names the URI.
     let text = serde_json::to_vec(&base).unwrap();
-    let e = load_geometry(&text, &|uri| Err(format!("cannot read '{uri}'")), None)
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("cornell-box.bin"), "{e}");
+    let missing = |_: &str| Err(std::io::Error::from(std::io::ErrorKind::NotFound));
+    let e = load_geometry(&text, &missing, None).unwrap_err();
+    assert!(e.to_string().contains("cornell-box.bin"), "{e}");
+    // The resolver's error is the cause, for callers that look.
+    let cause = std::error::Error::source(&e).expect("an I/O error as the source");
+    let io = cause.downcast_ref::<std::io::Error>().unwrap();
+    assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
+    assert!(
+        matches!(e, prism_scene::load::LoadError::Resource { ref uri, .. } if uri == "cornell-box.bin")
+    );
     // Garbage bytes.
-    assert!(load_geometry(b"\x00\x01garbage", &|_| Err(String::new()), None).is_err());
+    assert!(
+        load_geometry(
+            b"\x00\x01garbage",
+            &|_| Err(std::io::Error::other("none")),
+            None
+        )
+        .is_err()
+    );
 }
 
 /// Materials become spectra at load time: reflectances by exact fits of the constant

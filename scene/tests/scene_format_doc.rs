@@ -34,7 +34,7 @@ fn load(doc: &Value, overlay: Option<&Overlay>) -> Result<LoadedGeometry, LoadEr
     let dir = scenes_dir();
     load_scene(
         &bytes,
-        &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+        &move |uri| std::fs::read(dir.join(uri)),
         &LoadOptions::default().overlay(overlay),
     )
 }
@@ -118,7 +118,7 @@ fn the_repository_overlays_load() {
             let dir = scenes_dir();
             let loaded = load_scene(
                 &bytes,
-                &move |uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
+                &move |uri| std::fs::read(dir.join(uri)),
                 &LoadOptions::default().overlay(Some(&overlay)),
             )
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

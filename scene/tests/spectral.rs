@@ -32,7 +32,7 @@ fn load(
         &bytes,
         &move |uri| match files.iter().find(|(n, _)| n == uri) {
             Some((_, text)) => Ok(text.clone().into_bytes()),
-            None => std::fs::read(scenes_dir().join(uri)).map_err(|e| e.to_string()),
+            None => std::fs::read(scenes_dir().join(uri)),
         },
         &LoadOptions::default().overlay(overlay.as_ref()),
     )

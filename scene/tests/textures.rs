@@ -140,7 +140,7 @@ fn broken_images_are_errors_not_panics() {
         (vec![0xFF, 0xD8], "JPEG"),
     ] {
         let e = decode_image(&bytes).expect_err("should fail");
-        assert!(e.contains(expected), "{e}");
+        assert!(e.to_string().contains(expected), "{e}");
     }
 }
 
@@ -225,7 +225,7 @@ fn gltf_base_colour_textures_become_spectra() {
             if uri == "quad.bin" {
                 Ok(vec![0; 4096])
             } else {
-                Err("no such file".into())
+                Err(std::io::Error::other("no such file"))
             }
         },
         None,

@@ -152,6 +152,27 @@ impl FitContext {
     }
 
     /// The colour space fitted for: the given primaries with the illuminant's own white.
+    ///
+    /// Round trips go through this space, not the one the context was made from: the CIE
+    /// D65 spectrum's white is (0.31272, 0.32903), sRGB's rounded D65 is (0.3127,
+    /// 0.3290), and a fit is exact against the white the illuminant actually has.
+    ///
+    /// ```
+    /// use prism_spectrum::color::RgbSpaceId;
+    /// use prism_spectrum::colorimetry::{reflectance_xyz, Observer};
+    /// use prism_upsample::{FitContext, RgbKind, RgbSpectrum};
+    ///
+    /// let srgb = RgbSpaceId::Srgb;
+    /// let context = FitContext::new(srgb.space(), &srgb.illuminant())?;
+    /// let grey = RgbSpectrum::fit(&context, [0.8, 0.8, 0.8], RgbKind::Albedo, None)?;
+    /// let xyz = reflectance_xyz(&grey, &srgb.illuminant(), Observer::Cie1931)?;
+    /// let exact = context.space().xyz_to_rgb(xyz);
+    /// assert!(exact.iter().all(|c| (c - 0.8).abs() < 1e-5));
+    /// // The nominal space's rounded white is off in the fourth decimal.
+    /// let nominal = srgb.space().xyz_to_rgb(xyz);
+    /// assert!(nominal.iter().any(|c| (c - 0.8).abs() > 1e-5));
+    /// # Ok::<(), prism_upsample::UpsampleError>(())
+    /// ```
     pub fn space(&self) -> &RgbColorSpace {
         &self.space
     }

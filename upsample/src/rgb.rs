@@ -47,6 +47,25 @@ impl RgbSpectrum {
     /// Fits `rgb` (linear, in `context`'s space) as `kind`. `illuminant` is required for
     /// [`RgbKind::Illuminant`] and ignored otherwise; pass it normalized to luminance 1
     /// ([`normalized_illuminant`]).
+    ///
+    /// ```
+    /// use prism_spectrum::color::RgbSpaceId;
+    /// use prism_spectrum::Spectrum;
+    /// use prism_upsample::{normalized_illuminant, FitContext, RgbKind, RgbSpectrum};
+    ///
+    /// let srgb = RgbSpaceId::Srgb;
+    /// let context = FitContext::new(srgb.space(), &srgb.illuminant())?;
+    /// // Albedo stays within [0, 1] at every wavelength.
+    /// let green = RgbSpectrum::fit(&context, [0.1, 0.7, 0.2], RgbKind::Albedo, None)?;
+    /// assert!((360..=830).all(|nm| (0.0..=1.0).contains(&green.evaluate(f64::from(nm)))));
+    /// // An emission of RGB (1, 1, 1) is the space's illuminant itself.
+    /// let d65 = normalized_illuminant(&srgb.illuminant())?;
+    /// let white = RgbSpectrum::fit(&context, [1.0; 3], RgbKind::Illuminant, Some(d65.clone()))?;
+    /// assert!((white.evaluate(560.0) / d65.evaluate(560.0) - 1.0).abs() < 1e-3);
+    /// // Input that is not a colour is an error, not NaN.
+    /// assert!(RgbSpectrum::fit(&context, [f64::NAN, 0.0, 0.0], RgbKind::Albedo, None).is_err());
+    /// # Ok::<(), prism_upsample::UpsampleError>(())
+    /// ```
     pub fn fit(
         context: &FitContext,
         rgb: [f64; 3],

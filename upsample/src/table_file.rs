@@ -35,7 +35,25 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 impl CoefficientTable {
-    /// The table in the file format of [`FORMAT_VERSION`].
+    /// The table in the file format of [`FORMAT_VERSION`]: fit once, keep the bytes,
+    /// read them back with [`CoefficientTable::from_bytes`].
+    ///
+    /// ```
+    /// use prism_spectrum::color::RgbSpaceId;
+    /// use prism_upsample::{CoefficientTable, FitContext};
+    ///
+    /// let p3 = RgbSpaceId::DisplayP3;
+    /// let context = FitContext::new(p3.space(), &p3.illuminant())?;
+    /// let (table, statistics) = CoefficientTable::fit(&context, 8, &|_rows_done| {})?;
+    /// assert_eq!((table.resolution(), statistics.max_residual.is_finite()), (8, true));
+    /// let bytes = table.to_bytes();
+    /// assert_eq!(CoefficientTable::from_bytes(&bytes)?, table);
+    /// // A damaged file is an error naming the damage, never garbage coefficients.
+    /// let mut damaged = bytes.clone();
+    /// damaged[100] ^= 1;
+    /// assert!(CoefficientTable::from_bytes(&damaged).unwrap_err().to_string().contains("checksum"));
+    /// # Ok::<(), prism_upsample::UpsampleError>(())
+    /// ```
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(64 + self.nodes.len() * 12);
         out.extend_from_slice(MAGIC);

@@ -171,8 +171,12 @@ pub struct RenderArgs {
 fn load(path: Option<&Path>, scene: Option<usize>) -> Result<LoadedGeometry, String> {
     match path {
         Some(p) => crate::scene_file::load(p, scene),
-        None => load_geometry(DEFAULT_GLTF, &|uri| Err(format!("no file '{uri}'")), scene)
-            .map_err(|e| format!("embedded scene: {e}")),
+        None => load_geometry(
+            DEFAULT_GLTF,
+            &|uri| Err(std::io::Error::other(format!("no file '{uri}'"))),
+            scene,
+        )
+        .map_err(|e| format!("embedded scene: {e}")),
     }
 }
 

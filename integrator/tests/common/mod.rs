@@ -21,12 +21,9 @@ pub fn repository_scene(
 ) -> Scene {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let bytes = std::fs::read(dir.join(file)).unwrap();
-    let loaded = prism_scene::load::load_geometry(
-        &bytes,
-        &|uri| std::fs::read(dir.join(uri)).map_err(|e| e.to_string()),
-        None,
-    )
-    .unwrap();
+    let loaded =
+        prism_scene::load::load_geometry(&bytes, &|uri| std::fs::read(dir.join(uri)), None)
+            .unwrap();
     let mut loaded = loaded;
     edit(&mut loaded);
     Scene::from_loaded(loaded, &Default::default()).unwrap()

@@ -15,6 +15,16 @@ pub struct AliasTable {
 impl AliasTable {
     /// A table choosing index `i` with probability `weights[i] / sum(weights)`; weights
     /// finite, >= 0, not all 0.
+    ///
+    /// ```
+    /// use prism_sampling::distribution::AliasTable;
+    ///
+    /// let lights = AliasTable::new(&[10.0, 30.0, 60.0])?;
+    /// assert!((lights.pmf(2) - 0.6).abs() < 1e-12);
+    /// let (index, pmf) = lights.sample(0.99);
+    /// assert_eq!(pmf, lights.pmf(index));
+    /// # Ok::<(), prism_sampling::SamplingError>(())
+    /// ```
     pub fn new(weights: &[f64]) -> Result<Self, SamplingError> {
         validate(weights)?;
         let sum: f64 = weights.iter().sum();

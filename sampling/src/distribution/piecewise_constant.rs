@@ -32,6 +32,18 @@ pub struct PiecewiseConstant1D {
 impl PiecewiseConstant1D {
     /// A distribution proportional to `values` (finite, >= 0, not all 0) over
     /// `[min, max)` (finite, `min < max`).
+    ///
+    /// ```
+    /// use prism_sampling::distribution::PiecewiseConstant1D;
+    ///
+    /// // Three bins over [0, 3) weighted 1 : 0 : 3.
+    /// let d = PiecewiseConstant1D::new(&[1.0, 0.0, 3.0], 0.0, 3.0)?;
+    /// let s = d.sample(0.5);
+    /// assert_eq!(s.bin, 2); // the empty bin is never chosen
+    /// assert!((s.pdf - 0.75).abs() < 1e-12 && (d.pdf(s.value) - s.pdf).abs() < 1e-12);
+    /// assert!(PiecewiseConstant1D::new(&[0.0, 0.0], 0.0, 1.0).is_err());
+    /// # Ok::<(), prism_sampling::SamplingError>(())
+    /// ```
     pub fn new(values: &[f64], min: f64, max: f64) -> Result<Self, SamplingError> {
         validate(values)?;
         if !(min.is_finite() && max.is_finite() && min < max) {

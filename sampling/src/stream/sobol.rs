@@ -146,6 +146,29 @@ impl SobolStream {
         self.dimension = dimension;
     }
 
+    /// The streams of a pixel's samples 0, 1, 2, ... in order: take as many as the
+    /// pixel gets. Any power-of-two prefix is stratified in every pair of dimensions.
+    ///
+    /// ```
+    /// use prism_sampling::stream::{SampleStream, SobolStream};
+    ///
+    /// let points: Vec<_> = SobolStream::pixel_samples(7, 42)
+    ///     .take(16)
+    ///     .map(|mut stream| stream.next_2d())
+    ///     .collect();
+    /// // 16 points of a (0, 2)-sequence: one in each cell of a 4 x 4 grid.
+    /// let mut cells = [0u32; 16];
+    /// for p in &points {
+    ///     cells[(p.x * 4.0) as usize * 4 + (p.y * 4.0) as usize] += 1;
+    /// }
+    /// assert!(cells.iter().all(|&n| n == 1));
+    /// // The same seed, pixel and sample give the same numbers, on any thread, any time.
+    /// assert_eq!(SobolStream::new(7, 42, 3).next_2d(), points[3]);
+    /// ```
+    pub fn pixel_samples(seed: u64, pixel: u64) -> impl Iterator<Item = SobolStream> {
+        (0..=u64::from(u32::MAX)).map(move |sample| Self::new(seed, pixel, sample))
+    }
+
     /// The pair's hash for `dimension` and its Owen-scrambled sample index. The key is
     /// already a full-avalanche hash of (seed, pixel); one more mix with the dimension (an
     /// odd multiple, so distinct dimensions give distinct inputs) decorrelates the pairs.

@@ -22,6 +22,15 @@ pub fn uniform_disk_concentric(u: Vec2) -> Vec2 {
 
 /// A direction on the +z hemisphere with density cos(theta) / pi (Malley's method: a
 /// uniform disk point projected up).
+///
+/// ```
+/// use prism_sampling::glam::Vec2;
+/// use prism_sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
+///
+/// let w = cosine_hemisphere(Vec2::new(0.3, 0.8));
+/// assert!((w.length() - 1.0).abs() < 1e-6 && w.z >= 0.0);
+/// assert!((cosine_hemisphere_pdf(w) - w.z / std::f32::consts::PI).abs() < 1e-7);
+/// ```
 pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
     let d = uniform_disk_concentric(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();

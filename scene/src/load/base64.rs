@@ -31,10 +31,7 @@ pub fn decode(text: &str) -> Option<Vec<u8>> {
 
 /// The bytes a URI names: a base64 `data:` URI decoded here, anything else through
 /// `resolve` (a path relative to the scene file).
-pub(crate) fn uri_bytes(
-    uri: &str,
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-) -> Result<Vec<u8>, String> {
+pub(crate) fn uri_bytes(uri: &str, resolve: &super::Resolver) -> Result<Vec<u8>, String> {
     match uri.strip_prefix("data:") {
         Some(rest) => {
             let payload = rest

@@ -24,8 +24,12 @@ const MAX_PIXELS: usize = 1 << 28;
 
 /// Decodes an OpenEXR (its first RGB layer, largest level; a missing channel reads 0) or
 /// a Radiance RGBE `.hdr`, told apart by their signatures. Decoder panics on malformed
-/// data are caught and reported as errors.
-pub fn decode_hdr_image(bytes: &[u8]) -> Result<HdrImage, String> {
+/// data are caught and reported as errors ([`LoadError::Image`]).
+pub fn decode_hdr_image(bytes: &[u8]) -> Result<HdrImage, LoadError> {
+    decode_hdr(bytes).map_err(LoadError::Image)
+}
+
+pub(crate) fn decode_hdr(bytes: &[u8]) -> Result<HdrImage, String> {
     let decoded = if bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
         catch_unwind(AssertUnwindSafe(|| decode_exr(bytes)))
     } else if bytes.starts_with(b"#?") {
@@ -132,7 +136,7 @@ pub fn environment_map(
     rotation: f64,
     strength: f64,
 ) -> Result<Arc<EnvironmentMap>, LoadError> {
-    let image = decode_hdr_image(bytes).map_err(LoadError::Scene)?;
+    let image = decode_hdr_image(bytes)?;
     let upsampler = Upsampler::new(Upsampling::Exact, None)?;
     upsampler
         .environment_map(EnvironmentImage {

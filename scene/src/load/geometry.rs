@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use super::lights::{LightDesc, punctual};
@@ -118,7 +120,7 @@ impl LoadedGeometry {
 /// here. Non-triangle primitive modes are errors.
 pub fn load_geometry(
     bytes: &[u8],
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    resolve: &super::Resolver,
     scene: Option<usize>,
 ) -> Result<LoadedGeometry, LoadError> {
     load_scene(
@@ -192,7 +194,7 @@ impl<'a> LoadOptions<'a> {
 /// the upsampling mode.
 pub fn load_scene(
     bytes: &[u8],
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    resolve: &super::Resolver,
     options: &LoadOptions,
 ) -> Result<LoadedGeometry, LoadError> {
     let scene = options.scene;
@@ -239,8 +241,10 @@ pub fn load_scene(
                             ))
                         })?
                     }
-                    None => resolve(uri).map_err(|e| {
-                        LoadError::Buffer(format!("buffer {} ('{uri}'): {e}", buffer.index()))
+                    None => resolve(uri).map_err(|e| LoadError::Resource {
+                        referrer: format!("buffer {}", buffer.index()),
+                        uri: uri.to_string(),
+                        source: Arc::new(e),
                     })?,
                 },
             };
@@ -426,9 +430,12 @@ pub fn load_scene(
 /// validation.
 fn parse(bytes: &[u8], overlay: Option<&Overlay>) -> Result<(gltf::Gltf, Vec<String>), LoadError> {
     // The gltf crate's validation errors begin with the words LoadError adds.
-    let invalid = |e: gltf::Error| {
-        let message = e.to_string();
-        LoadError::Invalid(message.trim_start_matches("invalid glTF: ").to_string())
+    let invalid = |e: gltf::Error| LoadError::Invalid {
+        reason: e
+            .to_string()
+            .trim_start_matches("invalid glTF: ")
+            .to_string(),
+        source: Some(Arc::new(e)),
     };
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
@@ -474,12 +481,15 @@ fn check_position_accessors(root: &gltf::json::Root) -> Result<(), LoadError> {
             if let Some(index) = primitive.attributes.get(&position)
                 && index.value() >= root.accessors.len()
             {
-                return Err(LoadError::Invalid(format!(
-                    "meshes[{m}].primitives[{p}].attributes[\"POSITION\"]: accessor {} does not \
-                     exist ({} accessors)",
-                    index.value(),
-                    root.accessors.len()
-                )));
+                return Err(LoadError::Invalid {
+                    reason: format!(
+                        "meshes[{m}].primitives[{p}].attributes[\"POSITION\"]: accessor {} does \
+                         not exist ({} accessors)",
+                        index.value(),
+                        root.accessors.len()
+                    ),
+                    source: None,
+                });
             }
         }
     }

@@ -22,8 +22,13 @@ pub struct DecodedImage {
 const MAX_PIXELS: u64 = 1 << 28;
 
 /// Decodes a PNG or JPEG (told apart by their signatures). Errors say why; decoder
-/// panics on malformed data are caught and reported as errors too.
-pub fn decode_image(bytes: &[u8]) -> Result<DecodedImage, String> {
+/// panics on malformed data are caught and reported as errors too
+/// ([`LoadError::Image`](super::LoadError::Image)).
+pub fn decode_image(bytes: &[u8]) -> Result<DecodedImage, super::LoadError> {
+    decode(bytes).map_err(super::LoadError::Image)
+}
+
+pub(crate) fn decode(bytes: &[u8]) -> Result<DecodedImage, String> {
     let decoded = if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         catch_unwind(AssertUnwindSafe(|| decode_png(bytes)))
     } else if bytes.starts_with(&[0xFF, 0xD8]) {

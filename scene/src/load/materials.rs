@@ -166,22 +166,21 @@ impl Upsampling {
         "exact, table16, table32, table64, table128, refined16, refined32, refined64, refined128";
 
     /// Parses `exact`, `tableN` or `refinedN`.
-    pub fn from_name(name: &str) -> Result<Self, String> {
+    pub fn from_name(name: &str) -> Result<Self, LoadError> {
+        let unknown = || LoadError::UnknownName {
+            kind: "upsampling",
+            name: name.to_string(),
+            valid: Self::NAMES,
+        };
         let resolution = |n: &str| match n.parse::<usize>() {
             Ok(r @ (16 | 32 | 64 | 128)) => Ok(r),
-            _ => Err(format!(
-                "unknown upsampling '{name}' (valid: {})",
-                Self::NAMES
-            )),
+            _ => Err(unknown()),
         };
         match name {
             "exact" => Ok(Self::Exact),
             _ if name.starts_with("table") => Ok(Self::Table(resolution(&name[5..])?)),
             _ if name.starts_with("refined") => Ok(Self::Refined(resolution(&name[7..])?)),
-            _ => Err(format!(
-                "unknown upsampling '{name}' (valid: {})",
-                Self::NAMES
-            )),
+            _ => Err(unknown()),
         }
     }
 

@@ -3,7 +3,7 @@
 
 mod accessor;
 mod base64;
-mod environment;
+pub(crate) mod environment;
 mod error;
 mod extensions;
 mod geometry;
@@ -20,7 +20,7 @@ mod textures;
 
 pub(crate) use base64::uri_bytes;
 pub use environment::{EnvironmentImage, HdrImage, decode_hdr_image, environment_map};
-pub use error::LoadError;
+pub use error::{LoadError, Resolver};
 pub use geometry::{LoadOptions, LoadedGeometry, MeshInstance, load_geometry, load_scene};
 pub use images::{DecodedImage, decode_image};
 pub use lights::LightDesc;

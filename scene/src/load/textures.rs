@@ -10,7 +10,6 @@ use glam::Vec2;
 use gltf::texture::WrappingMode;
 
 use super::base64;
-use super::images::decode_image;
 use super::tex_coord_sets::{TexCoordSets, info_set, normal_set, normal_transform};
 use crate::world::{
     Encoding, NormalMap, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap,
@@ -24,7 +23,7 @@ type SharedImage = (u32, u32, Arc<Vec<[u8; 3]>>, Option<Arc<Vec<[u8; 3]>>>);
 pub(crate) struct TextureLoader<'a> {
     pub document: &'a gltf::Document,
     pub buffers: &'a [Vec<u8>],
-    pub resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
+    pub resolve: &'a crate::load::Resolver<'a>,
     pub upsampler: &'a super::Upsampler,
     images: RefCell<HashMap<usize, SharedImage>>,
 }
@@ -33,7 +32,7 @@ impl<'a> TextureLoader<'a> {
     pub(crate) fn new(
         document: &'a gltf::Document,
         buffers: &'a [Vec<u8>],
-        resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
+        resolve: &'a crate::load::Resolver<'a>,
         upsampler: &'a super::Upsampler,
     ) -> Self {
         Self {
@@ -293,7 +292,7 @@ impl<'a> TextureLoader<'a> {
                 base64::uri_bytes(uri, self.resolve).map_err(|e| format!("{what}: {e}"))?
             }
         };
-        let decoded = decode_image(&bytes).map_err(|e| format!("{what}: {e}"))?;
+        let decoded = super::images::decode(&bytes).map_err(|e| format!("{what}: {e}"))?;
         let alpha = decoded
             .alpha
             .map(|a| Arc::new(a.into_iter().map(|v| [v; 3]).collect()));

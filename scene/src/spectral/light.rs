@@ -108,7 +108,7 @@ fn environment(value: &Value, cx: &Context) -> Result<Environment, String> {
         return Err(format!("strength {strength} must be >= 0"));
     }
     let bytes = crate::load::uri_bytes(uri, cx.resolve)?;
-    let image = crate::load::decode_hdr_image(&bytes)
+    let image = crate::load::environment::decode_hdr(&bytes)
         .map_err(|e| format!("image '{}': {e}", short(uri)))?;
     let map = cx
         .upsampler

@@ -40,7 +40,7 @@ pub enum Role {
 /// What parsing needs besides the value: external files and the upsampler for RGB.
 pub(crate) struct Context<'a> {
     /// Reads a file named in the description (relative to the glTF file).
-    pub resolve: &'a dyn Fn(&str) -> Result<Vec<u8>, String>,
+    pub resolve: &'a crate::load::Resolver<'a>,
     /// Fits RGB values (linear sRGB, as glTF colours).
     pub upsampler: &'a Upsampler,
 }

@@ -268,7 +268,6 @@ impl Scene {
             scene.lit_by_default = lit_by_default;
             scene
         })
-        .map_err(LoadError::Scene)
     }
 }
 

@@ -197,8 +197,12 @@ pub struct Scene {
 impl Scene {
     /// Builds the BVH and the light distribution. Triangle material indices past the
     /// material list, and light references past the triangle or emission lists, are
-    /// errors.
-    pub fn new(parts: SceneParts) -> Result<Self, String> {
+    /// errors ([`LoadError::Scene`](crate::load::LoadError::Scene) naming the mismatch).
+    pub fn new(parts: SceneParts) -> Result<Self, crate::load::LoadError> {
+        Self::assemble(parts).map_err(crate::load::LoadError::Scene)
+    }
+
+    fn assemble(parts: SceneParts) -> Result<Self, String> {
         let SceneParts {
             triangles,
             attributes,
