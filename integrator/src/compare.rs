@@ -1,7 +1,9 @@
 //! Comparing two images: the error measures renderers are judged by.
 
+#[cfg(feature = "exr")]
 use std::io::Cursor;
 
+#[cfg(feature = "exr")]
 use exr::prelude::{AnyChannels, FlatSamples, Image, Layer, ReadChannels, ReadLayers, read};
 
 use crate::RenderError;
@@ -18,9 +20,11 @@ pub struct ChannelImage {
 }
 
 /// An EXR's first layer with every channel as stored, and every attribute.
+#[cfg(feature = "exr")]
 pub(crate) type FlatImage = Image<Layer<AnyChannels<FlatSamples>>>;
 
 /// Reads an EXR's first valid layer from bytes: every channel as stored, all attributes.
+#[cfg(feature = "exr")]
 pub(crate) fn read_flat(bytes: &[u8]) -> Result<FlatImage, RenderError> {
     // OpenEXR's magic number first: the reader's own complaint ("file identifier
     // missing") would not say that a PNG, say, is the wrong kind of file.
@@ -44,6 +48,7 @@ pub(crate) fn read_flat(bytes: &[u8]) -> Result<FlatImage, RenderError> {
 }
 
 /// Reads every channel of an EXR's first layer as f32 (f16 and u32 samples converted).
+#[cfg(feature = "exr")]
 pub fn decode_exr(bytes: &[u8]) -> Result<ChannelImage, RenderError> {
     let image = read_flat(bytes)?;
     let layer = image.layer_data;

@@ -14,7 +14,7 @@ pub enum RenderError {
         /// What failed, in words.
         reason: String,
         /// The EXR library's error, where it failed.
-        source: Option<Arc<exr::error::Error>>,
+        source: Option<Arc<dyn std::error::Error + Send + Sync>>,
     },
     /// A file that is not the image it should be (not an EXR, not a prism accumulation
     /// file, truncated, missing channels).
@@ -22,7 +22,7 @@ pub enum RenderError {
         /// What is wrong, in words.
         reason: String,
         /// The EXR library's error, where it found the problem.
-        source: Option<Arc<exr::error::Error>>,
+        source: Option<Arc<dyn std::error::Error + Send + Sync>>,
     },
     /// Films that cannot be added together (sizes, bands or channels differ).
     Merge(String),
@@ -32,6 +32,7 @@ pub enum RenderError {
 
 impl RenderError {
     /// An encoding failure of the EXR library.
+    #[cfg(feature = "exr")]
     pub(crate) fn exr_encode(what: &str, error: exr::error::Error) -> Self {
         RenderError::Encode {
             reason: format!("{what}: {error}"),
@@ -60,7 +61,7 @@ impl std::error::Error for RenderError {
             }
             | RenderError::Decode {
                 source: Some(e), ..
-            } => Some(e.as_ref()),
+            } => Some(e.as_ref() as &(dyn std::error::Error + 'static)),
             _ => None,
         }
     }

@@ -162,6 +162,7 @@ impl Film {
     }
 
     /// A black film with this one's size and channels (bands, energy, raw or XYZ).
+    #[cfg(feature = "exr")]
     pub(crate) fn black_like(&self) -> Self {
         Self {
             spectral: self
@@ -176,6 +177,7 @@ impl Film {
 
     /// This film with spectral sums `sums` in `bands` (`bands.count()` per pixel), or None
     /// when they do not fit its size or are not finite (decoding accumulation files).
+    #[cfg(feature = "exr")]
     pub(crate) fn with_spectral_sums(
         mut self,
         bands: SpectralBands,
@@ -224,6 +226,7 @@ impl Film {
 
     /// This film with energy sums `sums` (one pair per pixel), or None when they do not
     /// fit its size or are not finite (decoding accumulation files).
+    #[cfg(feature = "exr")]
     pub(crate) fn with_energy_sums(mut self, sums: Vec<[f64; 2]>) -> Option<Self> {
         let fits = sums.len() == self.sums.len();
         (fits && sums.iter().flatten().all(|v| v.is_finite())).then(|| {
@@ -234,6 +237,7 @@ impl Film {
 
     /// The energy sums, one (radiance, photon radiance) pair per pixel (empty without
     /// energy).
+    #[cfg(feature = "exr")]
     pub(crate) fn energy_sums(&self) -> &[[f64; 2]] {
         self.energy.as_deref().unwrap_or(&[])
     }

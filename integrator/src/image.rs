@@ -2,19 +2,26 @@
 //! chromaticities attribute so readers know which) and PNG (exposure, tone map, the
 //! space's transfer function, 8 bits). Bytes only: writing files is the caller's.
 
+#[cfg(feature = "exr")]
 use std::io::Cursor;
 
+#[cfg(feature = "exr")]
 use exr::meta::attribute::AttributeValue;
+#[cfg(feature = "exr")]
 use exr::prelude::{
     AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec, Text,
     Vec2, WritableImage,
 };
 use prism_spectrum::color::{RgbColorSpace, ToneMap, display_8bit};
+#[cfg(feature = "exr")]
 use prism_spectrum::saturating_f32;
 
-use crate::{Film, RenderError};
+use crate::Film;
+#[cfg(feature = "exr")]
+use crate::RenderError;
 
 /// Extra facts recorded in an EXR header.
+#[cfg(feature = "exr")]
 #[derive(Debug, Clone, Default)]
 pub struct ExrMetadata {
     /// Samples per pixel the image holds.
@@ -66,6 +73,7 @@ pub struct ExrMetadata {
 /// assert!(same.relmse == 0.0);
 /// # Ok::<(), prism_integrator::RenderError>(())
 /// ```
+#[cfg(feature = "exr")]
 pub fn encode_exr(
     film: &Film,
     space: &RgbColorSpace,

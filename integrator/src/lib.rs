@@ -46,6 +46,7 @@
 //!   its `etaScale` for roulette through glass), §5.4 (film), §4.5.4 (sampled spectra
 //!   to XYZ).
 
+#[cfg(feature = "exr")]
 mod accumulation;
 mod bands;
 mod camera_response;
@@ -67,16 +68,21 @@ pub use glam;
 /// version).
 pub use prism_scene;
 
+#[cfg(feature = "exr")]
 pub use accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
     settings_difference,
 };
 pub use bands::SpectralBands;
 pub use camera_response::{CameraResponse, ResponseCurve};
-pub use compare::{ChannelImage, Comparison, compare_images, decode_exr};
+#[cfg(feature = "exr")]
+pub use compare::decode_exr;
+pub use compare::{ChannelImage, Comparison, compare_images};
 pub use error::RenderError;
 pub use film::Film;
 pub use filter::Filter;
-pub use image::{DisplaySettings, ExrMetadata, encode_exr, encode_png};
+pub use image::{DisplaySettings, encode_png};
+#[cfg(feature = "exr")]
+pub use image::{ExrMetadata, encode_exr};
 pub use render::{RenderStats, Renderer, render, render_into};
 pub use settings::{LambdaSampler, MAX_THREADS, RenderSettings};

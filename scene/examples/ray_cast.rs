@@ -13,7 +13,7 @@ fn quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> [[Vec3; 3]; 2] {
     [[a, b, c], [a, c, d]]
 }
 
-fn main() -> Result<(), prism_scene::load::LoadError> {
+fn main() -> Result<(), prism_scene::LoadError> {
     let v = Vec3::new;
     let camera = Camera::look_at(v(0.0, 2.0, 5.0), v(0.0, 0.3, 0.0), Vec3::Y, 0.7);
     let mut builder = SceneBuilder::new(camera);

@@ -74,7 +74,12 @@ pub use glam;
 
 pub mod bsdf;
 pub mod camera;
+mod error;
 pub mod geometry;
+#[cfg(feature = "gltf")]
 pub mod load;
+#[cfg(feature = "gltf")]
 pub mod spectral;
 pub mod world;
+
+pub use error::{LoadError, Resolver};

@@ -9,6 +9,7 @@
 //! and, for bright colours, as it goes to 1 (a spectrum close to 1 everywhere): the ends
 //! of the ratio axes are where rgb2spec's uniform axes make their largest errors.
 
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::fit::{FitContext, normalize};
@@ -306,8 +307,11 @@ impl CoefficientTable {
             .map(|i| smoothstep(smoothstep(i as f64 / scale)))
             .collect();
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let rows: Vec<(Vec<f32>, FitStatistics)> = (0..3 * res)
-            .into_par_iter()
+        let rows = 0..3 * res;
+        // One row per task on rayon's pool; without the `parallel` feature, in order.
+        #[cfg(feature = "parallel")]
+        let rows = rows.into_par_iter();
+        let rows: Vec<(Vec<f32>, FitStatistics)> = rows
             .map(|row| {
                 let (channel, yi) = (row / res, row % res);
                 let mut out = vec![0f32; res * res * 3];

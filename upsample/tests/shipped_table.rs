@@ -1,5 +1,6 @@
 //! The table that ships with the crate is the table the fitter makes, and it upsamples as
 //! accurately as its resolution promises.
+#![cfg(feature = "srgb-table")]
 
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Lab, Observer, ciede2000, reflectance_xyz};

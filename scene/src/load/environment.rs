@@ -1,6 +1,7 @@
 //! Environment images: equirectangular HDR images (OpenEXR and Radiance `.hdr`) decoded to
 //! linear RGB and made into [`EnvironmentMap`]s.
 
+#[cfg(feature = "images")]
 use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Arc;
@@ -20,6 +21,7 @@ pub struct HdrImage {
 }
 
 /// Environment images larger than this many pixels are refused (a 16k x 8k map is 2^27).
+#[cfg(feature = "images")]
 const MAX_PIXELS: usize = 1 << 28;
 
 /// Decodes an OpenEXR (its first RGB layer, largest level; a missing channel reads 0) or
@@ -44,6 +46,7 @@ pub(crate) fn decode_hdr(bytes: &[u8]) -> Result<HdrImage, String> {
     Ok(image)
 }
 
+#[cfg(feature = "images")]
 fn decode_exr(bytes: &[u8]) -> Result<HdrImage, String> {
     use exr::prelude::*;
     let image = read()
@@ -86,6 +89,7 @@ fn decode_exr(bytes: &[u8]) -> Result<HdrImage, String> {
     })
 }
 
+#[cfg(feature = "images")]
 fn decode_radiance(bytes: &[u8]) -> Result<HdrImage, String> {
     use image::ImageDecoder;
     let decoder = image::codecs::hdr::HdrDecoder::new(Cursor::new(bytes))
@@ -147,3 +151,14 @@ pub fn environment_map(
         .map(Arc::new)
         .map_err(LoadError::Scene)
 }
+
+/// Without the `images` feature every image is refused by the one function below, which
+/// stands in for each decoder.
+#[cfg(not(feature = "images"))]
+fn without_codecs(_: &[u8]) -> Result<HdrImage, String> {
+    Err("prism-scene was built without its `images` feature (image decoders)".into())
+}
+#[cfg(not(feature = "images"))]
+use without_codecs as decode_exr;
+#[cfg(not(feature = "images"))]
+use without_codecs as decode_radiance;

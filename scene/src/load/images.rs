@@ -19,6 +19,7 @@ pub struct DecodedImage {
 
 /// Images larger than this many pixels are refused rather than allocated (a 16k x 16k
 /// texture; a corrupt header must not ask for terabytes).
+#[cfg(feature = "images")]
 const MAX_PIXELS: u64 = 1 << 28;
 
 /// Decodes a PNG or JPEG (told apart by their signatures). Errors say why; decoder
@@ -45,6 +46,7 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<DecodedImage, String> {
     Ok(image)
 }
 
+#[cfg(feature = "images")]
 fn check_size(width: u32, height: u32) -> Result<(), String> {
     if u64::from(width) * u64::from(height) > MAX_PIXELS {
         return Err(format!(
@@ -54,6 +56,7 @@ fn check_size(width: u32, height: u32) -> Result<(), String> {
     Ok(())
 }
 
+#[cfg(feature = "images")]
 fn decode_png(bytes: &[u8]) -> Result<DecodedImage, String> {
     let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
     // Palettes and low bit depths expand to 8 bits, 16 bits strip to 8.
@@ -86,6 +89,7 @@ fn decode_png(bytes: &[u8]) -> Result<DecodedImage, String> {
     })
 }
 
+#[cfg(feature = "images")]
 fn decode_jpeg(bytes: &[u8]) -> Result<DecodedImage, String> {
     use zune_jpeg::zune_core::colorspace::ColorSpace;
     use zune_jpeg::zune_core::options::DecoderOptions;
@@ -109,6 +113,7 @@ fn decode_jpeg(bytes: &[u8]) -> Result<DecodedImage, String> {
     })
 }
 
+#[cfg(feature = "images")]
 fn decode_webp(bytes: &[u8]) -> Result<DecodedImage, String> {
     use image::ImageDecoder;
     let decoder = image::codecs::webp::WebPDecoder::new(std::io::Cursor::new(bytes))
@@ -128,6 +133,7 @@ fn decode_webp(bytes: &[u8]) -> Result<DecodedImage, String> {
     })
 }
 
+#[cfg(feature = "images")]
 fn to_rgb(data: &[u8], channels: usize, width: u32, height: u32) -> Result<Vec<[u8; 3]>, String> {
     let pixels = width as usize * height as usize;
     if data.len() < pixels * channels {
@@ -145,3 +151,16 @@ fn to_rgb(data: &[u8], channels: usize, width: u32, height: u32) -> Result<Vec<[
         })
         .collect())
 }
+
+/// Without the `images` feature every image is refused by the one function below, which
+/// stands in for each decoder.
+#[cfg(not(feature = "images"))]
+fn without_codecs(_: &[u8]) -> Result<DecodedImage, String> {
+    Err("prism-scene was built without its `images` feature (image decoders)".into())
+}
+#[cfg(not(feature = "images"))]
+use without_codecs as decode_png;
+#[cfg(not(feature = "images"))]
+use without_codecs as decode_jpeg;
+#[cfg(not(feature = "images"))]
+use without_codecs as decode_webp;

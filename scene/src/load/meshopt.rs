@@ -69,7 +69,14 @@ pub(super) fn decode_views(
     Ok(())
 }
 
+/// Without the `meshopt` feature, compressed views are refused.
+#[cfg(not(feature = "meshopt"))]
+fn decode(_: &[u8], _: &str, _: &str, _: usize, _: usize) -> Result<Vec<u8>, String> {
+    Err("prism-scene was built without its `meshopt` feature".into())
+}
+
 /// Bytes of `count` elements of `stride` bytes decoded from `encoded`.
+#[cfg(feature = "meshopt")]
 fn decode(
     encoded: &[u8],
     mode: &str,
@@ -106,6 +113,7 @@ fn decode(
 }
 
 /// Vertex data of `stride` bytes (a multiple of 4, at most 128) per element.
+#[cfg(feature = "meshopt")]
 fn vertices(encoded: &[u8], stride: usize, count: usize) -> meshopt::Result<Vec<u8>> {
     macro_rules! by_stride {
         ($($words:literal),*) => {
@@ -123,6 +131,7 @@ fn vertices(encoded: &[u8], stride: usize, count: usize) -> meshopt::Result<Vec<
 }
 
 /// Undoes a filter in place on decoded vertex bytes.
+#[cfg(feature = "meshopt")]
 fn unfilter(bytes: &mut [u8], filter: &str, stride: usize) -> Result<(), String> {
     fn as_words<const N: usize>(bytes: &[u8]) -> Vec<[u8; N]> {
         bytes

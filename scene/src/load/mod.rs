@@ -4,7 +4,6 @@
 mod accessor;
 mod base64;
 pub(crate) mod environment;
-mod error;
 mod extensions;
 mod geometry;
 mod images;
@@ -18,9 +17,9 @@ mod tangents;
 mod tex_coord_sets;
 mod textures;
 
+pub use crate::error::{LoadError, Resolver};
 pub(crate) use base64::uri_bytes;
 pub use environment::{EnvironmentImage, HdrImage, decode_hdr_image, environment_map};
-pub use error::{LoadError, Resolver};
 pub use geometry::{LoadOptions, LoadedGeometry, MeshInstance, load_geometry, load_scene};
 pub use images::{DecodedImage, decode_image};
 pub use lights::LightDesc;

@@ -28,8 +28,15 @@ impl Overlay {
     /// `[materials.NAME]` and `[lights.NAME]`.
     pub fn parse(text: &str) -> Result<Self, LoadError> {
         let bad = |m: String| LoadError::Spectral(format!("overlay: {m}"));
-        let root: Value =
-            toml::from_str(text).map_err(|e| bad(e.to_string().trim().replace('\n', " ")))?;
+        #[cfg(feature = "toml")]
+        let parsed =
+            toml::from_str::<Value>(text).map_err(|e| e.to_string().trim().replace('\n', " "));
+        #[cfg(not(feature = "toml"))]
+        let parsed: Result<Value, String> = {
+            let _ = text;
+            Err("prism-scene was built without its `toml` feature".into())
+        };
+        let root = parsed.map_err(bad)?;
         let Value::Object(mut map) = root else {
             return Err(bad("not a table".into()));
         };

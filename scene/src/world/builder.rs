@@ -117,7 +117,7 @@ impl SceneBuilder {
     }
 
     /// The scene, or why the parts do not make one (a material index out of range...).
-    pub fn build(self) -> Result<Scene, crate::load::LoadError> {
+    pub fn build(self) -> Result<Scene, crate::LoadError> {
         Scene::new(self.parts)
     }
 }

@@ -7,6 +7,7 @@ mod alpha;
 mod builder;
 mod emission_cache;
 mod environment;
+#[cfg(feature = "gltf")]
 mod from_gltf;
 mod guide;
 mod layers;
@@ -23,6 +24,7 @@ pub use alpha::{Alpha, AlphaMode};
 pub use builder::SceneBuilder;
 pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
+#[cfg(feature = "gltf")]
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
 pub use layers::{
     AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, Layers, SheenDesc,
@@ -32,6 +34,7 @@ pub use light::{EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
 pub use normal_map::NormalMap;
+#[cfg(feature = "gltf")]
 pub(crate) use normal_map::triangle_tangent;
 pub use spectrum::SceneSpectrum;
 pub use tex_coords::{TEX_COORD_SETS, TexCoords};
@@ -197,9 +200,9 @@ pub struct Scene {
 impl Scene {
     /// Builds the BVH and the light distribution. Triangle material indices past the
     /// material list, and light references past the triangle or emission lists, are
-    /// errors ([`LoadError::Scene`](crate::load::LoadError::Scene) naming the mismatch).
-    pub fn new(parts: SceneParts) -> Result<Self, crate::load::LoadError> {
-        Self::assemble(parts).map_err(crate::load::LoadError::Scene)
+    /// errors ([`LoadError::Scene`](crate::LoadError::Scene) naming the mismatch).
+    pub fn new(parts: SceneParts) -> Result<Self, crate::LoadError> {
+        Self::assemble(parts).map_err(crate::LoadError::Scene)
     }
 
     fn assemble(parts: SceneParts) -> Result<Self, String> {

@@ -54,6 +54,7 @@ impl NormalMap {
 /// `uv` (the direction in which u grows, in the plane), with glTF's handedness: w is 1
 /// where normal x tangent points up the image (v decreasing, glTF's v runs down), else
 /// -1. Where the texture coordinates do not span the triangle, any tangent of the plane.
+#[cfg_attr(not(feature = "gltf"), allow(dead_code))]
 pub(crate) fn triangle_tangent(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> Vec4 {
     let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
     let (d1, d2) = (uv[1] - uv[0], uv[2] - uv[0]);

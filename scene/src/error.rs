@@ -1,3 +1,5 @@
+//! The error of this crate.
+
 use std::fmt;
 use std::sync::Arc;
 
@@ -12,8 +14,8 @@ pub enum LoadError {
     Invalid {
         /// What is wrong, in words.
         reason: String,
-        /// The gltf crate's error, when it found the problem.
-        source: Option<Arc<gltf::Error>>,
+        /// The glTF parser's error, when it found the problem.
+        source: Option<Arc<dyn std::error::Error + Send + Sync>>,
     },
     /// A file the scene refers to could not be read (the resolver failed).
     Resource {
@@ -75,7 +77,7 @@ impl std::error::Error for LoadError {
         match self {
             LoadError::Invalid {
                 source: Some(e), ..
-            } => Some(e.as_ref()),
+            } => Some(e.as_ref() as &(dyn std::error::Error + 'static)),
             LoadError::Resource { source, .. } => Some(source.as_ref()),
             _ => None,
         }
