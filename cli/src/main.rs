@@ -4,6 +4,10 @@
 //! and composes the library crates. Every failure is one line on stderr and a non-zero exit
 //! code: 2 for a malformed command line, 1 for anything else.
 
+// The doc comments of the argument structs are clap's --help text, where `reinhard[:WHITE]`
+// means an optional argument, not a link; escaping it would print the backslash.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod commands;
 mod memory;
 mod output;
