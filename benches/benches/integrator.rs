@@ -19,13 +19,11 @@ fn scene(name: &str) -> Scene {
 }
 
 fn integrator(c: &mut Criterion) {
-    let settings = RenderSettings {
-        width: 64,
-        height: 64,
-        samples: 0..4,
-        threads: 1,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(64)
+        .height(64)
+        .samples(0..4)
+        .threads(1);
     let paths = u64::from(settings.width * settings.height) * 4;
     let mut group = c.benchmark_group("render 64x64x4 one thread");
     group.throughput(Throughput::Elements(paths));
@@ -39,13 +37,7 @@ fn integrator(c: &mut Criterion) {
         group.bench_function(label, |b| {
             b.iter(|| {
                 seed += 1;
-                black_box(render(
-                    &s,
-                    &RenderSettings {
-                        seed,
-                        ..settings.clone()
-                    },
-                ))
+                black_box(render(&s, &settings.clone().seed(seed)))
             })
         });
     }

@@ -55,12 +55,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         false,
     );
     let scene = builder.build()?;
-    let settings = RenderSettings {
-        width: 160,
-        height: 120,
-        samples: 0..32,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(160)
+        .height(120)
+        .samples(0..32);
     let start = std::time::Instant::now();
     let (film, stats) = render(&scene, &settings)?;
     std::fs::write(

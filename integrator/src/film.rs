@@ -291,7 +291,10 @@ impl Film {
         self.nonfinite += nonfinite;
     }
 
-    /// The estimate of pixel (x, y): its sum over the samples taken.
+    /// The estimate of pixel (x, y): its sum over the samples taken, as CIE XYZ with
+    /// X = the integral of L(lambda) xbar(lambda) d lambda over 360-830 nm, L in W m^-2
+    /// sr^-1 nm^-1 (unnormalized: a radiance of 1 at every wavelength gives Y = 106.86;
+    /// multiply Y by 683 lm/W for luminance in cd m^-2).
     pub fn xyz(&self, x: u32, y: u32) -> Xyz {
         let s = self.sums[(y * self.width + x) as usize];
         let n = self.samples.max(1) as f64;
@@ -341,7 +344,7 @@ impl Film {
     ///
     /// // Samples 0..8 rendered in two halves (on two machines, say) and merged are the
     /// // image of samples 0..8 rendered at once.
-    /// let half = |samples| RenderSettings { width: 8, height: 6, samples, ..RenderSettings::default() };
+    /// let half = |samples| RenderSettings::default().width(8).height(6).samples(samples);
     /// let (mut film, _) = render(&scene, &half(0..4))?;
     /// film.merge(&render(&scene, &half(4..8))?.0)?;
     /// let (whole, _) = render(&scene, &half(0..8))?;
@@ -349,7 +352,7 @@ impl Film {
     /// let (a, b) = (film.xyz(4, 5).y, whole.xyz(4, 5).y);
     /// assert!(b > 0.0 && (a - b).abs() <= 1e-9 * b);
     /// // Films of different sizes do not add up.
-    /// let small = render(&scene, &RenderSettings { width: 4, ..half(0..1) })?.0;
+    /// let small = render(&scene, &half(0..1).width(4))?.0;
     /// assert!(film.merge(&small).is_err());
     /// # Ok::<(), prism_integrator::RenderError>(())
     /// ```

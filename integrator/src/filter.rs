@@ -16,6 +16,7 @@ use crate::RenderError;
 
 /// A reconstruction filter.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub enum Filter {
     /// The pixel's square: each sample counts in the pixel it falls in.
     #[default]

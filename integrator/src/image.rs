@@ -23,6 +23,7 @@ use crate::RenderError;
 /// Extra facts recorded in an EXR header.
 #[cfg(feature = "exr")]
 #[derive(Debug, Clone, Default)]
+#[non_exhaustive]
 pub struct ExrMetadata {
     /// Samples per pixel the image holds.
     pub spp: u64,
@@ -30,6 +31,12 @@ pub struct ExrMetadata {
     /// `comments` attribute as `prism: spp=N;key=value;...`.
     pub strings: Vec<(String, String)>,
 }
+
+#[cfg(feature = "exr")]
+crate::settings::setters!(ExrMetadata {
+    spp: u64,
+    strings: Vec<(String, String)>,
+});
 
 /// The film as a linear RGB EXR in `space`, f32 channels R, G, B, and A: each pixel's
 /// coverage, the fraction of its camera rays that met geometry (the environment or the
@@ -61,9 +68,9 @@ pub struct ExrMetadata {
 /// use prism_integrator::{compare_images, decode_exr, encode_exr, render, ExrMetadata, RenderSettings};
 /// use prism_spectrum::color::RgbSpaceId;
 ///
-/// let settings = RenderSettings { width: 8, height: 6, samples: 0..4, ..RenderSettings::default() };
+/// let settings = RenderSettings::default().width(8).height(6).samples(0..4);
 /// let (film, _) = render(&scene, &settings)?;
-/// let metadata = ExrMetadata { spp: 4, ..ExrMetadata::default() };
+/// let metadata = ExrMetadata::default().spp(4);
 /// let bytes = encode_exr(&film, RgbSpaceId::Srgb.space(), &metadata)?;
 /// let image = decode_exr(&bytes)?;
 /// assert_eq!((image.width, image.height), (8, 6));
@@ -169,8 +176,10 @@ pub fn encode_exr(
     Ok(bytes.into_inner())
 }
 
-/// How a film becomes a displayable 8-bit picture.
+/// How a film becomes a displayable 8-bit picture. The default: exposure 0, Khronos PBR
+/// Neutral tone mapping, no alpha channel.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct DisplaySettings {
     /// Exposure in stops (the image is multiplied by 2^exposure).
     pub exposure: f64,
@@ -180,6 +189,12 @@ pub struct DisplaySettings {
     /// premultiplied colour divided by its coverage).
     pub alpha: bool,
 }
+
+crate::settings::setters!(DisplaySettings {
+    exposure: f64,
+    tone_map: ToneMap,
+    alpha: bool,
+});
 
 impl Default for DisplaySettings {
     fn default() -> Self {

@@ -43,9 +43,43 @@ impl LambdaSampler {
     }
 }
 
+/// Setters named after the fields of a `#[non_exhaustive]` settings struct, each taking
+/// the settings by value, so that callers outside the crate write
+/// `RenderSettings::default().width(64).samples(0..16)`.
+macro_rules! setters {
+    ($settings:ty { $($field:ident: $ty:ty),* $(,)? }) => {
+        impl $settings {
+            $(
+                #[doc = concat!("With `", stringify!($field), "` set (see the field).")]
+                #[must_use]
+                pub fn $field(mut self, value: $ty) -> Self {
+                    self.$field = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+pub(crate) use setters;
+
 /// The settings of one render. The image depends only on the scene, these settings and
 /// `seed`: never on `threads`.
+///
+/// The defaults: 512 x 512 pixels, samples 0..64 from seed 0, 8 wavelengths per path
+/// over 360-830 nm drawn from the visible density by hero rotation, unbounded depth
+/// (Russian roulette ends paths), the CIE 1931 observer, a box filter, no clamping, one
+/// thread per core, light paths for caustics on, XYZ film (no bands, no energy), opaque
+/// background. Start from them and set what you need:
+///
+/// ```
+/// use prism_integrator::RenderSettings;
+///
+/// let settings = RenderSettings::default().width(64).height(48).samples(0..16).seed(7);
+/// assert_eq!((settings.width, settings.wavelengths), (64, 8));
+/// assert!(settings.validate().is_ok());
+/// ```
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct RenderSettings {
     /// Image width in pixels.
     pub width: u32,
@@ -59,7 +93,7 @@ pub struct RenderSettings {
     /// Longest path in bounces (None: unbounded, ended by Russian roulette).
     pub max_depth: Option<u32>,
     /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
-    /// measured scenes, docs/trade-offs.md).
+    /// measured scenes, the repository's docs/trade-offs.md).
     pub wavelengths: usize,
     /// How the hero wavelength is chosen.
     pub lambda_sampler: LambdaSampler,
@@ -118,6 +152,27 @@ impl Default for RenderSettings {
     }
 }
 
+setters!(RenderSettings {
+    width: u32,
+    height: u32,
+    samples: Range<u64>,
+    seed: u64,
+    max_depth: Option<u32>,
+    wavelengths: usize,
+    lambda_sampler: LambdaSampler,
+    scheme: PackageScheme,
+    range: (f32, f32),
+    observer: Observer,
+    camera: Option<std::sync::Arc<crate::CameraResponse>>,
+    threads: usize,
+    filter: Filter,
+    clamp: Option<f64>,
+    bands: Option<SpectralBands>,
+    energy: bool,
+    light_paths: bool,
+    transparent: bool,
+});
+
 /// The most worker threads a render may ask for.
 pub const MAX_THREADS: usize = 1024;
 
@@ -131,7 +186,7 @@ impl RenderSettings {
     /// assert_eq!((defaults.width, defaults.height, defaults.samples.clone()), (512, 512, 0..64));
     /// assert_eq!((defaults.wavelengths, defaults.max_depth, defaults.light_paths), (8, None, true));
     /// assert!(defaults.validate().is_ok());
-    /// let empty = RenderSettings { samples: 5..5, ..RenderSettings::default() };
+    /// let empty = RenderSettings::default().samples(5..5);
     /// assert!(empty.validate().unwrap_err().to_string().contains("sample"));
     /// ```
     pub fn validate(&self) -> Result<(), RenderError> {

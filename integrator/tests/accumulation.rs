@@ -10,24 +10,17 @@ use prism_integrator::{
 };
 
 fn part(range: std::ops::Range<u64>) -> prism_integrator::Accumulation {
-    let settings = RenderSettings {
-        width: 10,
-        height: 6,
-        samples: range.clone(),
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(10)
+        .height(6)
+        .samples(range.clone());
     let (film, _) = render(&cornell(), &settings).unwrap();
     decode_accumulation(&encode_accumulation(&film, range, "box; seed=0").unwrap()).unwrap()
 }
 
 #[test]
 fn round_trip_is_lossless() {
-    let settings = RenderSettings {
-        width: 7,
-        height: 5,
-        samples: 3..5,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default().width(7).height(5).samples(3..5);
     let (film, _) = render(&cornell(), &settings).unwrap();
     let back = decode_accumulation(&encode_accumulation(&film, 3..5, "a;b=c").unwrap()).unwrap();
     assert_eq!(back.film, film, "every f64 bit survives");
@@ -75,12 +68,7 @@ fn merged_ranges_equal_the_whole_render() {
 
 #[test]
 fn anything_else_is_an_error_not_a_panic() {
-    let settings = RenderSettings {
-        width: 4,
-        height: 4,
-        samples: 0..1,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default().width(4).height(4).samples(0..1);
     let (film, _) = render(&cornell(), &settings).unwrap();
     let good = encode_accumulation(&film, 0..1, "").unwrap();
     // An ordinary RGB EXR is not an accumulation file.
@@ -109,14 +97,12 @@ fn anything_else_is_an_error_not_a_panic() {
 
 /// A spectral render that records energy: what `--spectral-bands` and `--energy` make.
 fn spectral_settings(samples: std::ops::Range<u64>) -> RenderSettings {
-    RenderSettings {
-        width: 6,
-        height: 4,
-        samples,
-        bands: Some(SpectralBands::new(380.0, 780.5, 7).unwrap()),
-        energy: true,
-        ..RenderSettings::default()
-    }
+    RenderSettings::default()
+        .width(6)
+        .height(4)
+        .samples(samples)
+        .bands(Some(SpectralBands::new(380.0, 780.5, 7).unwrap()))
+        .energy(true)
 }
 
 #[test]
@@ -168,10 +154,7 @@ fn spectral_energy_and_raw_films_round_trip_and_merge() {
     assert!(e.to_string().contains("raw"), "{e}");
 
     // Parts with other bands do not merge.
-    let other = RenderSettings {
-        bands: Some(SpectralBands::new(380.0, 780.5, 8).unwrap()),
-        ..spectral_settings(6..7)
-    };
+    let other = spectral_settings(6..7).bands(Some(SpectralBands::new(380.0, 780.5, 8).unwrap()));
     let (film8, _) = render(&scene, &other).unwrap();
     let e = merge_accumulations(&[
         render_part(0..1).1,

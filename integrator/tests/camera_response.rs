@@ -37,15 +37,13 @@ fn a_near_infrared_camera_integrates_its_curves() {
             .sum()
     });
     for sampler in [LambdaSampler::Response, LambdaSampler::Uniform] {
-        let settings = RenderSettings {
-            width: 8,
-            height: 8,
-            samples: 0..64,
-            lambda_sampler: sampler,
-            range: camera.range(),
-            camera: Some(camera.clone()),
-            ..RenderSettings::default()
-        };
+        let settings = RenderSettings::default()
+            .width(8)
+            .height(8)
+            .samples(0..64)
+            .lambda_sampler(sampler)
+            .range(camera.range())
+            .camera(Some(camera.clone()));
         let (film, _) = render(&scene, &settings).unwrap();
         assert!(film.is_raw());
         let rgb = film.to_rgb(prism_spectrum::color::RgbSpaceId::Srgb.space());

@@ -155,16 +155,14 @@ fn each_wavelength_leaves_the_prism_where_snell_puts_it() {
     };
 
     let bands = SpectralBands::new(440.0, 660.0, 11).unwrap();
-    let settings = RenderSettings {
-        width: WIDTH,
-        height: HEIGHT,
-        samples: 0..2048,
-        wavelengths: 4,
-        lambda_sampler: LambdaSampler::Uniform,
-        max_depth: Some(4),
-        bands: Some(bands),
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(WIDTH)
+        .height(HEIGHT)
+        .samples(0..2048)
+        .wavelengths(4)
+        .lambda_sampler(LambdaSampler::Uniform)
+        .max_depth(Some(4))
+        .bands(Some(bands));
     let (film, _) = render(&scene, &settings).unwrap();
     let mut previous = f64::INFINITY;
     for b in 0..bands.count() {

@@ -156,12 +156,10 @@ fn a_half_white_emissive_texture_lights_as_its_white_half() {
         "the mirror's caustics go to light paths"
     );
     let half = scene((0.0, 0.5), json!({"emissiveFactor": [1, 1, 1]}), None);
-    let settings = RenderSettings {
-        width: 16,
-        height: 16,
-        samples: 0..256,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(16)
+        .height(16)
+        .samples(0..256);
     let (a, _) = render(&textured, &settings).unwrap();
     let (b, _) = render(&half, &settings).unwrap();
     // Means of 4 x 4 blocks of pixels: the floor is brightest under the white half, and

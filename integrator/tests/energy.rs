@@ -29,15 +29,13 @@ fn energy_and_photons_of_a_known_emitter() {
         peak,
     ));
     for (c, sampler) in [(4, LambdaSampler::Visible), (1, LambdaSampler::Uniform)] {
-        let settings = RenderSettings {
-            width: 8,
-            height: 8,
-            samples: 0..64,
-            wavelengths: c,
-            lambda_sampler: sampler,
-            energy: true,
-            ..RenderSettings::default()
-        };
+        let settings = RenderSettings::default()
+            .width(8)
+            .height(8)
+            .samples(0..64)
+            .wavelengths(c)
+            .lambda_sampler(sampler)
+            .energy(true);
         let (film, _) = render(&scene, &settings).unwrap();
         let mut mean = [0.0f64; 2];
         for y in 0..8 {

@@ -42,12 +42,10 @@ fn scene(triangles: Vec<[Vec3; 3]>, light: Light, half: f32) -> Scene {
 }
 
 fn settings(size: u32, spp: u64) -> RenderSettings {
-    RenderSettings {
-        width: size,
-        height: size,
-        samples: 0..spp,
-        ..RenderSettings::default()
-    }
+    RenderSettings::default()
+        .width(size)
+        .height(size)
+        .samples(0..spp)
 }
 
 /// Every pixel's luminance Y.

@@ -53,16 +53,14 @@ fn floor_under_uv(material: Material, peak: f64, c: usize, sampler: LambdaSample
     })
     .unwrap();
     assert!(scene.features().fluorescence);
-    let settings = RenderSettings {
-        width: 8,
-        height: 8,
-        samples: 0..128,
-        wavelengths: c,
-        lambda_sampler: sampler,
-        max_depth: Some(1),
-        bands: Some(SpectralBands::new(400.0, 700.0, 12).unwrap()),
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(8)
+        .height(8)
+        .samples(0..128)
+        .wavelengths(c)
+        .lambda_sampler(sampler)
+        .max_depth(Some(1))
+        .bands(Some(SpectralBands::new(400.0, 700.0, 12).unwrap()));
     render(&scene, &settings).unwrap().0
 }
 
@@ -151,13 +149,11 @@ fn fluorescence_conserves_energy_per_photon() {
 /// box renders the same through the fluorescent path tracer as through the ordinary one.
 #[test]
 fn zero_quantum_yield_renders_like_diffuse() {
-    let settings = RenderSettings {
-        width: 16,
-        height: 16,
-        samples: 0..4,
-        wavelengths: 4,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(16)
+        .height(16)
+        .samples(0..4)
+        .wavelengths(4);
     let reemission = Gaussian::new(550.0, 40.0, 1.0).unwrap();
     let plain = common::cornell();
     let reflectance = match &plain.materials()[1] {

@@ -38,14 +38,12 @@ fn sums_past_f32_saturate_instead_of_becoming_infinite() {
 #[test]
 fn a_light_near_f32_max_renders_finite_in_every_channel() {
     let scene = common::emitter_filling_the_view(SceneSpectrum::Constant(3e38));
-    let settings = RenderSettings {
-        width: 4,
-        height: 4,
-        samples: 0..4,
-        bands: Some(SpectralBands::new(400.0, 700.0, 4).unwrap()),
-        energy: true,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(4)
+        .height(4)
+        .samples(0..4)
+        .bands(Some(SpectralBands::new(400.0, 700.0, 4).unwrap()))
+        .energy(true);
     let (film, _) = render(&scene, &settings).unwrap();
     assert_finite_exr(&film);
 }

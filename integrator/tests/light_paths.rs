@@ -45,15 +45,13 @@ fn floor(half: f32) -> [[Vec3; 3]; 2] {
 }
 
 fn settings(size: u32, spp: u64, seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: size,
-        height: size,
-        samples: 0..spp,
-        seed,
-        wavelengths: 4,
-        lambda_sampler: LambdaSampler::Visible,
-        ..RenderSettings::default()
-    }
+    RenderSettings::default()
+        .width(size)
+        .height(size)
+        .samples(0..spp)
+        .seed(seed)
+        .wavelengths(4)
+        .lambda_sampler(LambdaSampler::Visible)
 }
 
 /// Mean Y over the pixels of the block [x0, x1) x [y0, y1).
@@ -132,16 +130,10 @@ fn assert_the_mirror_lights_the_floor_as_the_image_does(light: &dyn Fn(bool) -> 
     // 1024 spp: at 256 the worst block strays 12% of the image share for some seeds.
     // Two bounces: floor and mirror. The floor's light via the mirror and back to the
     // floor would differ between the two scenes.
-    let settings = RenderSettings {
-        max_depth: Some(2),
-        ..settings(24, 1024, 1)
-    };
+    let settings = (settings(24, 1024, 1)).max_depth(Some(2));
     let (mirrored, _) = render(&mirror_scene(true, light), &settings).unwrap();
     let (two_lights, _) = render(&mirror_scene(false, light), &settings).unwrap();
-    let without = RenderSettings {
-        light_paths: false,
-        ..settings.clone()
-    };
+    let without = settings.clone().light_paths(false);
     let (camera_only, _) = render(&mirror_scene(true, light), &without).unwrap();
     for by in 0..3 {
         for bx in 0..3 {
@@ -280,15 +272,9 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
         let mut differences = vec![Vec::new(); 16];
         let mut level = [0.0; 16];
         for seed in 0..RUNS {
-            let base = RenderSettings {
-                filter,
-                ..settings(SIZE, 128, seed)
-            };
+            let base = (settings(SIZE, 128, seed)).filter(filter);
             let with = render(&scene, &base).unwrap().0;
-            let off = RenderSettings {
-                light_paths: false,
-                ..base
-            };
+            let off = base.light_paths(false);
             let without = render(&scene, &off).unwrap().0;
             for b in 0..16u32 {
                 let (bx, by) = (b % 4 * 4, b / 4 * 4);
@@ -325,14 +311,8 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
 #[test]
 fn light_paths_do_not_depend_on_the_thread_count() {
     let scene = glass_block_scene();
-    let one = RenderSettings {
-        threads: 1,
-        ..settings(20, 4, 7)
-    };
-    let two = RenderSettings {
-        threads: 2,
-        ..one.clone()
-    };
+    let one = (settings(20, 4, 7)).threads(1);
+    let two = one.clone().threads(2);
     let (a, _) = render(&scene, &one).unwrap();
     let (b, _) = render(&scene, &two).unwrap();
     assert_eq!(a.sums(), b.sums());

@@ -93,15 +93,13 @@ fn the_primary_bow_is_where_descartes_puts_it() {
         }];
     });
     let bands = SpectralBands::new(430.0, 670.0, 12).unwrap();
-    let settings = RenderSettings {
-        width: SIZE,
-        height: SIZE,
-        samples: 0..64,
-        wavelengths: 4,
-        lambda_sampler: LambdaSampler::Uniform,
-        bands: Some(bands),
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(SIZE)
+        .height(SIZE)
+        .samples(0..64)
+        .wavelengths(4)
+        .lambda_sampler(LambdaSampler::Uniform)
+        .bands(Some(bands));
     let (film, _) = render(&scene, &settings).unwrap();
     // Each pixel's distance from the axis on the screen (the camera's axis is the beam's,
     // square to the screen).

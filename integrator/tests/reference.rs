@@ -18,13 +18,11 @@ use prism_spectrum::color::RgbSpaceId;
 
 /// Region means (grid x grid, row-major, linear sRGB) of a render at `size` x `size`.
 fn region_means(scene: &Scene, size: u32, spp: u64, seed: u64, grid: usize) -> Vec<[f64; 3]> {
-    let settings = RenderSettings {
-        width: size,
-        height: size,
-        samples: 0..spp,
-        seed,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(size)
+        .height(size)
+        .samples(0..spp)
+        .seed(seed);
     let (film, _) = render(scene, &settings).unwrap();
     let rgb = film.to_rgb(RgbSpaceId::Srgb.space());
     let cell = size as usize / grid;

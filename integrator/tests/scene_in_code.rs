@@ -52,12 +52,7 @@ fn a_scene_built_in_code_is_lit_by_its_emitters() {
             .y
             < -0.99
     );
-    let settings = RenderSettings {
-        width: 8,
-        height: 8,
-        samples: 0..64,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default().width(8).height(8).samples(0..64);
     let (film, _) = render(&scene, &settings).unwrap();
     // Radiance of the white floor at the centre: L A / (pi h^2), as XYZ's Y of a flat
     // spectrum of that value (Y = value x integral of y-bar, 106.86).

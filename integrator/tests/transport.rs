@@ -95,14 +95,12 @@ fn constant_xyz(value: f64) -> [f64; 3] {
 }
 
 fn settings(size: u32, spp: u64, wavelengths: usize, sampler: LambdaSampler) -> RenderSettings {
-    RenderSettings {
-        width: size,
-        height: size,
-        samples: 0..spp,
-        wavelengths,
-        lambda_sampler: sampler,
-        ..RenderSettings::default()
-    }
+    RenderSettings::default()
+        .width(size)
+        .height(size)
+        .samples(0..spp)
+        .wavelengths(wavelengths)
+        .lambda_sampler(sampler)
 }
 
 const SAMPLERS: [LambdaSampler; 4] = [
@@ -397,10 +395,7 @@ fn threads_do_not_change_the_image() {
     let scene = cornell();
     let mut one = settings(24, 4, 4, LambdaSampler::Visible);
     one.threads = 1;
-    let two = RenderSettings {
-        threads: 2,
-        ..one.clone()
-    };
+    let two = one.clone().threads(2);
     let (a, _) = render(&scene, &one).unwrap();
     let (b, _) = render(&scene, &two).unwrap();
     assert_eq!(a.sums(), b.sums());
@@ -418,22 +413,8 @@ fn sample_ranges_merge_into_the_whole_render() {
     let scene = cornell();
     let whole = settings(8, 6, 4, LambdaSampler::Visible);
     let (full, _) = render(&scene, &whole).unwrap();
-    let (mut first, _) = render(
-        &scene,
-        &RenderSettings {
-            samples: 0..2,
-            ..whole.clone()
-        },
-    )
-    .unwrap();
-    let (second, _) = render(
-        &scene,
-        &RenderSettings {
-            samples: 2..6,
-            ..whole.clone()
-        },
-    )
-    .unwrap();
+    let (mut first, _) = render(&scene, &whole.clone().samples(0..2)).unwrap();
+    let (second, _) = render(&scene, &whole.clone().samples(2..6)).unwrap();
     first.merge(&second).unwrap();
     assert_eq!(first.samples(), 6);
     for (a, b) in first.sums().iter().zip(full.sums()) {
@@ -457,11 +438,9 @@ fn cornell_mean(
     let batches = 6;
     let mut means = vec![];
     for seed in 0..batches {
-        let s = RenderSettings {
-            seed: 1000 + seed,
-            scheme,
-            ..settings(12, 8, wavelengths, sampler)
-        };
+        let s = (settings(12, 8, wavelengths, sampler))
+            .seed(1000 + seed)
+            .scheme(scheme);
         let (film, _) = render(scene, &s).unwrap();
         means.push([0, 1, 2].map(|k| mean_and_error(&film, k).0));
     }
@@ -514,14 +493,7 @@ fn clamp_bounds_every_sample() {
     let scene = cornell();
     let base = settings(16, 4, 4, LambdaSampler::Visible);
     let (free, _) = render(&scene, &base).unwrap();
-    let (clamped, _) = render(
-        &scene,
-        &RenderSettings {
-            clamp: Some(1.0),
-            ..base.clone()
-        },
-    )
-    .unwrap();
+    let (clamped, _) = render(&scene, &base.clone().clamp(Some(1.0))).unwrap();
     let max_y = |film: &Film| {
         (0..16)
             .flat_map(|y| (0..16).map(move |x| (x, y)))
@@ -530,14 +502,7 @@ fn clamp_bounds_every_sample() {
     };
     assert!(max_y(&free) > 2.0, "the light is bright: {}", max_y(&free));
     assert!(max_y(&clamped) <= 1.0 + 1e-9, "{}", max_y(&clamped));
-    assert!(
-        RenderSettings {
-            clamp: Some(f64::NAN),
-            ..base
-        }
-        .validate()
-        .is_err()
-    );
+    assert!(base.clamp(Some(f64::NAN)).validate().is_err());
 }
 
 /// A dispersive glass sphere (SF11, strongly dispersive) in a uniform environment is
@@ -574,10 +539,7 @@ fn dispersive_glass_furnace_returns_the_environment() {
         (8, PackageScheme::HeroRotation),
         (4, PackageScheme::Stratified),
     ] {
-        let s = RenderSettings {
-            scheme,
-            ..settings(24, 256, c, LambdaSampler::Visible)
-        };
+        let s = (settings(24, 256, c, LambdaSampler::Visible)).scheme(scheme);
         let (film, _) = render(&scene, &s).unwrap();
         for k in 0..3 {
             let (mean, error) = mean_and_error(&film, k);
@@ -616,10 +578,7 @@ fn roulette_does_not_end_paths_for_being_inside_glass() {
     };
     let triangle_material = vec![0; triangles.len()];
     let scene = furnace(triangles, triangle_material, vec![glass], 0.6);
-    let settings = RenderSettings {
-        energy: true,
-        ..settings(16, 16, 4, LambdaSampler::Uniform)
-    };
+    let settings = (settings(16, 16, 4, LambdaSampler::Uniform)).energy(true);
     let (film, _) = render(&scene, &settings).unwrap();
     let values: Vec<f64> = (0..16)
         .flat_map(|y| (0..16).map(move |x| (x, y)))
@@ -668,10 +627,7 @@ fn spectral_film_recovers_a_blackbody_per_band() {
         (1, LambdaSampler::Uniform),
         (16, LambdaSampler::Visible),
     ] {
-        let s = RenderSettings {
-            bands: Some(bands),
-            ..settings(8, 64, c, sampler)
-        };
+        let s = (settings(8, 64, c, sampler)).bands(Some(bands));
         let (film, _) = render(&scene, &s).unwrap();
         for b in 0..bands.count() {
             let values: Vec<f64> = (0..8)

@@ -4,6 +4,7 @@ use std::fmt;
 
 /// Why a distribution or sampler could not be built.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum SamplingError {
     /// No function values were given.
     Empty,

@@ -37,6 +37,9 @@ pub enum LoadError {
     Spectral(String),
     /// A glTF extension the file requires that prism does not read.
     Unsupported(String),
+    /// A fluorescent material whose re-radiation cannot be built (absorption or emission
+    /// outside the range, a quantum yield above 1...).
+    Fluorescence(String),
     /// An image that cannot be decoded (not PNG, JPEG, WebP, OpenEXR or Radiance, or
     /// malformed).
     Image(String),
@@ -64,6 +67,7 @@ impl fmt::Display for LoadError {
             LoadError::Geometry(m) => write!(f, "geometry: {m}"),
             LoadError::Scene(m) => write!(f, "scene: {m}"),
             LoadError::Spectral(m) => write!(f, "spectral description: {m}"),
+            LoadError::Fluorescence(m) => write!(f, "fluorescent material: {m}"),
             LoadError::Unsupported(m) | LoadError::Image(m) => write!(f, "{m}"),
             LoadError::UnknownName { kind, name, valid } => {
                 write!(f, "unknown {kind} '{name}' (valid: {valid})")

@@ -599,12 +599,9 @@ fn textured_emitters_are_chosen_by_the_light_of_their_own_texels() {
     );
     // The quad's emission is no brighter than an emissive colour of 1: a black
     // environment, stated, keeps the default one out of the light choice.
-    let options = SceneOptions {
-        environment: Some(prism_scene::world::Environment::Uniform(
-            prism_scene::world::SceneSpectrum::Constant(0.0),
-        )),
-        ..SceneOptions::default()
-    };
+    let options = SceneOptions::default().environment(Some(
+        prism_scene::world::Environment::Uniform(prism_scene::world::SceneSpectrum::Constant(0.0)),
+    ));
     let scene = Scene::from_loaded(load_quad(&doc, bin), &options).unwrap();
     let (white, black) = (scene.lights().pmf(0), scene.lights().pmf(1));
     assert!((white + black - 1.0).abs() < 1e-6);

@@ -7,6 +7,7 @@ use std::fmt;
 /// Every variant renders as one line that names the offending input, so a command-line
 /// tool can print it as it is.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum SpectrumError {
     /// A numeric argument outside its domain (negative temperature, NaN wavelength...).
     InvalidValue {

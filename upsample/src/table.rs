@@ -282,7 +282,7 @@ pub struct FitStatistics {
 }
 
 impl CoefficientTable {
-    /// Resolutions accepted by [`CoefficientTable::fit`].
+    /// Resolutions accepted by [`CoefficientTable::fit`]: 2 to 256 nodes per axis.
     pub const RESOLUTIONS: std::ops::RangeInclusive<usize> = 2..=256;
 
     /// Fits a table of `resolution`^3 nodes per largest channel in parallel. Each worker

@@ -70,10 +70,9 @@ pub fn run(args: &MergeArgs) -> Result<(), String> {
         "samples".to_string(),
         format!("{}..{}", merged.samples.start, merged.samples.end),
     )];
-    let display = DisplaySettings {
-        exposure: args.exposure,
-        tone_map: ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?,
-        alpha: args.transparent,
-    };
+    let display = DisplaySettings::default()
+        .exposure(args.exposure)
+        .tone_map(ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?)
+        .alpha(args.transparent);
     write_images(&merged.film, &args.outputs, space, display, facts)
 }

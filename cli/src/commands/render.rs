@@ -273,11 +273,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         "slow" => BvhQuality::Slow,
         other => return Err(format!("--bvh '{other}': expected medium or slow")),
     };
-    let options = SceneOptions {
-        camera: args.camera.clone(),
-        environment: environment(args)?,
-        quality,
-    };
+    let options = SceneOptions::default()
+        .camera(args.camera.clone())
+        .environment(environment(args)?)
+        .quality(quality);
     let camera = args
         .camera_response
         .as_deref()
@@ -311,25 +310,23 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         (None, Some(c)) => c.range(),
         (None, None) => (360.0, 830.0),
     };
-    let settings = RenderSettings {
-        width,
-        height,
-        samples: samples_only.clone().unwrap_or(0..args.spp),
-        seed: args.seed,
-        max_depth: args.max_depth,
-        wavelengths: args.wavelengths,
-        lambda_sampler,
-        threads: args.threads,
-        filter,
-        clamp: args.clamp,
-        bands: spectral_bands(args)?,
-        energy: args.energy,
-        light_paths: !args.no_light_paths,
-        transparent: args.transparent,
-        range,
-        camera: camera.map(Arc::new),
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default()
+        .width(width)
+        .height(height)
+        .samples(samples_only.clone().unwrap_or(0..args.spp))
+        .seed(args.seed)
+        .max_depth(args.max_depth)
+        .wavelengths(args.wavelengths)
+        .lambda_sampler(lambda_sampler)
+        .threads(args.threads)
+        .filter(filter)
+        .clamp(args.clamp)
+        .bands(spectral_bands(args)?)
+        .energy(args.energy)
+        .light_paths(!args.no_light_paths)
+        .transparent(args.transparent)
+        .range(range)
+        .camera(camera.map(Arc::new));
     let white_balance = args
         .white_balance
         .as_deref()
@@ -621,11 +618,10 @@ pub fn check_outputs(outputs: &[PathBuf]) -> Result<(), String> {
 
 /// How --exposure, --tonemap and --transparent show a film in a PNG.
 fn display(args: &RenderArgs) -> Result<DisplaySettings, String> {
-    Ok(DisplaySettings {
-        exposure: args.exposure,
-        tone_map: ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?,
-        alpha: args.transparent,
-    })
+    Ok(DisplaySettings::default()
+        .exposure(args.exposure)
+        .tone_map(ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?)
+        .alpha(args.transparent))
 }
 
 /// Writes `film` to every output: .exr as linear RGB and alpha in `space` with prism's
@@ -640,10 +636,9 @@ pub fn write_images(
     let space = space.space();
     for out in outputs {
         let bytes = if has_extension(out, "exr") {
-            let metadata = ExrMetadata {
-                spp: film.samples(),
-                strings: facts.clone(),
-            };
+            let metadata = ExrMetadata::default()
+                .spp(film.samples())
+                .strings(facts.clone());
             encode_exr(film, space, &metadata).map_err(|e| e.to_string())?
         } else {
             encode_png(film, space, display)

@@ -244,16 +244,16 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
     let started = Instant::now();
     let mut scenes: Scenes = HashMap::new();
     load_once(&mut scenes, scene_path, Upsampling::Exact)?;
-    let settings_for = |k: Knobs, seed: u64| RenderSettings {
-        width: args.width,
-        height: args.height,
-        samples: 0..k.spp,
-        seed,
-        max_depth: args.max_depth,
-        wavelengths: k.wavelengths,
-        lambda_sampler: k.sampler,
-        threads: args.threads,
-        ..RenderSettings::default()
+    let settings_for = |k: Knobs, seed: u64| {
+        RenderSettings::default()
+            .width(args.width)
+            .height(args.height)
+            .samples(0..k.spp)
+            .seed(seed)
+            .max_depth(args.max_depth)
+            .wavelengths(k.wavelengths)
+            .lambda_sampler(k.sampler)
+            .threads(args.threads)
     };
     let reference = match &args.reference {
         Some(path) => {
@@ -279,10 +279,9 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
             let bytes = encode_exr(
                 &film,
                 RgbSpaceId::Srgb.space(),
-                &ExrMetadata {
-                    spp: film.samples(),
-                    strings: vec![("trade_reference".into(), name.clone())],
-                },
+                &ExrMetadata::default()
+                    .spp(film.samples())
+                    .strings(vec![("trade_reference".into(), name.clone())]),
             )
             .map_err(|e| e.to_string())?;
             write_atomically(&args.dir.join("reference.exr"), &bytes)?;

@@ -125,12 +125,7 @@ fn a_scene_built_in_code_renders_to_an_image() -> Result<(), Box<dyn std::error:
         false,
     );
     let scene = builder.build()?;
-    let settings = RenderSettings {
-        width: 32,
-        height: 24,
-        samples: 0..4,
-        ..RenderSettings::default()
-    };
+    let settings = RenderSettings::default().width(32).height(24).samples(0..4);
     let (film, stats) = render(&scene, &settings)?;
     assert_eq!(stats.paths, 32 * 24 * 4);
     assert!(film.xyz(16, 20).y > 0.0);

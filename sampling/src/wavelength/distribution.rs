@@ -74,8 +74,8 @@ impl WavelengthDistribution {
         })
     }
 
-    /// Camera-response sampling (the seed lecture's "response - camera wavelength
-    /// sampling"): a histogram of the sum of the response curves, each normalized to unit
+    /// Camera-response sampling (camera wavelength sampling by
+    /// the camera's response): a histogram of the sum of the response curves, each normalized to unit
     /// area over the range so that every channel gets the same share of samples. Pass the
     /// CIE colour matching functions as curves for an XYZ (human) observer, or measured
     /// camera responses for a camera.
@@ -104,7 +104,7 @@ impl WavelengthDistribution {
     /// Light-SPD sampling: a histogram of `response(lambda) * sum_i spd_i(lambda)`, where
     /// each `spd_i` is the absolute spectral power (or average radiance times area) of a
     /// light, so that lights keep their relative power. Normalizing each light's SPD on
-    /// its own would be wrong (the seed lecture warns): a dim light would get as many
+    /// its own would be wrong: a dim light would get as many
     /// samples as the sun. A spatially varying light passes its average SPD.
     ///
     /// The result is mixed with the response density as a defence,

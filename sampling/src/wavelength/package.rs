@@ -1,7 +1,7 @@
 use super::WavelengthDistribution;
 use crate::distribution::density_f32;
 
-/// The largest package size supported (the issue's C in 1, 2, 4, 8, 16).
+/// The largest package size supported (packages of C = 1, 2, 4, 8 or 16 wavelengths).
 pub const MAX_PACKAGE_SIZE: usize = 16;
 
 /// How the `C` wavelengths of a package are chosen from the hero distribution p, and how
@@ -13,14 +13,14 @@ pub const MAX_PACKAGE_SIZE: usize = 16;
 /// lambda_j when lane m is the hero; which p_m that is depends on the scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum PackageScheme {
-    /// Wilkie et al. 2014 (the seed lecture's HWS): lambda_H ~ p and the other lanes by
+    /// Wilkie et al. 2014 (hero wavelength spectral sampling): lambda_H ~ p and the other lanes by
     /// rotation in wavelength, lambda_j = ((lambda_H - min + j / C (max - min)) mod
     /// (max - min)) + min. Rotation preserves measure, so p_m(lambda_j) = p(lambda_m) and
     /// the estimator is sum_j L_j / sum_k p(lambda_k) q_k: every lane's density is
     /// `(1/C) sum_k p(lambda_k) q_k`.
     HeroRotation,
-    /// Every lane distributed by p (the seed lecture's "pick each wavelength according to
-    /// p, but still use only one as the hero"): lambda_j = P^-1((u + j / C) mod 1), lane 0
+    /// Every lane distributed by p (pick each wavelength according to p, but still use
+    /// only one as the hero): lambda_j = P^-1((u + j / C) mod 1), lane 0
     /// the hero. Rotation in primary sample space gives every lane the marginal density p,
     /// so p_m(lambda_j) = p(lambda_j) and the estimator is
     /// sum_j L_j / (p(lambda_j) sum_k q_k): lane j's density is `p(lambda_j) (1/C) sum_k q_k`,
@@ -145,7 +145,7 @@ impl<const N: usize> WavelengthPackage<N> {
 
     /// The balance-heuristic estimator density per lane when path sampling depends on
     /// wavelength, `path_pdf[k]` = q_k the density of the sampled path given lambda_k
-    /// (the seed lecture's HWS MIS): `(1/C) sum_k p(lambda_k) q_k` for `HeroRotation`,
+    /// (Wilkie et al. 2014, §4: hero wavelength MIS): `(1/C) sum_k p(lambda_k) q_k` for `HeroRotation`,
     /// `p(lambda_j) (1/C) sum_k q_k` for `Stratified`. After secondary termination only
     /// the hero remains, with `p(lambda_0) q_0 / C`.
     pub fn balance_pdf(&self, path_pdf: &[f32; N]) -> [f32; N] {
@@ -178,8 +178,8 @@ impl<const N: usize> WavelengthPackage<N> {
     }
 }
 
-/// Spectral MIS weights over a rotation package (the issue's and the seed lecture's
-/// formula): w_j = p(lambda_j) q_j / sum_k p(lambda_k) q_k, with p the hero density and q_j
+/// Spectral MIS weights over a rotation package (Wilkie et al.
+/// 2014, §4): w_j = p(lambda_j) q_j / sum_k p(lambda_k) q_k, with p the hero density and q_j
 /// the density of the path given lambda_j. Non-finite or negative
 /// inputs count as 0; if every product is 0 the weights are 0.
 pub fn spectral_mis_weights<const N: usize>(hero_pdf: &[f32; N], path_pdf: &[f32; N]) -> [f32; N] {

@@ -15,7 +15,7 @@ pub struct ReradiationSample {
 
 /// Sampling of a discretized re-radiation (bispectral) matrix M, with rows the incident
 /// wavelength bins and columns the outgoing ones; the diagonal is the ordinary reflectance,
-/// off-diagonal entries fluorescence (seed lecture, "re-radiation matrix"). Within a bin
+/// off-diagonal entries fluorescence (the re-radiation matrix of bispectral rendering). Within a bin
 /// the sampled wavelength is uniform, so M is treated as piecewise constant in both
 /// wavelengths; entries are the density of re-radiated energy per nm of the sampled
 /// wavelength.

@@ -5,18 +5,6 @@ use prism_spectrum::{SampledSpectrum, Spectrum};
 
 use super::BsdfSample;
 
-/// Why a re-radiation matrix could not be built.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FluorescenceError(pub String);
-
-impl std::fmt::Display for FluorescenceError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "fluorescent material: {}", self.0)
-    }
-}
-
-impl std::error::Error for FluorescenceError {}
-
 /// The re-radiation matrix of a fluorescent material on `bins` bins over `range`, row i
 /// the incident bin, column o the outgoing one, each entry a density per nm of incident
 /// wavelength (what [`ReradiationSampler`] samples):
@@ -36,7 +24,7 @@ pub fn reradiation_matrix(
     absorption: &dyn Spectrum,
     emission: &dyn Spectrum,
     quantum_yield: f64,
-) -> Result<Vec<f64>, FluorescenceError> {
+) -> Result<Vec<f64>, crate::LoadError> {
     let mut m = fluorescence_matrix(
         range,
         bins,
@@ -63,14 +51,14 @@ pub fn fluorescence_matrix(
     absorption: &dyn Spectrum,
     emission: &dyn Spectrum,
     quantum_yield: f64,
-) -> Result<Vec<f64>, FluorescenceError> {
+) -> Result<Vec<f64>, crate::LoadError> {
     if bins == 0 {
-        return Err(FluorescenceError(
+        return Err(crate::LoadError::Fluorescence(
             "the matrix needs at least one bin".into(),
         ));
     }
     if !(0.0..=1.0).contains(&quantum_yield) {
-        return Err(FluorescenceError(format!(
+        return Err(crate::LoadError::Fluorescence(format!(
             "quantum yield {quantum_yield} is outside [0, 1]"
         )));
     }
@@ -82,7 +70,7 @@ pub fn fluorescence_matrix(
         .collect();
     let e_area: f64 = e.iter().sum::<f64>() * width;
     if quantum_yield > 0.0 && !(e_area > 0.0 && e_area.is_finite()) {
-        return Err(FluorescenceError(
+        return Err(crate::LoadError::Fluorescence(
             "the emission spectrum is zero over the range".into(),
         ));
     }
@@ -94,13 +82,13 @@ pub fn fluorescence_matrix(
         );
         if !(r.is_finite() && a.is_finite() && (0.0..=1.0).contains(&r) && (0.0..=1.0).contains(&a))
         {
-            return Err(FluorescenceError(format!(
+            return Err(crate::LoadError::Fluorescence(format!(
                 "reflectance {r} or absorption {a} at {:.1} nm is outside [0, 1]",
                 centre(i)
             )));
         }
         if r + a > 1.0 + 1e-9 {
-            return Err(FluorescenceError(format!(
+            return Err(crate::LoadError::Fluorescence(format!(
                 "reflectance {r} plus absorption {a} exceeds 1 at {:.1} nm (energy would be created)",
                 centre(i)
             )));
@@ -128,7 +116,7 @@ pub struct FluorescentSample<const N: usize> {
 
 /// A Lambertian surface that re-radiates: light arriving at l_i leaves at l_o with the
 /// re-radiation matrix's density. Camera paths know l_o (their lanes' wavelengths) and
-/// sample l_i from the matrix's column (the seed lecture's "fluorescent sampling").
+/// sample l_i from the matrix's column (fluorescent sampling).
 #[derive(Debug, Clone, Copy)]
 pub struct FluorescentDiffuse<'a> {
     /// The matrix's sampler.

@@ -28,8 +28,7 @@ pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::Diffuse;
 pub use fluorescent::{
-    FluorescenceError, FluorescentDiffuse, FluorescentSample, fluorescence_matrix,
-    reradiation_matrix,
+    FluorescentDiffuse, FluorescentSample, fluorescence_matrix, reradiation_matrix,
 };
 pub use layered::Layered;
 pub use metallic_roughness::{DiffuseTransmission, Iridescence, MetallicRoughness, Specular};

@@ -112,7 +112,7 @@ impl<'a> TextureLoader<'a> {
         let texture = self
             .rgb(normal.texture(), uv, [1.0; 3])?
             .with_set(sets.slot(normal_set(normal)));
-        NormalMap::new(texture.encoded(Encoding::Linear), normal.scale())
+        NormalMap::new(texture.encoded(Encoding::Linear), normal.scale()).map_err(|e| e.to_string())
     }
 
     /// The texture `info` refers to, with its sampler, transform and texture coordinate

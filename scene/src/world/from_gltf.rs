@@ -12,8 +12,10 @@ use crate::bsdf::CoatingAlbedo;
 use crate::geometry::BvhQuality;
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
 
-/// Choices made when turning a loaded file into a scene.
+/// Choices made when turning a loaded file into a scene: start from the default and set
+/// what you need (`#[non_exhaustive]`: options can be added without breaking callers).
 #[derive(Debug, Clone, Default)]
+#[non_exhaustive]
 pub struct SceneOptions {
     /// The camera by name (default: the first, else one framing the scene).
     pub camera: Option<String>,
@@ -21,6 +23,26 @@ pub struct SceneOptions {
     pub environment: Option<Environment>,
     /// BVH build effort.
     pub quality: BvhQuality,
+}
+
+impl SceneOptions {
+    /// With [`SceneOptions::camera`] set.
+    pub fn camera(mut self, camera: Option<String>) -> Self {
+        self.camera = camera;
+        self
+    }
+
+    /// With [`SceneOptions::environment`] set.
+    pub fn environment(mut self, environment: Option<Environment>) -> Self {
+        self.environment = environment;
+        self
+    }
+
+    /// With [`SceneOptions::quality`] set.
+    pub fn quality(mut self, quality: BvhQuality) -> Self {
+        self.quality = quality;
+        self
+    }
 }
 
 /// The emissive-colour value of the environment that lights a scene without lights: a

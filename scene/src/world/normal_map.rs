@@ -19,9 +19,11 @@ impl NormalMap {
     /// `texture` (linear bytes: a texel c encodes the normal 2c - 1) whose normals' x and
     /// y are multiplied by `scale` (glTF's `normalTexture.scale`). Errors for a non-finite
     /// scale.
-    pub fn new(texture: RgbTexture, scale: f32) -> Result<Self, String> {
+    pub fn new(texture: RgbTexture, scale: f32) -> Result<Self, crate::LoadError> {
         if !scale.is_finite() {
-            return Err(format!("normal texture scale {scale} is not finite"));
+            return Err(crate::LoadError::Scene(format!(
+                "normal texture scale {scale} is not finite"
+            )));
         }
         Ok(Self { texture, scale })
     }

@@ -5,6 +5,7 @@ use super::TransferFunction;
 /// Operators act on linear RGB in the output colour space after exposure; none of them is
 /// physically meaningful, they only make an image viewable.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum ToneMap {
     /// Clip each channel to [0, 1].
     Clamp,

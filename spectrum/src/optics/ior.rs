@@ -20,8 +20,8 @@ fn clamp_to_range(lambda_nm: f64, (lo, hi): (f64, f64)) -> f64 {
 }
 
 /// The Sellmeier dispersion formula n^2(l) = 1 + sum_i B_i l^2 / (l^2 - C_i), with l in
-/// micrometres and C_i in square micrometres (the convention of glass catalogues and of
-/// the seed lecture's BK7 example).
+/// micrometres and C_i in square micrometres (the convention of glass catalogues, SCHOTT's
+/// BK7 data sheet among them).
 ///
 /// Each term has a pole (a resonance) at l = sqrt(C_i). The formula is only meaningful
 /// between poles, on the range it was fitted to, so a `Sellmeier` carries its valid range
