@@ -1,0 +1,290 @@
+//! Mueller matrices against Mitsuba 3 (an independent implementation; fixture made by
+//! scene/tools/make_mueller_fixtures.py) and against closed forms, and the validity of
+//! every matrix at the extremes.
+
+use num_complex::Complex64;
+use prism_scene::glam::{Vec3, Vec4};
+use prism_scene::polarization::{Mueller, Stokes, fresnel_amplitudes, rotate_frame};
+use proptest::prelude::*;
+
+fn fixture() -> serde_json::Value {
+    serde_json::from_str(include_str!("fixtures/mueller_mitsuba3.json")).unwrap()
+}
+
+fn rows(value: &serde_json::Value) -> [[f32; 4]; 4] {
+    let mut out = [[0.0; 4]; 4];
+    for (r, row) in value.as_array().unwrap().iter().enumerate() {
+        for (c, v) in row.as_array().unwrap().iter().enumerate() {
+            out[r][c] = v.as_f64().unwrap() as f32;
+        }
+    }
+    out
+}
+
+fn assert_close(ours: &Mueller, theirs: [[f32; 4]; 4], what: &str) {
+    let ours = ours.rows();
+    for r in 0..4 {
+        for c in 0..4 {
+            assert!(
+                (ours[r][c] - theirs[r][c]).abs() < 2e-5,
+                "{what}: entry ({r}, {c}) is {} where Mitsuba 3 has {}\nours {ours:?}\ntheirs {theirs:?}",
+                ours[r][c],
+                theirs[r][c]
+            );
+        }
+    }
+}
+
+fn number(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap()
+}
+
+#[test]
+fn reflection_and_transmission_match_mitsuba_3() {
+    let data = fixture();
+    let mut count = 0;
+    for case in data["reflection"].as_array().unwrap() {
+        let (cos, eta) = (number(&case["cos_i"]), &case["eta"]);
+        let eta = Complex64::new(number(&eta[0]), number(&eta[1]));
+        let m = Mueller::reflection(&fresnel_amplitudes(cos, eta));
+        assert_close(
+            &m,
+            rows(&case["m"]),
+            &format!("reflection cos {cos} eta {eta}"),
+        );
+        count += 1;
+    }
+    for case in data["transmission"].as_array().unwrap() {
+        let (cos, eta) = (number(&case["cos_i"]), number(&case["eta"]));
+        let m = Mueller::transmission(&fresnel_amplitudes(cos, Complex64::new(eta, 0.0)));
+        assert_close(
+            &m,
+            rows(&case["m"]),
+            &format!("transmission cos {cos} eta {eta}"),
+        );
+        count += 1;
+    }
+    assert!(count > 100);
+}
+
+#[test]
+fn elements_and_frame_rotations_match_mitsuba_3() {
+    let data = fixture();
+    for case in data["elements"].as_array().unwrap() {
+        let kind = case["kind"].as_str().unwrap();
+        let v = &case["value"];
+        let ours = match kind {
+            "rotator" => Mueller::rotator(number(v) as f32),
+            "rotated_polarizer" => {
+                Mueller::rotated(number(v) as f32, &Mueller::linear_polarizer(1.0))
+            }
+            "retarder" => Mueller::linear_retarder(number(v) as f32),
+            "polarizer" => Mueller::linear_polarizer(number(v) as f32),
+            "depolarizer" => Mueller::depolarizer(number(v) as f32),
+            "diattenuator" => Mueller::diattenuator(number(&v[0]) as f32, number(&v[1]) as f32),
+            other => panic!("unknown element {other}"),
+        };
+        assert_close(&ours, rows(&case["m"]), &format!("{kind} {v}"));
+    }
+    let vector = |v: &serde_json::Value| {
+        Vec3::new(
+            number(&v[0]) as f32,
+            number(&v[1]) as f32,
+            number(&v[2]) as f32,
+        )
+    };
+    for case in data["frames"].as_array().unwrap() {
+        let m = rotate_frame(
+            vector(&case["w"]),
+            vector(&case["from"]),
+            vector(&case["to"]),
+        );
+        assert_close(&m, rows(&case["m"]), &format!("frame {case}"));
+    }
+}
+
+/// Brewster's angle: p-polarized light is not reflected at tan(theta_B) = n (Born and
+/// Wolf §1.5.3), so unpolarized light reflects fully s-polarized there.
+#[test]
+fn reflection_at_brewsters_angle_is_fully_s_polarized() {
+    for n in [1.33, 1.5, 1.9] {
+        let cos_b = (1.0f64 / (1.0 + n * n)).sqrt();
+        let r = fresnel_amplitudes(cos_b, Complex64::new(n, 0.0));
+        assert!(
+            r.p.norm_sqr() < 1e-12,
+            "R_p = {} at Brewster's angle",
+            r.p.norm_sqr()
+        );
+        let reflected = Mueller::reflection(&r).apply(Stokes::unpolarized(1.0));
+        assert!((reflected.degree_linear() - 1.0).abs() < 1e-5);
+        assert!(reflected.0.y > 0.0, "s is the frame's x axis: S1 > 0");
+        // Away from it, the degree of polarization is (R_s - R_p) / (R_s + R_p).
+        let r = fresnel_amplitudes(0.7, Complex64::new(n, 0.0));
+        let (rs, rp) = (r.s.norm_sqr(), r.p.norm_sqr());
+        let dolp = Mueller::reflection(&r)
+            .apply(Stokes::unpolarized(1.0))
+            .degree_linear();
+        assert!((f64::from(dolp) - (rs - rp) / (rs + rp)).abs() < 1e-5);
+    }
+}
+
+/// Fresnel's intensities at normal incidence ((n - 1) / (n + 1))^2 and energy conservation
+/// R + T = 1 for each polarization below the critical angle.
+#[test]
+fn dielectric_intensities_are_fresnels() {
+    let n = 1.5;
+    let normal = fresnel_amplitudes(1.0, Complex64::new(n, 0.0));
+    let r0 = ((n - 1.0) / (n + 1.0)).powi(2);
+    assert!((normal.s.norm_sqr() - r0).abs() < 1e-12 && (normal.p.norm_sqr() - r0).abs() < 1e-12);
+    for cos in [0.05, 0.3, 0.7, 1.0] {
+        let f = fresnel_amplitudes(cos, Complex64::new(n, 0.0));
+        assert!((f.s.norm_sqr() + f.transmitted_s - 1.0).abs() < 1e-12);
+        assert!((f.p.norm_sqr() + f.transmitted_p - 1.0).abs() < 1e-12);
+    }
+    // From inside, the index inverts: the same as the outside of an n = 1/1.5 interface.
+    let inside = fresnel_amplitudes(-0.9, Complex64::new(n, 0.0));
+    let outside = fresnel_amplitudes(0.9, Complex64::new(1.0 / n, 0.0));
+    assert_eq!(inside, outside);
+}
+
+/// Total internal reflection keeps all the light and shifts s against p by
+/// delta = 2 atan(cos_i sqrt(sin_i^2 - n^2) / sin_i^2) (Born and Wolf §1.5.4, eq. 60, n the
+/// relative index < 1): linear light at 45 degrees comes out elliptical.
+#[test]
+fn total_internal_reflection_retards() {
+    let n = 1.0 / 1.5;
+    for cos in [0.1f64, 0.3, 0.5, 0.7] {
+        let sin2 = 1.0 - cos * cos;
+        assert!(sin2 > n * n, "beyond the critical angle");
+        let f = fresnel_amplitudes(cos, Complex64::new(n, 0.0));
+        assert!((f.s.norm() - 1.0).abs() < 1e-12 && (f.p.norm() - 1.0).abs() < 1e-12);
+        assert_eq!((f.transmitted_s, f.transmitted_p), (0.0, 0.0));
+        let expected = 2.0 * (cos * (sin2 - n * n).sqrt() / sin2).atan();
+        let delta = (f.s * f.p.conj()).arg().abs();
+        assert!(
+            (delta - expected).abs() < 1e-9,
+            "cos {cos}: {delta} vs {expected}"
+        );
+        let out =
+            Mueller::reflection(&f).apply(Stokes::linear(1.0, 1.0, std::f32::consts::FRAC_PI_4));
+        assert!((out.intensity() - 1.0).abs() < 1e-6);
+        assert!(
+            (out.0.w.abs() - (delta as f32).sin()).abs() < 1e-5,
+            "{out:?}"
+        );
+    }
+}
+
+/// Malus's law: a polarizer at angle theta passes cos^2(theta) of linearly polarized
+/// light, and half of unpolarized light; crossed polarizers pass nothing.
+#[test]
+fn polarizers_follow_malus() {
+    let polarizer = |theta: f32| Mueller::rotated(theta, &Mueller::linear_polarizer(1.0));
+    for theta in [0.0f32, 0.3, 0.7, 1.2, std::f32::consts::FRAC_PI_2] {
+        let out = polarizer(theta).apply(Stokes::linear(1.0, 1.0, 0.0));
+        assert!(
+            (out.intensity() - theta.cos().powi(2)).abs() < 1e-6,
+            "theta {theta}"
+        );
+        let half = polarizer(theta).apply(Stokes::unpolarized(2.0));
+        assert!((half.intensity() - 1.0).abs() < 1e-6);
+    }
+    let crossed = polarizer(std::f32::consts::FRAC_PI_2).after(&polarizer(0.0));
+    assert!(crossed.apply(Stokes::unpolarized(1.0)).intensity().abs() < 1e-6);
+}
+
+/// A quarter-wave plate at 45 degrees to linear light makes it circular; a half-wave plate
+/// at theta turns linear light at 0 to 2 theta.
+#[test]
+fn wave_plates_turn_linear_into_circular_and_rotate_it() {
+    use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+    let quarter = Mueller::rotated(FRAC_PI_4, &Mueller::linear_retarder(FRAC_PI_2));
+    let out = quarter.apply(Stokes::linear(1.0, 1.0, 0.0));
+    assert!(
+        (out.0.w.abs() - 1.0).abs() < 1e-6 && out.degree_linear() < 1e-6,
+        "{out:?}"
+    );
+    let half = Mueller::rotated(0.3, &Mueller::linear_retarder(PI));
+    let out = half.apply(Stokes::linear(1.0, 1.0, 0.0));
+    assert!((out.angle_linear() - 0.6).abs() < 1e-5 && (out.degree_linear() - 1.0).abs() < 1e-5);
+}
+
+/// Metals turn linear light elliptical: the retardance of gold-like n = 0.18 + 3.42i at
+/// 60 degrees is well away from 0 and pi.
+#[test]
+fn conductors_make_linear_light_elliptical() {
+    let f = fresnel_amplitudes(0.5, Complex64::new(0.18, 3.42));
+    let out = Mueller::reflection(&f).apply(Stokes::linear(1.0, 1.0, std::f32::consts::FRAC_PI_4));
+    assert!(out.0.w.abs() > 0.3, "{out:?}");
+    assert!(out.is_physical(1e-5));
+}
+
+fn stokes() -> impl Strategy<Value = Stokes> {
+    (0.0f32..10.0, -1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0).prop_map(|(s0, a, b, c)| {
+        let v = Vec4::new(0.0, a, b, c);
+        let len = v.length().max(1.0);
+        Stokes(Vec4::new(s0, s0 * a / len, s0 * b / len, s0 * c / len))
+    })
+}
+
+fn extreme_cosine() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(0.0),
+        Just(1.0),
+        Just(-1.0),
+        Just(1e-12),
+        Just(-1e-300),
+        Just(f64::NAN),
+        -1.0f64..1.0,
+    ]
+}
+
+fn index() -> impl Strategy<Value = Complex64> {
+    prop_oneof![
+        (0.01f64..10.0).prop_map(|n| Complex64::new(n, 0.0)),
+        (0.01f64..10.0, 0.0f64..20.0).prop_map(|(n, k)| Complex64::new(n, k)),
+        Just(Complex64::new(1.0, 0.0)),
+        Just(Complex64::new(f64::NAN, 1.0)),
+        Just(Complex64::new(0.0, 0.0)),
+        Just(Complex64::new(1e300, 1e300)),
+    ]
+}
+
+proptest! {
+    #[test]
+    fn interfaces_map_light_to_light(s in stokes(), cos in extreme_cosine(), eta in index()) {
+        let f = fresnel_amplitudes(cos, eta);
+        for m in [Mueller::reflection(&f), Mueller::transmission(&f)] {
+            prop_assert!(m.is_finite());
+            let out = m.apply(s);
+            prop_assert!(out.is_physical(1e-4), "{out:?} from {s:?}, {m:?}");
+            prop_assert!(out.intensity() <= s.intensity() * (1.0 + 1e-5) + 1e-6);
+        }
+        // Energy: what is reflected and transmitted of unpolarized light never exceeds it.
+        let total = f.s.norm_sqr() + f.p.norm_sqr() + f.transmitted_s + f.transmitted_p;
+        prop_assert!(total <= 2.0 + 1e-9 && total.is_finite());
+    }
+
+    #[test]
+    fn linear_elements_map_light_to_light(
+        s in stokes(),
+        theta in prop_oneof![Just(f32::NAN), Just(0.0f32), -10.0f32..10.0],
+        phase in -10.0f32..10.0,
+        frame in (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0),
+    ) {
+        let w = Vec3::new(frame.0, frame.1, frame.2 + 2.0).normalize();
+        let from = w.any_orthonormal_vector();
+        let to = w.cross(from).normalize() * frame.0.signum() + from * frame.1;
+        for m in [
+            Mueller::rotated(theta, &Mueller::linear_polarizer(1.0)),
+            Mueller::rotated(theta, &Mueller::linear_retarder(phase)),
+            rotate_frame(w, from, to.normalize_or_zero()),
+            Mueller::rotator(theta),
+        ] {
+            let out = m.apply(s);
+            if theta.is_finite() {
+                prop_assert!(out.is_physical(1e-4), "{out:?} from {s:?}");
+            }
+        }
+    }
+}
