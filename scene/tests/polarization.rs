@@ -288,3 +288,41 @@ proptest! {
         }
     }
 }
+
+/// The polarized counterpart of a Fresnel BSDF keeps its scalar value as the unpolarized
+/// entry, and its frames are the s axis of the plane of incidence, perpendicular to both
+/// directions of travel; seen through the frames of a fixed observer the reflected light
+/// of a Brewster-angle reflection is polarized perpendicular to the plane of incidence.
+#[test]
+fn fresnel_interactions_keep_the_scalar_value_and_the_plane_of_incidence() {
+    use prism_scene::polarization::Interaction;
+    let n = 1.5f32;
+    let theta_b = n.atan();
+    let wi = Vec3::new(theta_b.sin(), 0.0, theta_b.cos());
+    let wo = Vec3::new(-wi.x, 0.0, wi.z);
+    let amplitudes = fresnel_amplitudes(f64::from(wi.z), Complex64::new(f64::from(n), 0.0));
+    let value = 0.123;
+    let it = Interaction::fresnel(wi, wo, Vec3::Z, &amplitudes, value);
+    assert!((it.mueller.rows()[0][0] - value).abs() < 1e-7);
+    // The plane of incidence is xz: s is +-y, perpendicular to -wi and wo.
+    assert!((it.incident_basis.y.abs() - 1.0).abs() < 1e-6);
+    assert!(it.incident_basis.dot(wi).abs() < 1e-6 && it.outgoing_basis.dot(wo).abs() < 1e-6);
+    // An observer whose frame's x axis is the world's x (turned to be perpendicular to wo)
+    // sees the reflection polarized along y: S1 < 0 in that frame, fully.
+    let observer_x = (Vec3::X - wo * wo.dot(Vec3::X)).normalize();
+    let seen = rotate_frame(wo, it.outgoing_basis, observer_x)
+        .after(&it.mueller)
+        .apply(Stokes::unpolarized(1.0));
+    assert!(
+        seen.0.y < 0.0 && (seen.degree_linear() - 1.0).abs() < 1e-4,
+        "{seen:?}"
+    );
+    // Refraction uses the transmission matrix, with the same scaling.
+    let wt = Vec3::new(-wi.x / n, 0.0, -(1.0 - (wi.x / n).powi(2)).sqrt());
+    let refracted = Interaction::fresnel(wi, wt, Vec3::Z, &amplitudes, 0.5);
+    let rows = refracted.mueller.rows();
+    assert!(
+        (rows[0][0] - 0.5).abs() < 1e-7 && rows[0][1] < 0.0,
+        "p is favoured: {rows:?}"
+    );
+}

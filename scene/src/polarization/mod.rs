@@ -27,7 +27,9 @@
 mod fresnel;
 mod mueller;
 mod stokes;
+mod surface;
 
 pub use fresnel::{FresnelAmplitudes, fresnel_amplitudes};
 pub use mueller::Mueller;
 pub use stokes::{Stokes, rotate_frame};
+pub use surface::{Interaction, s_axis};
