@@ -33,7 +33,7 @@ pub struct Interaction {
 impl Interaction {
     /// Light arriving from `wi` (pointing away from the surface) reflected or refracted
     /// into `wo` at a microsurface of normal `m` with Fresnel amplitudes `fresnel`, the
-    /// matrix scaled so that its unpolarized entry [0][0] is `value` (the BSDF's scalar
+    /// matrix scaled so that its unpolarized entry `[0][0]` is `value` (the BSDF's scalar
     /// value with the unpolarized Fresnel term it already contains): the polarized
     /// counterpart of any BSDF whose only polarizing factor is Fresnel's at `m`.
     pub fn fresnel(wi: Vec3, wo: Vec3, m: Vec3, fresnel: &FresnelAmplitudes, value: f32) -> Self {
