@@ -326,3 +326,52 @@ fn fresnel_interactions_keep_the_scalar_value_and_the_plane_of_incidence() {
         "p is favoured: {rows:?}"
     );
 }
+
+/// An iridescent film's amplitudes give its reflectance as the Mueller matrix's
+/// unpolarized entry, reduce to the bare interface's at zero thickness, and retard s
+/// against p (linear light at 45 degrees comes out with circular content).
+#[test]
+fn thin_films_polarize_and_retard() {
+    use prism_scene::bsdf::ThinFilm;
+    use prism_scene::polarization::FresnelAmplitudes;
+    let film = ThinFilm {
+        ior: 1.3,
+        thickness_nm: 400.0,
+    };
+    let as_mueller = |(s, p): (Complex64, Complex64)| {
+        Mueller::reflection(&FresnelAmplitudes {
+            s,
+            p,
+            transmitted_s: 0.0,
+            transmitted_p: 0.0,
+        })
+    };
+    for (cos, lambda) in [(0.9f32, 450.0f32), (0.5, 550.0), (0.2, 650.0)] {
+        let m = as_mueller(film.amplitudes(cos, lambda, 1.0, 1.5, 0.0));
+        let r = film.reflectance(cos, lambda, 1.0, 1.5, 0.0);
+        assert!((m.rows()[0][0] - r).abs() < 1e-6);
+        let bare = ThinFilm {
+            ior: 1.3,
+            thickness_nm: 0.0,
+        };
+        let ours = as_mueller(bare.amplitudes(cos, lambda, 1.0, 1.5, 0.0));
+        let interface = Mueller::reflection(&fresnel_amplitudes(
+            f64::from(cos),
+            Complex64::new(1.5, 0.0),
+        ));
+        for (a, b) in ours
+            .rows()
+            .iter()
+            .flatten()
+            .zip(interface.rows().iter().flatten())
+        {
+            assert!((a - b).abs() < 1e-6, "{ours:?} vs {interface:?}");
+        }
+    }
+    let m = as_mueller(film.amplitudes(0.5, 550.0, 1.0, 1.5, 0.0));
+    let out = m.apply(Stokes::linear(1.0, 1.0, std::f32::consts::FRAC_PI_4));
+    assert!(
+        out.0.w.abs() > 0.01 * out.intensity() && out.is_physical(1e-5),
+        "{out:?}"
+    );
+}

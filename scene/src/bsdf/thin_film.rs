@@ -38,6 +38,27 @@ impl ThinFilm {
         base_eta: f32,
         base_k: f32,
     ) -> f32 {
+        let (rs, rp) = self.amplitudes(cos_i, lambda_nm, outside, base_eta, base_k);
+        let r = 0.5 * (rs.norm_sqr() + rp.norm_sqr());
+        if r.is_finite() {
+            r.clamp(0.0, 1.0) as f32
+        } else {
+            1.0
+        }
+    }
+
+    /// The complex amplitude reflection coefficients (r_s, r_p) of the film and its base,
+    /// with the same arguments as [`ThinFilm::reflectance`] (which is their mean
+    /// intensity): the phases a polarized renderer needs (an iridescent film retards s
+    /// against p, so it turns linear light elliptical).
+    pub fn amplitudes(
+        &self,
+        cos_i: f32,
+        lambda_nm: f32,
+        outside: f32,
+        base_eta: f32,
+        base_k: f32,
+    ) -> (Complex64, Complex64) {
         let finite_or = |v: f32, fallback: f32| if v.is_finite() { v } else { fallback };
         let cos0 = f64::from(finite_or(cos_i.abs(), 1.0).min(1.0));
         let n0 = f64::from(finite_or(outside, 1.0).max(1e-3));
@@ -57,16 +78,16 @@ impl ThinFilm {
         let phase = (Complex64::i() * 4.0 * std::f64::consts::PI * n1 * cos1 * d / lambda).exp();
         let airy = |r01: Complex64, r12: Complex64| {
             let r = (r01 + r12 * phase) / (1.0 + r01 * r12 * phase);
-            r.norm_sqr()
+            if r.re.is_finite() && r.im.is_finite() {
+                r
+            } else {
+                Complex64::from(1.0)
+            }
         };
-        let rs = airy(r_s(n0c, cos0, n1, cos1), r_s(n1, cos1, n2, cos2));
-        let rp = airy(r_p(n0c, cos0, n1, cos1), r_p(n1, cos1, n2, cos2));
-        let r = 0.5 * (rs + rp);
-        if r.is_finite() {
-            r.clamp(0.0, 1.0) as f32
-        } else {
-            1.0
-        }
+        (
+            airy(r_s(n0c, cos0, n1, cos1), r_s(n1, cos1, n2, cos2)),
+            airy(r_p(n0c, cos0, n1, cos1), r_p(n1, cos1, n2, cos2)),
+        )
     }
 }
 
