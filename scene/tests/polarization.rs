@@ -375,3 +375,40 @@ fn thin_films_polarize_and_retard() {
         "{out:?}"
     );
 }
+
+/// A rough conductor's polarized lobe carries its scalar value per lane as the unpolarized
+/// entry, maps light to light, and turns linear light elliptical (gold-like index).
+#[test]
+fn rough_conductor_lobes_carry_the_scalar_value() {
+    use prism_scene::bsdf::{Ggx, RoughConductor};
+    use prism_scene::polarization::rough_conductor;
+    use prism_spectrum::SampledSpectrum;
+    let bsdf = RoughConductor::<4> {
+        distribution: Ggx::new(0.3, 0.3),
+        eta: SampledSpectrum([0.18, 0.4, 1.2, 2.9]),
+        k: SampledSpectrum([3.42, 2.5, 7.0, 3.1]),
+    };
+    let wo = Vec3::new(0.3, 0.2, 0.93).normalize();
+    for wi in [
+        Vec3::new(-0.5, 0.1, 0.86),
+        Vec3::new(0.7, -0.6, 0.38),
+        Vec3::new(0.2, 0.1, -0.97),
+    ] {
+        let wi = wi.normalize();
+        let f = bsdf.f(wo, wi);
+        let lobes = rough_conductor(&bsdf, wo, wi);
+        for (lane, it) in lobes.iter().enumerate() {
+            assert!((it.mueller.rows()[0][0] - f[lane]).abs() <= 1e-6 * f[lane].max(1.0));
+            let out = it
+                .mueller
+                .apply(Stokes::linear(1.0, 1.0, std::f32::consts::FRAC_PI_4));
+            assert!(out.is_physical(1e-4), "{out:?}");
+            if f[lane] > 0.0 {
+                assert!(
+                    out.0.w.abs() > 1e-3 * out.intensity(),
+                    "lane {lane}: {out:?}"
+                );
+            }
+        }
+    }
+}
