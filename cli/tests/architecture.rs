@@ -26,6 +26,17 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "prism-integrator",
         ],
     ),
+    // A dependent of every library crate, using their public API only (tests).
+    (
+        "examples/downstream",
+        &[
+            "prism-spectrum",
+            "prism-upsample",
+            "prism-sampling",
+            "prism-scene",
+            "prism-integrator",
+        ],
+    ),
     (
         "benches",
         &[
