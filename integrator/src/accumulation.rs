@@ -6,8 +6,9 @@
 //! as its IEEE-754 bits split over two u32 channels (`X.hi`, `X.lo`, ...): lossless.
 //! Besides XYZ (or a camera's raw channels) a file holds the coverage counts
 //! (`Coverage.*`, the alpha channel's) and whatever else the film accumulates: per-band spectral sums (`S0000.hi`, ...; the bands in the facts) and energy
-//! sums (`Energy.*` radiance, `Photons.*` photon radiance), so spectral and energy renders
-//! checkpoint, resume and merge like any other.
+//! sums (`Energy.*` radiance, `Photons.*` photon radiance) and Stokes sums (`S1X.*` ...
+//! `S3Z.*`), so spectral, energy and polarized renders checkpoint, resume and merge like
+//! any other.
 
 use std::io::Cursor;
 use std::ops::Range;
@@ -23,6 +24,12 @@ use crate::{Film, RenderError, SpectralBands};
 
 const XYZ: [&str; 3] = ["X", "Y", "Z"];
 const ENERGY: [&str; 2] = ["Energy", "Photons"];
+/// The Stokes components S1..S3's colour sums.
+const STOKES: [[&str; 3]; 3] = [
+    ["S1X", "S1Y", "S1Z"],
+    ["S2X", "S2Y", "S2Z"],
+    ["S3X", "S3Y", "S3Z"],
+];
 /// Per pixel, the camera rays that met geometry (the alpha channel's numerator).
 const COVERAGE: &str = "Coverage";
 const FACTS: &str = "prismAccumulation";
@@ -134,6 +141,17 @@ pub fn encode_accumulation(
             ));
         }
         extra += "energy=1;";
+    }
+    if film.is_polarized() {
+        for (k, names) in STOKES.iter().enumerate() {
+            for (c, name) in names.iter().enumerate() {
+                list.extend(split_channels(
+                    name,
+                    film.stokes_sums().iter().map(move |s| s[k][c]),
+                ));
+            }
+        }
+        extra += "polarized=1;";
     }
     if film.is_raw() {
         extra += "raw=1;";
@@ -291,6 +309,19 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
         film = film
             .with_energy_sums(sums)
             .ok_or_else(|| bad("non-finite energy sums".into()))?;
+    }
+    if fact(&facts, "polarized") == Some("1") {
+        let channels = STOKES
+            .iter()
+            .flatten()
+            .map(|name| values(name))
+            .collect::<Result<Vec<_>, _>>()?;
+        let sums = (0..size.area())
+            .map(|i| std::array::from_fn(|k| std::array::from_fn(|c| channels[3 * k + c][i])))
+            .collect();
+        film = film
+            .with_stokes_sums(sums)
+            .ok_or_else(|| bad("non-finite Stokes sums".into()))?;
     }
     if fact(&facts, "raw") == Some("1") {
         film = film.with_raw_channels();

@@ -14,6 +14,7 @@ pub(crate) struct FilmSums<'a> {
     pub xyz: &'a mut [[f64; 3]],
     pub spectral: &'a mut [f64],
     pub energy: &'a mut [[f64; 2]],
+    pub stokes: &'a mut [[[f64; 3]; 3]],
     pub coverage: &'a mut [f64],
 }
 
@@ -37,6 +38,10 @@ pub struct Film {
     /// Per-pixel sums of (radiance W m^-2 sr^-1, photon radiance s^-1 m^-2 sr^-1)
     /// estimates, when the film records energy.
     energy: Option<Vec<[f64; 2]>>,
+    /// Per-pixel colour sums of the Stokes components S1, S2 and S3 (the camera frame's
+    /// linear horizontal-vertical, diagonal and circular polarization; `sums` is S0),
+    /// when the render is polarized.
+    stokes: Option<Vec<[[f64; 3]; 3]>>,
     /// Whether the three sums are a camera's raw channels (shown as they are) rather
     /// than XYZ.
     raw: bool,
@@ -54,8 +59,32 @@ impl Film {
             nonfinite: 0,
             spectral: None,
             energy: None,
+            stokes: None,
             raw: false,
         }
+    }
+
+    /// This film, also recording the Stokes components S1, S2, S3 per pixel.
+    pub fn with_polarization(mut self) -> Self {
+        self.stokes = Some(vec![[[0.0; 3]; 3]; self.sums.len()]);
+        self
+    }
+
+    /// Whether the film records polarization (a polarized render's).
+    pub fn is_polarized(&self) -> bool {
+        self.stokes.is_some()
+    }
+
+    /// Pixel (x, y)'s Stokes components S0..S3 as colours (XYZ, or a camera's raw
+    /// channels, like [`Film::xyz`]) in the camera's polarization frame (see the
+    /// README's "Polarization"), when the film records polarization.
+    pub fn stokes(&self, x: u32, y: u32) -> Option<[[f64; 3]; 4]> {
+        let sums = self.stokes.as_ref()?;
+        let pixel = (y * self.width + x) as usize;
+        let n = self.samples.max(1) as f64;
+        let s = &sums[pixel];
+        let s0 = self.sums[pixel];
+        Some([s0, s[0], s[1], s[2]].map(|c| c.map(|v| v / n)))
     }
 
     /// This film holding a camera's raw channels instead of XYZ: `to_rgb` shows them as
@@ -111,6 +140,11 @@ impl Film {
         } else {
             film
         };
+        let film = if settings.is_polarized() {
+            film.with_polarization()
+        } else {
+            film
+        };
         if settings.camera.is_some() {
             film.with_raw_channels()
         } else {
@@ -157,6 +191,7 @@ impl Film {
             nonfinite,
             spectral: None,
             energy: None,
+            stokes: None,
             raw: false,
         })
     }
@@ -170,6 +205,7 @@ impl Film {
                 .as_ref()
                 .map(|(bands, sums)| (*bands, vec![0.0; sums.len()])),
             energy: self.energy.as_ref().map(|e| vec![[0.0; 2]; e.len()]),
+            stokes: self.stokes.as_ref().map(|e| vec![[[0.0; 3]; 3]; e.len()]),
             raw: self.raw,
             ..Self::new(self.width, self.height)
         }
@@ -235,6 +271,23 @@ impl Film {
         })
     }
 
+    /// This film with Stokes sums `sums` (S1, S2, S3 colours per pixel), or None when
+    /// they do not fit its size or are not finite (decoding accumulation files).
+    #[cfg(feature = "exr")]
+    pub(crate) fn with_stokes_sums(mut self, sums: Vec<[[f64; 3]; 3]>) -> Option<Self> {
+        let fits = sums.len() == self.sums.len();
+        (fits && sums.iter().flatten().flatten().all(|v| v.is_finite())).then(|| {
+            self.stokes = Some(sums);
+            self
+        })
+    }
+
+    /// The Stokes sums, S1, S2, S3 colours per pixel (empty unless polarized).
+    #[cfg(feature = "exr")]
+    pub(crate) fn stokes_sums(&self) -> &[[[f64; 3]; 3]] {
+        self.stokes.as_deref().unwrap_or(&[])
+    }
+
     /// The energy sums, one (radiance, photon radiance) pair per pixel (empty without
     /// energy).
     #[cfg(feature = "exr")]
@@ -268,7 +321,8 @@ impl Film {
     }
 
     /// The XYZ sums, the spectral sums (empty when not spectral), the energy sums (empty
-    /// without energy) and the coverage counts, for filling by rows.
+    /// without energy), the Stokes sums (empty unless polarized) and the coverage counts,
+    /// for filling by rows.
     pub(crate) fn sums_mut(&mut self) -> FilmSums<'_> {
         let spectral: &mut [f64] = match &mut self.spectral {
             Some((_, s)) => s,
@@ -278,10 +332,15 @@ impl Film {
             Some(e) => e,
             None => &mut [],
         };
+        let stokes: &mut [[[f64; 3]; 3]] = match &mut self.stokes {
+            Some(s) => s,
+            None => &mut [],
+        };
         FilmSums {
             xyz: &mut self.sums,
             spectral,
             energy,
+            stokes,
             coverage: &mut self.coverage,
         }
     }
@@ -304,18 +363,29 @@ impl Film {
     /// The image as linear RGB in `space` (no chromatic adaptation: XYZ is converted with
     /// the space's own matrix), row-major.
     pub fn to_rgb(&self, space: &RgbColorSpace) -> Vec<[f32; 3]> {
+        self.sums.iter().map(|s| self.rgb(space, s)).collect()
+    }
+
+    /// Stokes component `k` (1, 2 or 3) as linear RGB in `space`, row-major (signed: the
+    /// RGB of the polarized part's colour), when the film records polarization.
+    pub fn stokes_rgb(&self, space: &RgbColorSpace, k: usize) -> Option<Vec<[f32; 3]>> {
+        let sums = self.stokes.as_ref()?;
+        let component = k.checked_sub(1).filter(|c| *c < 3)?;
+        Some(
+            sums.iter()
+                .map(|s| self.rgb(space, &s[component]))
+                .collect(),
+        )
+    }
+
+    fn rgb(&self, space: &RgbColorSpace, sum: &[f64; 3]) -> [f32; 3] {
         let n = self.samples.max(1) as f64;
-        self.sums
-            .iter()
-            .map(|s| {
-                let rgb = if self.raw {
-                    s.map(|v| v / n)
-                } else {
-                    space.xyz_to_rgb(Xyz::new(s[0] / n, s[1] / n, s[2] / n))
-                };
-                rgb.map(saturating_f32)
-            })
-            .collect()
+        let rgb = if self.raw {
+            sum.map(|v| v / n)
+        } else {
+            space.xyz_to_rgb(Xyz::new(sum[0] / n, sum[1] / n, sum[2] / n))
+        };
+        rgb.map(saturating_f32)
     }
 
     /// This film with every XYZ sum transformed by `m` (white balance: a chromatic
@@ -323,6 +393,9 @@ impl Film {
     pub fn adapted(&self, m: &prism_spectrum::color::Mat3) -> Film {
         let mut film = self.clone();
         for s in &mut film.sums {
+            *s = m.apply(*s);
+        }
+        for s in film.stokes.iter_mut().flatten().flatten() {
             *s = m.apply(*s);
         }
         film
@@ -392,6 +465,24 @@ impl Film {
             _ => {
                 return Err(crate::RenderError::Merge(
                     "one film records energy and the other does not".into(),
+                ));
+            }
+        }
+        match (&mut self.stokes, &other.stokes) {
+            (Some(a), Some(b)) => {
+                for (x, y) in a
+                    .iter_mut()
+                    .flatten()
+                    .flatten()
+                    .zip(b.iter().flatten().flatten())
+                {
+                    *x += y;
+                }
+            }
+            (None, None) => {}
+            _ => {
+                return Err(crate::RenderError::Merge(
+                    "one film is polarized and the other is not".into(),
                 ));
             }
         }

@@ -156,6 +156,7 @@ pub(crate) struct Splatter<'a> {
     sums: &'a mut [[f64; 3]],
     spectral: &'a mut [f64],
     energy: &'a mut [[f64; 2]],
+    stokes: &'a mut [[[f64; 3]; 3]],
     filter: &'a FilterSampler,
 }
 
@@ -171,6 +172,7 @@ impl<'a> Splatter<'a> {
             sums: sums.xyz,
             spectral: sums.spectral,
             energy: sums.energy,
+            stokes: sums.stokes,
             filter,
         }
     }
@@ -227,7 +229,13 @@ impl<'a> Splatter<'a> {
             .spectral
             .get_mut(i * self.band_count..(i + 1) * self.band_count)
             .unwrap_or_default();
-        value.add_to(weight, &mut self.sums[i], spectral, self.energy.get_mut(i));
+        value.add_to(
+            weight,
+            &mut self.sums[i],
+            spectral,
+            self.energy.get_mut(i),
+            self.stokes.get_mut(i),
+        );
     }
 }
 

@@ -51,6 +51,12 @@ crate::settings::setters!(ExrMetadata {
 /// wavelength range), `energy.eV` (the same in eV s^-1 m^-2 sr^-1) and `energy.photons`
 /// (photons s^-1 m^-2 sr^-1).
 ///
+/// A polarized film adds the Stokes components as RGB images in `space`, `S0.R`, `S0.G`,
+/// `S0.B` (equal to R, G, B), `S1.R`, ..., `S3.B`: the layout Mitsuba 3's `stokes`
+/// integrator writes, in the same camera frame (x = ray x camera up, so S1 > 0 is light
+/// polarized along the image's rows, S2 > 0 along the diagonal from its bottom left to
+/// top right, S3 > 0 circular of positive helicity about the direction of travel).
+///
 /// prism's facts (`spp=N;...`) go in the typed `comments` attribute: the exr crate keeps
 /// other attributes in a HashMap whose order changes per process, so each of its maps holds
 /// at most one entry and the file's bytes stay a function of the image.
@@ -110,6 +116,23 @@ pub fn encode_exr(
                 .map(|p| saturating_f32(sums[p * count + b] / n))
                 .collect();
             list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
+        }
+    }
+    for k in 1..=3 {
+        let Some(component) = film.stokes_rgb(space, k) else {
+            break;
+        };
+        if k == 1 {
+            for (c, name) in ["S0.R", "S0.G", "S0.B"].iter().enumerate() {
+                list.push(channel(name, c));
+            }
+        }
+        for (c, colour) in ["R", "G", "B"].iter().enumerate() {
+            let values = component.iter().map(|p| p[c]).collect();
+            list.push(AnyChannel::new(
+                format!("S{k}.{colour}").as_str(),
+                FlatSamples::F32(values),
+            ));
         }
     }
     if film.has_energy() {

@@ -61,6 +61,7 @@ mod png;
 mod render;
 mod sample_value;
 mod settings;
+mod throughput;
 
 /// glam, whose types appear in this crate's and prism-scene's public APIs.
 pub use glam;

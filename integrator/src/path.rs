@@ -13,6 +13,8 @@ use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
+use crate::throughput::{Throughput, Vertex};
+
 /// What every path of a render shares.
 pub(crate) struct Tracer<'a> {
     pub scene: &'a Scene,
@@ -32,6 +34,8 @@ pub(crate) struct Tracer<'a> {
     /// How wide a pixel's footprint is where a path meets a surface, for filtering
     /// textures (None: the scene has no texture to filter).
     pub footprint: Option<Footprint>,
+    /// The polarized camera frame (read only by polarized renders).
+    pub camera_frame: crate::throughput::CameraFrame,
 }
 
 /// A pixel's footprint at a point, as pbrt-v4 approximates it for every vertex of a path
@@ -109,14 +113,14 @@ pub(crate) fn absorb<const N: usize>(
     ray: &Ray,
     hit: &prism_scene::world::Hit,
     transport: &SampledWavelengths<N>,
-    beta: &mut SampledSpectrum<N>,
+    beta: &mut impl Throughput<N>,
 ) {
     if let Some(sigma) = scene.material(hit).absorption()
         && ray.direction.dot(hit.normal) > 0.0
     {
         let distance = hit.t * ray.direction.length();
         let sigma = sigma.at(transport);
-        *beta *= SampledSpectrum::from_fn(|i| (-sigma[i] * distance).exp());
+        beta.scale(SampledSpectrum::from_fn(|i| (-sigma[i] * distance).exp()));
     }
 }
 
@@ -136,15 +140,16 @@ impl Tracer<'_> {
     ///
     /// `FLUORESCENCE` is whether the scene has re-radiating materials: without it the
     /// wavelengths light is evaluated at are always the film's, and no vertex pays for
-    /// the check (the renderer picks the specialization from the scene's features).
-    pub(crate) fn trace<const N: usize, const FLUORESCENCE: bool>(
+    /// the check (the renderer picks the specialization from the scene's features). `T`
+    /// is what the path carries: a spectrum, or Mueller matrices for polarized renders.
+    pub(crate) fn trace<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
         &self,
         stream: &mut SobolStream,
         sample_base: u64,
         u_lambda: f32,
         film: Vec2,
         aspect: f32,
-        sink: &mut impl FnMut(&SampledSpectrum<N>, &SampledWavelengths<N>),
+        sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
     ) -> PathResult {
         let mut package =
             WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
@@ -162,8 +167,8 @@ impl Tracer<'_> {
         let mut transport = lambdas;
         let mut emission = EmissionCache::new();
         let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
-        let mut radiance = SampledSpectrum::<N>::splat(0.0);
-        let mut beta = SampledSpectrum::<N>::splat(1.0);
+        let mut radiance = T::black();
+        let mut beta = T::start(ray.direction.normalize(), &self.camera_frame);
         // The BSDF density and origin of the last bounce, for MIS on emitters it hits;
         // None after the camera or a delta bounce (no light sampling competed).
         let mut previous: Option<(f32, Vec3)> = None;
@@ -192,7 +197,7 @@ impl Tracer<'_> {
                     let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
-                    radiance += beta * le * w;
+                    beta.add_emitted(&mut radiance, &le, w);
                 }
                 break;
             };
@@ -210,7 +215,7 @@ impl Tracer<'_> {
                     let light_pdf = self.scene.light_pdf(from, &hit, &transport, &mut emission);
                     power_heuristic(1, bsdf_pdf, 1, light_pdf)
                 });
-                radiance += beta * le * w;
+                beta.add_emitted(&mut radiance, &le, w);
             }
             if depth >= self.max_depth {
                 break;
@@ -236,6 +241,7 @@ impl Tracer<'_> {
                     let guide = self.scene.light_wavelengths(&hit);
                     let r = reflectance.at_uv(hit.tex, &transport);
                     let mut incident = *transport.lambdas();
+                    let mut weights = SampledSpectrum::splat(1.0);
                     for j in 0..N {
                         let out = transport.lambda(j);
                         let f = reradiation.incident_integral(out) as f32;
@@ -271,8 +277,9 @@ impl Tracer<'_> {
                                 None => 0.0,
                             };
                         }
-                        beta[j] *= weight;
+                        weights[j] = weight;
                     }
+                    beta.scale(weights);
                     transport = match SampledWavelengths::new(incident, *transport.pdfs()) {
                         Ok(t) => t,
                         Err(_) => break,
@@ -283,6 +290,11 @@ impl Tracer<'_> {
             };
             let frame = Frame::from_normal(hit.shading_normal);
             let wo = frame.to_local(wo_world);
+            let vertex = Vertex {
+                bsdf: &bsdf,
+                frame: &frame,
+                wo,
+            };
 
             // Next-event estimation.
             if !bsdf.is_delta()
@@ -302,7 +314,14 @@ impl Tracer<'_> {
                         } else {
                             power_heuristic(1, light.pdf, 1, bsdf.pdf(wo, wi))
                         };
-                        radiance += beta * f * light.radiance * (w / light.pdf);
+                        beta.add_scattered(
+                            &mut radiance,
+                            &vertex,
+                            wi,
+                            &f,
+                            &light.radiance,
+                            w / light.pdf,
+                        );
                     }
                 }
             }
@@ -315,13 +334,19 @@ impl Tracer<'_> {
             if !positive_finite(pdf) {
                 break;
             }
-            beta *= sample.f * (sample.wi.z.abs() / pdf);
+            beta.scatter(
+                &vertex,
+                sample.wi,
+                &sample.f,
+                sample.delta,
+                sample.wi.z.abs() / pdf,
+            );
             eta_scale *= sample.eta * sample.eta;
             if sample.wavelength_dependent && !package.secondary_terminated() {
                 // The secondaries' light so far was estimated with the whole package; it
                 // goes to the film with the package's densities before they change.
                 sink(&radiance, &lambdas);
-                radiance = SampledSpectrum::splat(0.0);
+                radiance = T::black();
                 package.terminate_secondary();
                 lambdas = match wavelengths(&package) {
                     Some(l) => l,
@@ -353,7 +378,7 @@ impl Tracer<'_> {
                 if q.is_nan() || q <= 0.0 || u_roulette >= q {
                     break;
                 }
-                beta *= 1.0 / q;
+                beta.scale_uniform(1.0 / q);
             }
         }
         sink(&radiance, &lambdas);

@@ -18,7 +18,9 @@ use crate::light_path::light_seed;
 use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
 use crate::sample_value::{Outputs, SampleValue};
+use crate::throughput::{CameraFrame, Polarized, Throughput};
 use crate::{Film, RenderError, RenderSettings};
+use prism_spectrum::SampledSpectrum;
 
 /// Counts gathered during a render.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -81,9 +83,11 @@ impl<'a> Renderer<'a> {
 
     /// Whether light paths carry the caustics the camera sees directly: when the scene has
     /// delta surfaces (smooth glass or metal), the settings allow it, and the camera is a
-    /// pinhole (an orthographic camera cannot be connected to).
+    /// pinhole (an orthographic camera cannot be connected to). Polarized renders leave
+    /// caustics to camera paths: light paths do not carry polarization.
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
+            && !self.settings.is_polarized()
             && self.scene.features().specular
             && matches!(
                 self.scene.camera().projection,
@@ -124,20 +128,28 @@ impl<'a> Renderer<'a> {
                 .scene
                 .filters_textures()
                 .then(|| Footprint::new(self.scene.camera(), settings.height)),
+            camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
-        let trace = match (settings.wavelengths, self.fluorescence()) {
-            (1, false) => trace_row::<1, false>,
-            (2, false) => trace_row::<2, false>,
-            (4, false) => trace_row::<4, false>,
-            (8, false) => trace_row::<8, false>,
-            (_, false) => trace_row::<16, false>,
-            (1, true) => trace_row::<1, true>,
-            (2, true) => trace_row::<2, true>,
-            (4, true) => trace_row::<4, true>,
-            (8, true) => trace_row::<8, true>,
-            (_, true) => trace_row::<16, true>,
+        // One specialization per package size, fluorescence and polarization, so that
+        // a scene pays only for what it has.
+        macro_rules! by_width {
+            ($fluorescence:literal, $carrier:ident) => {
+                match settings.wavelengths {
+                    1 => trace_row::<1, $fluorescence, $carrier<1>>,
+                    2 => trace_row::<2, $fluorescence, $carrier<2>>,
+                    4 => trace_row::<4, $fluorescence, $carrier<4>>,
+                    8 => trace_row::<8, $fluorescence, $carrier<8>>,
+                    _ => trace_row::<16, $fluorescence, $carrier<16>>,
+                }
+            };
+        }
+        let trace = match (self.fluorescence(), settings.is_polarized()) {
+            (false, false) => by_width!(false, SampledSpectrum),
+            (true, false) => by_width!(true, SampledSpectrum),
+            (false, true) => by_width!(false, Polarized),
+            (true, true) => by_width!(true, Polarized),
         };
         let rows = Rows {
             width: settings.width,
@@ -157,6 +169,7 @@ impl<'a> Renderer<'a> {
                 xyz: sums,
                 spectral,
                 energy,
+                stokes,
                 coverage,
             } = pass.sums_mut();
             // Films without spectral or energy sums give each row an empty slice.
@@ -174,25 +187,36 @@ impl<'a> Renderer<'a> {
             } else {
                 energy.chunks_mut(width).collect()
             };
+            let stokes_rows: Vec<&mut [[[f64; 3]; 3]]> = if stokes.is_empty() {
+                (0..settings.height)
+                    .map(|_| -> &mut [[[f64; 3]; 3]] { &mut [] })
+                    .collect()
+            } else {
+                stokes.chunks_mut(width).collect()
+            };
             sums.par_chunks_mut(width)
                 .zip(spectral_rows)
                 .zip(energy_rows)
+                .zip(stokes_rows)
                 .zip(coverage.par_chunks_mut(width))
                 .enumerate()
-                .for_each(|(y, (((row, spectral_row), energy_row), coverage_row))| {
-                    if cancel.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    let out = RowOutput {
-                        xyz: row,
-                        spectral: spectral_row,
-                        energy: energy_row,
-                        coverage: coverage_row,
-                    };
-                    let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
-                    rays.fetch_add(r, Ordering::Relaxed);
-                    nonfinite.fetch_add(n, Ordering::Relaxed);
-                });
+                .for_each(
+                    |(y, ((((row, spectral_row), energy_row), stokes_row), coverage_row))| {
+                        if cancel.load(Ordering::Relaxed) {
+                            return;
+                        }
+                        let out = RowOutput {
+                            xyz: row,
+                            spectral: spectral_row,
+                            energy: energy_row,
+                            stokes: stokes_row,
+                            coverage: coverage_row,
+                        };
+                        let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
+                        rays.fetch_add(r, Ordering::Relaxed);
+                        nonfinite.fetch_add(n, Ordering::Relaxed);
+                    },
+                );
         });
         if self.light_caustics() {
             let light_row = match settings.wavelengths {
@@ -274,16 +298,17 @@ pub fn render(
 }
 
 /// One row's sums: XYZ, spectral bands (empty when not spectral), energy (empty
-/// without energy output) and coverage.
+/// without energy output), Stokes components (empty unless polarized) and coverage.
 struct RowOutput<'a> {
     xyz: &'a mut [[f64; 3]],
     spectral: &'a mut [f64],
     energy: &'a mut [[f64; 2]],
+    stokes: &'a mut [[[f64; 3]; 3]],
     coverage: &'a mut [f64],
 }
 
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
-fn trace_row<const N: usize, const FLUORESCENCE: bool>(
+fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     tracer: &Tracer,
     filter: &FilterSampler,
     settings: &Rows,
@@ -294,6 +319,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
         xyz: row,
         spectral: spectral_row,
         energy: energy_row,
+        stokes: stokes_row,
         coverage,
     } = out;
     let (w, h) = (settings.width, settings.height);
@@ -312,7 +338,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                 (y as f32 + 0.5 + offset.y) / h as f32,
             );
             value.clear();
-            let result = tracer.trace::<N, FLUORESCENCE>(
+            let result = tracer.trace::<N, FLUORESCENCE, T>(
                 &mut stream,
                 FIRST_BOUNCE_DIMENSION,
                 u_lambda,
@@ -331,6 +357,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool>(
                     sum,
                     spectral,
                     energy_row.get_mut(x),
+                    stokes_row.get_mut(x),
                 );
             } else {
                 rejected += 1;

@@ -6,6 +6,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::SpectralBands;
 use crate::path::Tracer;
+use crate::throughput::Radiance;
 
 /// Photons per joule at 1 nm: a photon of wavelength l nm carries hc / (l 1e-9) J.
 const PHOTONS_PER_JOULE_NM: f64 =
@@ -27,6 +28,8 @@ pub(crate) struct SampleValue {
     pub energy: [f64; 2],
     /// (band, spectral radiance) pairs.
     pub binned: Vec<(usize, f64)>,
+    /// The colour of the Stokes components S1, S2, S3 (polarized renders; `xyz` is S0's).
+    pub stokes: [[f64; 3]; 3],
 }
 
 impl SampleValue {
@@ -34,21 +37,31 @@ impl SampleValue {
         self.xyz = [0.0; 3];
         self.energy = [0.0; 2];
         self.binned.clear();
+        self.stokes = [[0.0; 3]; 3];
     }
 
-    /// Adds the estimate `radiance` made with `lambdas`.
+    /// Adds the estimate `radiance` made with `lambdas` (a spectrum, or Stokes vectors
+    /// whose intensity is the spectrum every other output reads).
     pub(crate) fn add<const N: usize>(
         &mut self,
         tracer: &Tracer,
         outputs: Outputs,
-        radiance: &SampledSpectrum<N>,
+        radiance: &impl Radiance<N>,
         lambdas: &SampledWavelengths<N>,
     ) {
-        let c = match tracer.camera {
-            Some(camera) => camera.channels(radiance, lambdas),
-            None => radiance.to_xyz(lambdas, tracer.observer).to_array(),
+        let colour = |spectrum: &SampledSpectrum<N>| match tracer.camera {
+            Some(camera) => camera.channels(spectrum, lambdas),
+            None => spectrum.to_xyz(lambdas, tracer.observer).to_array(),
         };
-        for (acc, v) in self.xyz.iter_mut().zip(c) {
+        if let Some(polarization) = radiance.polarization() {
+            for (sum, component) in self.stokes.iter_mut().zip(polarization) {
+                for (acc, v) in sum.iter_mut().zip(colour(component)) {
+                    *acc += v;
+                }
+            }
+        }
+        let radiance = radiance.intensity();
+        for (acc, v) in self.xyz.iter_mut().zip(colour(radiance)) {
             *acc += v;
         }
         if outputs.energy {
@@ -80,6 +93,7 @@ impl SampleValue {
     /// Whether every sum is finite (a sample that is not is rejected whole).
     pub(crate) fn finite(&self) -> bool {
         self.xyz.iter().all(|v| v.is_finite())
+            && self.stokes.iter().flatten().all(|v| v.is_finite())
             && self.energy.iter().all(|v| v.is_finite())
             && self.binned.iter().all(|b| b.1.is_finite())
     }
@@ -92,17 +106,27 @@ impl SampleValue {
         }
     }
 
-    /// Adds `weight` times the value to one pixel's sums (`spectral` and `energy` empty
-    /// when the film does not keep them).
+    /// Adds `weight` times the value to one pixel's sums (`spectral`, `energy` and
+    /// `stokes` empty when the film does not keep them).
     pub(crate) fn add_to(
         &self,
         weight: f64,
         xyz: &mut [f64; 3],
         spectral: &mut [f64],
         energy: Option<&mut [f64; 2]>,
+        stokes: Option<&mut [[f64; 3]; 3]>,
     ) {
         for (acc, v) in xyz.iter_mut().zip(self.xyz) {
             *acc += v * weight;
+        }
+        if let Some(stokes) = stokes {
+            for (acc, v) in stokes
+                .iter_mut()
+                .flatten()
+                .zip(self.stokes.iter().flatten())
+            {
+                *acc += v * weight;
+            }
         }
         for &(band, v) in &self.binned {
             spectral[band] += v * weight;

@@ -125,6 +125,14 @@ pub struct RenderSettings {
     /// A transparent background: camera rays that leave the scene add nothing (the
     /// environment still lights it), so the image is premultiplied by its alpha.
     pub transparent: bool,
+    /// Polarized transport: paths carry a Mueller matrix per wavelength lane and the film
+    /// records the Stokes components S1..S3 besides S0 (the ordinary image). Slower; the
+    /// default renders without (and its images do not depend on this code).
+    pub polarized: bool,
+    /// An ideal linear polarizing filter in front of the camera, its transmission axis
+    /// at this many degrees from the image's x axis towards its y axis (up): the film
+    /// holds what a photograph through it shows. Implies polarized transport.
+    pub camera_polarizer: Option<f32>,
 }
 
 impl Default for RenderSettings {
@@ -148,6 +156,8 @@ impl Default for RenderSettings {
             energy: false,
             light_paths: true,
             transparent: false,
+            polarized: false,
+            camera_polarizer: None,
         }
     }
 }
@@ -171,12 +181,19 @@ setters!(RenderSettings {
     energy: bool,
     light_paths: bool,
     transparent: bool,
+    polarized: bool,
+    camera_polarizer: Option<f32>,
 });
 
 /// The most worker threads a render may ask for.
 pub const MAX_THREADS: usize = 1024;
 
 impl RenderSettings {
+    /// Whether paths carry polarization (asked for, or implied by a camera polarizer).
+    pub fn is_polarized(&self) -> bool {
+        self.polarized || self.camera_polarizer.is_some()
+    }
+
     /// Checks every setting, naming the first one out of range.
     ///
     /// ```
@@ -191,6 +208,13 @@ impl RenderSettings {
     /// ```
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |m: String| Err(RenderError::Setting(m));
+        if let Some(angle) = self.camera_polarizer
+            && !angle.is_finite()
+        {
+            return bad(format!(
+                "camera polarizer angle {angle} is not a number of degrees"
+            ));
+        }
         if self.width == 0 || self.height == 0 {
             return bad(format!(
                 "image size {}x{} is empty",

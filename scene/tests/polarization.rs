@@ -381,7 +381,8 @@ fn thin_films_polarize_and_retard() {
 #[test]
 fn rough_conductor_lobes_carry_the_scalar_value() {
     use prism_scene::bsdf::{Ggx, RoughConductor};
-    use prism_scene::polarization::rough_conductor;
+    use prism_scene::polarization::interactions;
+    use prism_scene::world::Bsdf;
     use prism_spectrum::SampledSpectrum;
     let bsdf = RoughConductor::<4> {
         distribution: Ggx::new(0.3, 0.3),
@@ -396,7 +397,7 @@ fn rough_conductor_lobes_carry_the_scalar_value() {
     ] {
         let wi = wi.normalize();
         let f = bsdf.f(wo, wi);
-        let lobes = rough_conductor(&bsdf, wo, wi);
+        let lobes = interactions(&Bsdf::Conductor(bsdf), wo, wi, &f, false);
         for (lane, it) in lobes.iter().enumerate() {
             assert!((it.mueller.rows()[0][0] - f[lane]).abs() <= 1e-6 * f[lane].max(1.0));
             let out = it
@@ -411,4 +412,62 @@ fn rough_conductor_lobes_carry_the_scalar_value() {
             }
         }
     }
+}
+
+/// A rough dielectric's polarized lobes carry its scalar value per lane for reflection and
+/// refraction, from either side, and map light to light; its smooth limit reflects no
+/// p-polarized light at Brewster's angle (the sampled delta's matrix).
+#[test]
+fn dielectric_lobes_carry_the_scalar_value() {
+    use prism_scene::bsdf::{Ggx, RoughDielectric, TransportMode};
+    use prism_scene::polarization::interactions;
+    use prism_scene::world::Bsdf;
+    let rough = RoughDielectric::<4> {
+        distribution: Ggx::new(0.25, 0.25),
+        eta: [1.45, 1.5, 1.55, 1.7],
+        mode: TransportMode::Radiance,
+    };
+    for wo in [Vec3::new(0.3, 0.2, 0.93), Vec3::new(-0.4, 0.5, -0.77)] {
+        let wo = wo.normalize();
+        for wi in [
+            Vec3::new(-0.5, 0.1, 0.86),
+            Vec3::new(0.7, -0.6, 0.38),
+            Vec3::new(0.2, 0.1, -0.97),
+            Vec3::new(-0.5, -0.3, -0.81),
+        ] {
+            let wi = wi.normalize();
+            let f = rough.f(wo, wi);
+            let lobes = interactions(&Bsdf::Dielectric(rough), wo, wi, &f, false);
+            for (lane, it) in lobes.iter().enumerate() {
+                let m00 = it.mueller.rows()[0][0];
+                assert!(
+                    (m00 - f[lane]).abs() <= 1e-5 * f[lane].max(1.0),
+                    "{m00} {}",
+                    f[lane]
+                );
+                for angle in [0.0, 0.4, 1.2] {
+                    let out = it.mueller.apply(Stokes::linear(1.0, 1.0, angle));
+                    assert!(out.is_physical(1e-4), "{wo} {wi} {out:?}");
+                }
+            }
+        }
+    }
+    // Smooth glass at Brewster's angle: the sampled reflection passes s light only.
+    let eta = 1.5f32;
+    let brewster = eta.atan();
+    let wo = Vec3::new(brewster.sin(), 0.0, brewster.cos());
+    let smooth = RoughDielectric::<1> {
+        distribution: Ggx::new(0.0, 0.0),
+        eta: [eta],
+        mode: TransportMode::Radiance,
+    };
+    let sample = (0..64)
+        .filter_map(|i| smooth.sample(wo, i as f32 / 64.0, glam::Vec2::splat(0.5)))
+        .find(|s| s.wi.z > 0.0)
+        .expect("a reflection");
+    let it = interactions(&Bsdf::Dielectric(smooth), wo, sample.wi, &sample.f, true)[0];
+    let out = it.mueller.apply(Stokes::unpolarized(1.0));
+    assert!((out.degree_linear() - 1.0).abs() < 1e-3, "{out:?}");
+    // Fully polarized along s, the frame's x axis: S1 = +S0.
+    assert!((out.0.y - out.0.x).abs() < 1e-3 * out.0.x, "{out:?}");
 }

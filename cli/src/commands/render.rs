@@ -79,6 +79,17 @@ pub struct RenderArgs {
     /// image means.
     #[arg(long)]
     pub energy: bool,
+    /// Polarized rendering: paths carry a Stokes vector per wavelength (Mueller matrices
+    /// at every surface: Fresnel for glass and metals, depolarizing diffuse surfaces).
+    /// EXR outputs gain the Stokes components as S0.R, S0.G, S0.B, S1.R, ..., S3.B (the
+    /// layout of Mitsuba 3's stokes integrator); PNG outputs show S0, the ordinary image.
+    #[arg(long)]
+    pub polarized: bool,
+    /// A linear polarizing filter in front of the camera, its axis at this many degrees
+    /// from the image's horizontal towards its vertical: outputs show what a photograph
+    /// through it would. Implies --polarized.
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    pub camera_polarizer: Option<f32>,
     /// The wavelengths camera paths sample, nm (default 360:830, or the camera
     /// response's range; wider to include UV or infrared, of which only what the observer
     /// sees shows in RGB).
@@ -323,6 +334,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .clamp(args.clamp)
         .bands(spectral_bands(args)?)
         .energy(args.energy)
+        .polarized(args.polarized)
+        .camera_polarizer(args.camera_polarizer)
         .light_paths(!args.no_light_paths)
         .transparent(args.transparent)
         .range(range)
@@ -404,6 +417,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         if let Some(spec) = &args.white_balance {
             facts.push(("white_balance".into(), spec.clone()));
         }
+        if settings.is_polarized() {
+            facts.push(("polarized".into(), "1".into()));
+        }
+        if let Some(angle) = settings.camera_polarizer {
+            facts.push(("camera_polarizer".into(), angle.to_string()));
+        }
         let shown = match &white_balance {
             Some(m) => film.adapted(m),
             None => film.clone(),
@@ -433,6 +452,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "wavelengths": args.wavelengths,
             "lambda_sampler": args.lambda_sampler,
             "energy": energy_stats(&film, settings.range),
+            "polarized": settings.is_polarized(),
+            "camera_polarizer": settings.camera_polarizer,
         });
         println!("{json}");
     }
@@ -556,7 +577,16 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.energy,
         args.camera_response,
         args.transparent
-    )
+    ) + &polarization_fingerprint(args)
+}
+
+/// The polarization settings' part of the fingerprint: empty for an unpolarized render,
+/// so that checkpoints written before polarization existed still resume.
+fn polarization_fingerprint(args: &RenderArgs) -> String {
+    match (args.polarized, args.camera_polarizer) {
+        (false, None) => String::new(),
+        (_, filter) => format!(";polarized=1;camera_polarizer={filter:?}"),
+    }
 }
 
 /// The film of a checkpoint, checked against this render's settings and range.

@@ -24,14 +24,14 @@
 //!   courses (reference frames along paths).
 //! - W. Jakob et al., Mitsuba 3 documentation, "Polarization" (the conventions above).
 
+mod bsdf;
 mod fresnel;
-mod lobes;
 mod mueller;
 mod stokes;
 mod surface;
 
+pub use bsdf::{interactions, polarizes};
 pub use fresnel::{FresnelAmplitudes, fresnel_amplitudes};
-pub use lobes::rough_conductor;
 pub use mueller::Mueller;
 pub use stokes::{Stokes, rotate_frame};
 pub use surface::{Interaction, s_axis};

@@ -23,6 +23,11 @@ impl Mueller {
         self.0.transpose().to_cols_array_2d()
     }
 
+    /// The matrix itself (columns as glam stores them; `matrix() * stokes.0` applies it).
+    pub fn matrix(&self) -> Mat4 {
+        self.0
+    }
+
     /// The element applied to `stokes`.
     pub fn apply(&self, stokes: Stokes) -> Stokes {
         Stokes(self.0 * stokes.0)

@@ -1,0 +1,288 @@
+//! What a camera path carries from the camera to its current vertex: a throughput per
+//! wavelength lane (the unpolarized renderer), or per lane a Mueller matrix with the
+//! reference frame it expects (the polarized one, `--polarized`). The path tracer is
+//! written once over this trait; the unpolarized specialization performs exactly the
+//! operations it did before polarization existed, so its images are unchanged to the bit.
+//!
+//! ## The polarized state
+//! Per lane, T maps the Stokes vector of light arriving at the current vertex along the
+//! path's last ray (travelling along -d, in the frame with basis vector `basis`) to the
+//! Stokes vector the camera measures, in the camera's frame: basis d0 x up (the image's
+//! x axis for a ray through the image's centre, `up` the camera's y axis), as Mitsuba 3's
+//! `stokes` integrator writes its images. At a vertex with polarized interaction M (input
+//! frame b_in, output frame b_out), T becomes T R(b_out -> basis) M and the basis b_in
+//! (Wilkie and Weidlich 2012, §4: rotate into each element's frame before applying it).
+
+use glam::{Mat4, Vec3, Vec4};
+use prism_scene::geometry::Frame;
+use prism_scene::polarization::{Interaction, Mueller, interactions, rotate_frame};
+use prism_scene::world::Bsdf;
+use prism_spectrum::SampledSpectrum;
+
+/// A scattering vertex: the BSDF in its local frame and the direction the path arrived
+/// from (local, pointing away from the surface).
+pub(crate) struct Vertex<'v, 'b, const N: usize> {
+    pub bsdf: &'v Bsdf<'b, N>,
+    pub frame: &'v Frame,
+    pub wo: Vec3,
+}
+
+/// The radiance a path gathers: a spectrum, or per lane a Stokes vector.
+pub(crate) trait Radiance<const N: usize>: Clone {
+    /// Intensity (S0) per lane.
+    fn intensity(&self) -> &SampledSpectrum<N>;
+    /// S1, S2, S3 per lane, when polarized.
+    fn polarization(&self) -> Option<&[SampledSpectrum<N>; 3]>;
+}
+
+impl<const N: usize> Radiance<N> for SampledSpectrum<N> {
+    fn intensity(&self) -> &SampledSpectrum<N> {
+        self
+    }
+    fn polarization(&self) -> Option<&[SampledSpectrum<N>; 3]> {
+        None
+    }
+}
+
+/// Stokes vectors per lane, component by component.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StokesSpectrum<const N: usize> {
+    pub s0: SampledSpectrum<N>,
+    pub polarization: [SampledSpectrum<N>; 3],
+}
+
+impl<const N: usize> Radiance<N> for StokesSpectrum<N> {
+    fn intensity(&self) -> &SampledSpectrum<N> {
+        &self.s0
+    }
+    fn polarization(&self) -> Option<&[SampledSpectrum<N>; 3]> {
+        Some(&self.polarization)
+    }
+}
+
+impl<const N: usize> StokesSpectrum<N> {
+    /// Adds `weight` times the Stokes vector `stokes` in lane `lane`.
+    fn add(&mut self, lane: usize, stokes: Vec4) {
+        self.s0[lane] += stokes.x;
+        self.polarization[0][lane] += stokes.y;
+        self.polarization[1][lane] += stokes.z;
+        self.polarization[2][lane] += stokes.w;
+    }
+}
+
+/// A camera path's throughput.
+pub(crate) trait Throughput<const N: usize>: Sized {
+    /// What the path gathers.
+    type Radiance: Radiance<N>;
+
+    /// The throughput of a camera ray along `direction` (unit) from `camera`: one, or
+    /// the camera's filter.
+    fn start(direction: Vec3, camera: &CameraFrame) -> Self;
+    /// No radiance.
+    fn black() -> Self::Radiance;
+    /// Multiplies every lane by its factor (absorption, the lanes' re-radiation weights).
+    fn scale(&mut self, factor: SampledSpectrum<N>);
+    /// Multiplies every lane by `factor` (Russian roulette's survival).
+    fn scale_uniform(&mut self, factor: f32);
+    /// The largest lane's throughput for unpolarized light (Russian roulette reads it).
+    fn max_value(&self) -> f32;
+    /// Adds unpolarized radiance `le` arriving along the path's last ray, times `weight`.
+    fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32);
+    /// Adds unpolarized radiance `light` arriving at `vertex` from `wi` (local) and
+    /// scattered towards the path with BSDF value `f` (cosine included), times `weight`.
+    fn add_scattered(
+        &self,
+        radiance: &mut Self::Radiance,
+        vertex: &Vertex<'_, '_, N>,
+        wi: Vec3,
+        f: &SampledSpectrum<N>,
+        light: &SampledSpectrum<N>,
+        weight: f32,
+    );
+    /// Continues the path at `vertex` towards `wi` (local) with BSDF value (or delta
+    /// weight, `delta`) `f`, times `weight` (the cosine over the density).
+    fn scatter(
+        &mut self,
+        vertex: &Vertex<'_, '_, N>,
+        wi: Vec3,
+        f: &SampledSpectrum<N>,
+        delta: bool,
+        weight: f32,
+    );
+}
+
+impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
+    type Radiance = SampledSpectrum<N>;
+
+    #[inline]
+    fn start(_: Vec3, _: &CameraFrame) -> Self {
+        SampledSpectrum::splat(1.0)
+    }
+    #[inline]
+    fn black() -> Self::Radiance {
+        SampledSpectrum::splat(0.0)
+    }
+    #[inline]
+    fn scale(&mut self, factor: SampledSpectrum<N>) {
+        *self *= factor;
+    }
+    #[inline]
+    fn scale_uniform(&mut self, factor: f32) {
+        *self *= factor;
+    }
+    #[inline]
+    fn max_value(&self) -> f32 {
+        SampledSpectrum::max_value(self)
+    }
+    #[inline]
+    fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32) {
+        *radiance += *self * *le * weight;
+    }
+    #[inline]
+    fn add_scattered(
+        &self,
+        radiance: &mut Self::Radiance,
+        _: &Vertex<'_, '_, N>,
+        _: Vec3,
+        f: &SampledSpectrum<N>,
+        light: &SampledSpectrum<N>,
+        weight: f32,
+    ) {
+        *radiance += *self * *f * *light * weight;
+    }
+    #[inline]
+    fn scatter(
+        &mut self,
+        _: &Vertex<'_, '_, N>,
+        _: Vec3,
+        f: &SampledSpectrum<N>,
+        _: bool,
+        weight: f32,
+    ) {
+        *self *= *f * weight;
+    }
+}
+
+/// The polarized throughput (see the module documentation).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Polarized<const N: usize> {
+    /// Per lane, camera Stokes <- Stokes arriving along the last ray in `basis`'s frame.
+    mueller: [Mat4; N],
+    /// The basis vector of the frame of light arriving along the last ray.
+    basis: Vec3,
+}
+
+/// The camera's Stokes frame for a ray along `direction`: basis direction x up, as
+/// Mitsuba 3's `stokes` integrator (the image's x axis at its centre; for a ray along the
+/// up axis, any perpendicular vector).
+pub(crate) fn camera_basis(direction: Vec3, up: Vec3) -> Vec3 {
+    direction
+        .cross(up)
+        .try_normalize()
+        .unwrap_or_else(|| direction.any_orthonormal_vector())
+}
+
+impl<const N: usize> Polarized<N> {
+    /// T R(b_out -> basis) M for each lane's interaction at `vertex` (its frames in
+    /// world space); the new basis is the interactions' input frame.
+    fn compose(&self, vertex: &Vertex<'_, '_, N>, lanes: &[Interaction; N]) -> Self {
+        let travel = vertex.frame.to_world(vertex.wo);
+        let mut next = *self;
+        for (lane, interaction) in lanes.iter().enumerate() {
+            let out_basis = vertex.frame.to_world(interaction.outgoing_basis);
+            let rotation = rotate_frame(travel, out_basis, self.basis);
+            next.mueller[lane] =
+                self.mueller[lane] * rotation.matrix() * interaction.mueller.matrix();
+        }
+        // Every lane's input frame is the s axis of its plane of incidence: the same
+        // vector for all lanes but a depolarizer's (whose frame is arbitrary, any will do).
+        next.basis = vertex.frame.to_world(lanes[0].incident_basis);
+        next
+    }
+}
+
+impl<const N: usize> Throughput<N> for Polarized<N> {
+    type Radiance = StokesSpectrum<N>;
+
+    fn start(direction: Vec3, camera: &CameraFrame) -> Self {
+        Self {
+            mueller: [camera.filter.unwrap_or(Mat4::IDENTITY); N],
+            basis: camera_basis(direction, camera.up),
+        }
+    }
+    fn black() -> Self::Radiance {
+        StokesSpectrum {
+            s0: SampledSpectrum::splat(0.0),
+            polarization: [SampledSpectrum::splat(0.0); 3],
+        }
+    }
+    fn scale(&mut self, factor: SampledSpectrum<N>) {
+        for (m, f) in self.mueller.iter_mut().zip(factor.0) {
+            *m *= f;
+        }
+    }
+    fn scale_uniform(&mut self, factor: f32) {
+        for m in &mut self.mueller {
+            *m *= factor;
+        }
+    }
+    fn max_value(&self) -> f32 {
+        self.mueller.iter().map(|m| m.x_axis.x).fold(0.0, f32::max)
+    }
+    fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32) {
+        // Unpolarized light is the same in every frame: T's first column.
+        for (lane, m) in self.mueller.iter().enumerate() {
+            radiance.add(lane, m.x_axis * (le[lane] * weight));
+        }
+    }
+    fn add_scattered(
+        &self,
+        radiance: &mut Self::Radiance,
+        vertex: &Vertex<'_, '_, N>,
+        wi: Vec3,
+        f: &SampledSpectrum<N>,
+        light: &SampledSpectrum<N>,
+        weight: f32,
+    ) {
+        let lanes = interactions(vertex.bsdf, vertex.wo, wi, f, false);
+        let through = self.compose(vertex, &lanes);
+        through.add_emitted(radiance, light, weight);
+    }
+    fn scatter(
+        &mut self,
+        vertex: &Vertex<'_, '_, N>,
+        wi: Vec3,
+        f: &SampledSpectrum<N>,
+        delta: bool,
+        weight: f32,
+    ) {
+        let lanes = interactions(vertex.bsdf, vertex.wo, wi, f, delta);
+        *self = self.compose(vertex, &lanes);
+        self.scale_uniform(weight);
+    }
+}
+
+/// What the polarized camera frame needs: the camera's up axis and its filter.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CameraFrame {
+    /// The camera's y axis in the world.
+    pub up: Vec3,
+    /// A filter in front of the lens, in the camera's Stokes frame.
+    pub filter: Option<Mat4>,
+}
+
+impl CameraFrame {
+    /// The frame of `camera`, with an ideal linear polarizer at `polarizer` degrees from
+    /// the frame's x axis towards its y axis (the image's right and up).
+    pub(crate) fn new(camera: &prism_scene::camera::Camera, polarizer: Option<f32>) -> Self {
+        Self {
+            up: camera
+                .to_world
+                .transform_vector3(Vec3::Y)
+                .normalize_or(Vec3::Y),
+            filter: polarizer.map(|degrees| {
+                Mueller::rotated(degrees.to_radians(), &Mueller::linear_polarizer(1.0)).matrix()
+            }),
+        }
+    }
+}

@@ -1,0 +1,150 @@
+//! Polarized rendering against Fresnel: light of a uniform unpolarized environment
+//! reflected by smooth glass carries the degree of linear polarization Fresnel's
+//! equations give at its angle (fully s-polarized at Brewster's angle), its intensity S0
+//! is the unpolarized render's, and a camera polarizer obeys Malus's law (crossed with
+//! the reflection at Brewster's angle, it sees nothing).
+
+mod common;
+
+use common::square_z0;
+use glam::Vec3;
+use prism_integrator::{Film, RenderSettings, render};
+use prism_scene::camera::Camera;
+use prism_scene::geometry::BvhQuality;
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+
+const ETA: f64 = 1.5;
+
+/// Fresnel's reflectances (R_s, R_p) of glass of index `ETA` from outside at `theta`
+/// (Born and Wolf §1.5.2), written out here independently of prism's.
+fn fresnel(theta: f64) -> (f64, f64) {
+    let (cos_i, sin_i) = (theta.cos(), theta.sin());
+    let cos_t = (1.0 - (sin_i / ETA).powi(2)).sqrt();
+    let rs = (cos_i - ETA * cos_t) / (cos_i + ETA * cos_t);
+    let rp = (ETA * cos_i - cos_t) / (ETA * cos_i + cos_t);
+    (rs * rs, rp * rp)
+}
+
+/// A smooth glass plane (z = 0, facing +z) over a black one, under a uniform white
+/// environment, seen at `theta` from the normal through a narrow lens, the image's x axis
+/// perpendicular to the plane of incidence (along s).
+fn glass_plane(theta: f64) -> Scene {
+    let glass = square_z0(50.0);
+    let black: Vec<[Vec3; 3]> = glass
+        .iter()
+        .map(|t| t.map(|v| v - Vec3::Z * 0.01))
+        .collect();
+    let theta = theta as f32;
+    let eye = Vec3::new(theta.sin(), 0.0, theta.cos()) * 3.0;
+    Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangle_material: vec![0, 0, 1, 1],
+        triangles: [glass, black].concat(),
+        materials: vec![
+            Material::Dielectric {
+                ior: SceneSpectrum::Constant(ETA),
+                roughness: 0.0,
+                absorption: None,
+            },
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.0),
+            },
+        ],
+        emission: vec![],
+        lights: vec![Light::Environment {
+            radiance: SceneSpectrum::Constant(1.0),
+        }],
+        camera: Camera::look_at(eye, Vec3::ZERO, Vec3::Z, 0.002),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap()
+}
+
+fn settings() -> RenderSettings {
+    RenderSettings::default()
+        .width(6)
+        .height(6)
+        .samples(0..32)
+        .polarized(true)
+}
+
+/// The image's mean S0..S3 in the luminance (Y) channel.
+fn mean_stokes(film: &Film) -> [f64; 4] {
+    let mut sum = [0.0; 4];
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            let s = film.stokes(x, y).expect("a polarized film");
+            for (acc, c) in sum.iter_mut().zip(s) {
+                *acc += c[1];
+            }
+        }
+    }
+    sum.map(|v| v / f64::from(film.width() * film.height()))
+}
+
+#[test]
+fn glass_reflects_fresnels_degree_of_polarization() {
+    let brewster = ETA.atan();
+    for theta in [
+        20f64.to_radians(),
+        45f64.to_radians(),
+        brewster,
+        70f64.to_radians(),
+        85f64.to_radians(),
+    ] {
+        let (film, _) = render(&glass_plane(theta), &settings()).unwrap();
+        let [s0, s1, s2, s3] = mean_stokes(&film);
+        let (rs, rp) = fresnel(theta);
+        let expected = (rs - rp) / (rs + rp);
+        assert!(s0 > 0.0);
+        // s-polarized light (S1 > 0: along the image's rows) in the proportion Fresnel
+        // gives; nothing diagonal or circular.
+        let dolp = s1 / s0;
+        assert!(
+            (dolp - expected).abs() < 2e-3,
+            "theta {:.1}: S1/S0 {dolp} but Fresnel {expected}",
+            theta.to_degrees()
+        );
+        assert!(
+            s2.abs() < 1e-4 * s0 && s3.abs() < 1e-4 * s0,
+            "{s2} {s3} of {s0}"
+        );
+    }
+}
+
+#[test]
+fn s0_is_the_unpolarized_render() {
+    let scene = glass_plane(60f64.to_radians());
+    let (polarized, _) = render(&scene, &settings()).unwrap();
+    let (plain, _) = render(&scene, &settings().polarized(false)).unwrap();
+    assert!(!plain.is_polarized() && plain.stokes(0, 0).is_none());
+    for y in 0..6 {
+        for x in 0..6 {
+            let (a, b) = (polarized.xyz(x, y), plain.xyz(x, y));
+            for (p, q) in [(a.x, b.x), (a.y, b.y), (a.z, b.z)] {
+                assert!((p - q).abs() <= 1e-5 * q.abs().max(1e-3), "{p} vs {q}");
+            }
+        }
+    }
+}
+
+#[test]
+fn camera_polarizer_follows_malus_and_crossed_is_dark_at_brewster() {
+    let brewster = ETA.atan();
+    let scene = glass_plane(brewster);
+    let (open, _) = render(&scene, &settings()).unwrap();
+    let [s0, s1, s2, _] = mean_stokes(&open);
+    for degrees in [0.0f32, 30.0, 45.0, 90.0, 135.0] {
+        let (filtered, _) = render(&scene, &settings().camera_polarizer(Some(degrees))).unwrap();
+        let seen = mean_stokes(&filtered)[0];
+        let angle = 2.0 * f64::from(degrees).to_radians();
+        let malus = 0.5 * (s0 + angle.cos() * s1 + angle.sin() * s2);
+        assert!(
+            (seen - malus).abs() < 1e-4 * s0,
+            "{degrees} degrees: {seen} but Malus {malus}"
+        );
+    }
+    // Crossed with the s-polarized reflection: dark (R_p = 0 at Brewster's angle).
+    let (crossed, _) = render(&scene, &settings().camera_polarizer(Some(90.0))).unwrap();
+    assert!(mean_stokes(&crossed)[0] < 1e-4 * s0);
+}

@@ -1,0 +1,115 @@
+//! The polarized counterparts of prism's BSDFs: per lane, a Mueller matrix with its frames
+//! whose unpolarized entry `[0][0]` is the scalar BSDF's value, so that a polarized render
+//! carries exactly the unpolarized render's intensity for unpolarized light at one bounce
+//! and adds what Fresnel's equations say about the rest.
+//!
+//! - Smooth and rough dielectrics and conductors: Fresnel's Mueller matrix at the
+//!   (micro)facet normal with the lane's index (reflection, refraction, total internal
+//!   reflection's retardance, a metal's ellipticity), as Mitsuba 3's `dielectric`,
+//!   `roughdielectric`, `conductor` and `roughconductor` do in their polarized variants.
+//! - Lambertian and fluorescent surfaces depolarize.
+//! - glTF's metallic-roughness family (and the opaque part of a transmissive material)
+//!   depolarizes, as every BSDF without a polarized model does in Mitsuba 3 (its
+//!   `principled` included); a transmissive material's glass sampled as a smooth delta is
+//!   the smooth dielectric's.
+
+use glam::Vec3;
+use num_complex::Complex64;
+use prism_spectrum::SampledSpectrum;
+
+use super::{Interaction, fresnel_amplitudes};
+use crate::bsdf::{Glass, RoughConductor, RoughDielectric};
+use crate::world::Bsdf;
+
+/// Per lane, the interaction of light arriving from `wi` and leaving towards `wo` (local
+/// frame, z the shading normal) at `bsdf`, each matrix scaled so that `[0][0]` is the
+/// lane's `value`: the scalar f(wo, wi) for a direction evaluated (times any factor the
+/// caller folds in), or a delta lobe's weight for a sampled delta (`delta`). Directions a
+/// lobe does not connect, and zero values, give zero matrices.
+pub fn interactions<const N: usize>(
+    bsdf: &Bsdf<'_, N>,
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+    delta: bool,
+) -> [Interaction; N] {
+    match bsdf {
+        Bsdf::Dielectric(d) => dielectric(d, wo, wi, value),
+        Bsdf::Conductor(c) => conductor(c, wo, wi, value),
+        Bsdf::Transmissive(t) if delta => match &t.glass {
+            Glass::Thick(d) => dielectric(d, wo, wi, value),
+            Glass::Thin(_) => depolarizing(wo, wi, value),
+        },
+        _ => depolarizing(wo, wi, value),
+    }
+}
+
+/// Whether the BSDF has a polarizing model (the rest depolarize).
+pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>) -> bool {
+    matches!(bsdf, Bsdf::Dielectric(_) | Bsdf::Conductor(_))
+        || matches!(bsdf, Bsdf::Transmissive(t) if matches!(t.glass, Glass::Thick(_)))
+}
+
+fn depolarizing<const N: usize>(
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+) -> [Interaction; N] {
+    std::array::from_fn(|lane| Interaction::depolarizing(wi, wo, value[lane]))
+}
+
+/// The microfacet normal on the outside (+z) of an effectively smooth surface or of the
+/// half vector `h`.
+fn outside(smooth: bool, h: Option<Vec3>) -> Vec3 {
+    match (smooth, h) {
+        (false, Some(h)) if h.z < 0.0 => -h,
+        (false, Some(h)) => h,
+        _ => Vec3::Z,
+    }
+}
+
+/// A dielectric interface: Fresnel at the half vector of each lane's index (the
+/// generalized half vector wo + eta wi of Walter et al. 2007 for a refraction), light
+/// arriving from `wi`'s side (inside when wi.z < 0, where the index inverts and total
+/// internal reflection's phase appears).
+fn dielectric<const N: usize>(
+    d: &RoughDielectric<N>,
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+) -> [Interaction; N] {
+    let smooth = d.distribution.effectively_smooth();
+    let reflected = wo.z * wi.z > 0.0;
+    std::array::from_fn(|lane| {
+        let eta = d.eta[lane];
+        let h = if reflected {
+            (wo + wi).try_normalize()
+        } else {
+            let crossing = if wo.z > 0.0 { eta } else { 1.0 / eta };
+            (wi * crossing + wo).try_normalize()
+        };
+        let m = outside(smooth, h);
+        let amplitudes =
+            fresnel_amplitudes(f64::from(wi.dot(m)), Complex64::new(f64::from(eta), 0.0));
+        Interaction::fresnel(wi, wo, m, &amplitudes, value[lane])
+    })
+}
+
+/// A conductor: Fresnel at the half vector with the lane's complex index (a conductor has
+/// no inside: the cosine's magnitude).
+fn conductor<const N: usize>(
+    c: &RoughConductor<N>,
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+) -> [Interaction; N] {
+    let m = outside(
+        c.distribution.effectively_smooth(),
+        (wo + wi).try_normalize(),
+    );
+    let cos = f64::from(wi.dot(m).abs());
+    std::array::from_fn(|lane| {
+        let eta = Complex64::new(f64::from(c.eta[lane]), f64::from(c.k[lane]));
+        Interaction::fresnel(wi, wo, m, &fresnel_amplitudes(cos, eta), value[lane])
+    })
+}
