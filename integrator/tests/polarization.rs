@@ -148,3 +148,142 @@ fn camera_polarizer_follows_malus_and_crossed_is_dark_at_brewster() {
     let (crossed, _) = render(&scene, &settings().camera_polarizer(Some(90.0))).unwrap();
     assert!(mean_stokes(&crossed)[0] < 1e-4 * s0);
 }
+
+/// A white emitter filling the view of an orthographic camera, seen through `sheets`
+/// (material, height) stacked between them.
+fn through_sheets(sheets: &[(Material, f32)]) -> Scene {
+    let mut triangles = square_z0(2.0);
+    let mut triangle_material = vec![0, 0];
+    let mut materials = vec![Material::Diffuse {
+        reflectance: SceneSpectrum::Constant(0.0),
+    }];
+    for (k, (material, z)) in sheets.iter().enumerate() {
+        triangles.extend(
+            square_z0(2.0)
+                .into_iter()
+                .map(|t| t.map(|v| v + Vec3::Z * *z)),
+        );
+        triangle_material.extend([k as u32 + 1; 2]);
+        materials.push(material.clone());
+    }
+    Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangles,
+        triangle_material,
+        materials,
+        emission: vec![SceneSpectrum::Constant(1.0)],
+        lights: (0..2)
+            .map(|t| Light::Triangle {
+                triangle: t,
+                emission: 0,
+                two_sided: false,
+            })
+            .collect(),
+        camera: common::ortho_camera(Vec3::new(0.0, 0.0, 1.0), 0.5),
+        quality: BvhQuality::Medium,
+    })
+    .unwrap()
+}
+
+fn polarizer(degrees: f32) -> Material {
+    let a = degrees.to_radians();
+    Material::Polarizer {
+        axis: Vec3::new(a.cos(), a.sin(), 0.0),
+        transmittance: SceneSpectrum::Constant(1.0),
+    }
+}
+
+fn quarter_wave(degrees: f32) -> Material {
+    let a = degrees.to_radians();
+    Material::Retarder {
+        axis: Vec3::new(a.cos(), a.sin(), 0.0),
+        retardance: SceneSpectrum::Constant(0.25),
+    }
+}
+
+/// The mean Stokes vector (Y) of the emitter seen through `sheets`, relative to the bare
+/// emitter's intensity.
+fn seen_through(sheets: &[(Material, f32)], settings: &RenderSettings) -> [f64; 4] {
+    let (bare, _) = render(&through_sheets(&[]), settings).unwrap();
+    let (film, _) = render(&through_sheets(sheets), settings).unwrap();
+    let reference = mean_stokes(&bare)[0];
+    mean_stokes(&film).map(|v| v / reference)
+}
+
+/// Ideal polarizers obey Malus's law, cos^2 of the angle between them, and a third at 45
+/// degrees between crossed ones lets an eighth through.
+#[test]
+fn polarizing_sheets_obey_malus() {
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-4;
+    for degrees in [0.0f32, 30.0, 60.0, 90.0] {
+        let s = seen_through(
+            &[(polarizer(0.0), 0.2), (polarizer(degrees), 0.5)],
+            &settings(),
+        );
+        let malus = 0.5 * f64::from(degrees.to_radians().cos()).powi(2);
+        assert!(close(s[0], malus), "{degrees}: {s:?} vs {malus}");
+    }
+    // Three sheets deep Russian roulette plays (see below): exact in expectation.
+    let three = [
+        (polarizer(0.0), 0.2),
+        (polarizer(45.0), 0.4),
+        (polarizer(90.0), 0.6),
+    ];
+    let s = seen_through(&three, &settings());
+    assert!((s[0] - 0.125).abs() < 0.125 * 0.02, "{s:?}");
+    // Light leaving the last polarizer is polarized along y: S1 = -S0.
+    assert!((s[1] / s[0] + 1.0).abs() < 1e-4, "{s:?}");
+    // The camera frame's x is the image's rows (world x here): light through a polarizer
+    // along x has S1 = S0; the camera's own filter crossed with it sees nothing.
+    let s = seen_through(&[(polarizer(0.0), 0.5)], &settings());
+    assert!(close(s[0], 0.5) && close(s[1], 0.5) && s[2].abs() < 1e-4 && s[3].abs() < 1e-4);
+    let crossed = seen_through(
+        &[(polarizer(0.0), 0.5)],
+        &settings().camera_polarizer(Some(90.0)),
+    );
+    assert!(crossed[0].abs() < 1e-4, "{crossed:?}");
+    // Unpolarized renders see a polarizer as a grey filter of half its transmittance.
+    let plain = settings().polarized(false);
+    let (bare, _) = render(&through_sheets(&[]), &plain).unwrap();
+    let (film, _) = render(&through_sheets(&[(polarizer(0.0), 0.5)]), &plain).unwrap();
+    assert!(close(film.xyz(2, 2).y / bare.xyz(2, 2).y, 0.5));
+}
+
+/// A quarter-wave plate at 45 degrees to a polarizer makes circular light; two make a
+/// half-wave plate, which turns light polarized along x into light polarized along y.
+#[test]
+fn wave_plates_make_circular_and_rotated_light() {
+    let settings = settings();
+    let circular = seen_through(
+        &[(polarizer(0.0), 0.2), (quarter_wave(45.0), 0.5)],
+        &settings,
+    );
+    assert!((circular[0] - 0.5).abs() < 1e-4, "{circular:?}");
+    assert!((circular[3].abs() - 0.5).abs() < 1e-4, "{circular:?}");
+    assert!(
+        circular[1].abs() < 1e-4 && circular[2].abs() < 1e-4,
+        "{circular:?}"
+    );
+    // Three sheets deep, Russian roulette may end a path (its survivors carry more), so
+    // the intensity is exact only in expectation; the polarization is exact per path.
+    let turned = seen_through(
+        &[
+            (polarizer(0.0), 0.2),
+            (quarter_wave(45.0), 0.4),
+            (quarter_wave(45.0), 0.6),
+        ],
+        &settings,
+    );
+    assert!((turned[0] - 0.5).abs() < 1e-2, "{turned:?}");
+    assert!((turned[1] / turned[0] + 1.0).abs() < 1e-4, "{turned:?}");
+    assert!(turned[3].abs() < 1e-4, "{turned:?}");
+    // The same plate along the polarizer's axis leaves the light as it is.
+    let along = seen_through(
+        &[(polarizer(0.0), 0.2), (quarter_wave(0.0), 0.5)],
+        &settings,
+    );
+    assert!(
+        (along[1] - 0.5).abs() < 1e-4 && along[3].abs() < 1e-4,
+        "{along:?}"
+    );
+}

@@ -7,6 +7,8 @@
 //!   (micro)facet normal with the lane's index (reflection, refraction, total internal
 //!   reflection's retardance, a metal's ellipticity), as Mitsuba 3's `dielectric`,
 //!   `roughdielectric`, `conductor` and `roughconductor` do in their polarized variants.
+//! - Polarizing sheets (filters and wave plates): the ideal element's matrix with its axis
+//!   projected across the direction of travel.
 //! - Lambertian and fluorescent surfaces depolarize.
 //! - glTF's metallic-roughness family (and the opaque part of a transmissive material)
 //!   depolarizes, as every BSDF without a polarized model does in Mitsuba 3 (its
@@ -17,8 +19,8 @@ use glam::Vec3;
 use num_complex::Complex64;
 use prism_spectrum::SampledSpectrum;
 
-use super::{Interaction, fresnel_amplitudes};
-use crate::bsdf::{Glass, RoughConductor, RoughDielectric};
+use super::{Interaction, Mueller, fresnel_amplitudes};
+use crate::bsdf::{Glass, RoughConductor, RoughDielectric, Sheet, SheetElement};
 use crate::world::Bsdf;
 
 /// Per lane, the interaction of light arriving from `wi` and leaving towards `wo` (local
@@ -36,6 +38,7 @@ pub fn interactions<const N: usize>(
     match bsdf {
         Bsdf::Dielectric(d) => dielectric(d, wo, wi, value),
         Bsdf::Conductor(c) => conductor(c, wo, wi, value),
+        Bsdf::Sheet(s) => sheet(s, wo, value),
         Bsdf::Transmissive(t) if delta => match &t.glass {
             Glass::Thick(d) => dielectric(d, wo, wi, value),
             Glass::Thin(_) => depolarizing(wo, wi, value),
@@ -46,8 +49,10 @@ pub fn interactions<const N: usize>(
 
 /// Whether the BSDF has a polarizing model (the rest depolarize).
 pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>) -> bool {
-    matches!(bsdf, Bsdf::Dielectric(_) | Bsdf::Conductor(_))
-        || matches!(bsdf, Bsdf::Transmissive(t) if matches!(t.glass, Glass::Thick(_)))
+    matches!(
+        bsdf,
+        Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::Sheet(_)
+    ) || matches!(bsdf, Bsdf::Transmissive(t) if matches!(t.glass, Glass::Thick(_)))
 }
 
 fn depolarizing<const N: usize>(
@@ -111,5 +116,31 @@ fn conductor<const N: usize>(
     std::array::from_fn(|lane| {
         let eta = Complex64::new(f64::from(c.eta[lane]), f64::from(c.k[lane]));
         Interaction::fresnel(wi, wo, m, &fresnel_amplitudes(cos, eta), value[lane])
+    })
+}
+
+/// A sheet crossed straight through (light travelling along `wo` before and after): the
+/// element in the frame whose basis is its axis projected across the direction of travel.
+fn sheet<const N: usize>(s: &Sheet<N>, wo: Vec3, value: &SampledSpectrum<N>) -> [Interaction; N] {
+    let across = s.axis - wo * s.axis.dot(wo);
+    let basis = across
+        .try_normalize()
+        .unwrap_or_else(|| wo.any_orthonormal_vector());
+    std::array::from_fn(|lane| {
+        let element = match s.element {
+            SheetElement::Polarizer => Mueller::linear_polarizer(1.0),
+            SheetElement::Retarder(phase) => Mueller::linear_retarder(phase[lane]),
+        };
+        let unpolarized = element.rows()[0][0];
+        let scale = if value[lane].is_finite() {
+            value[lane] / unpolarized
+        } else {
+            0.0
+        };
+        Interaction {
+            mueller: element.scaled(scale),
+            incident_basis: basis,
+            outgoing_basis: basis,
+        }
     })
 }

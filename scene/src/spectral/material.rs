@@ -11,7 +11,7 @@ use crate::bsdf::fluorescence_matrix;
 use crate::world::{Material, SceneSpectrum};
 
 /// The material types a description may give.
-pub const MATERIAL_TYPES: &str = "diffuse, dielectric, conductor, fluorescent";
+pub const MATERIAL_TYPES: &str = "diffuse, dielectric, conductor, fluorescent, polarizer, retarder";
 
 /// The default range and bin width of fluorescence matrices: from the near UV that
 /// blacklights emit to the end of the visible.
@@ -113,6 +113,35 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
             }
         }
         Some("fluorescent") => fluorescent(map, cx)?,
+        Some("polarizer") => {
+            only_keys(map, &["type", "emission", "axis", "transmittance"])?;
+            Material::Polarizer {
+                axis: axis(map)?,
+                transmittance: match map.get("transmittance") {
+                    Some(_) => field("transmittance", Role::Fraction)?,
+                    None => SceneSpectrum::Constant(1.0),
+                },
+            }
+        }
+        Some("retarder") => {
+            only_keys(
+                map,
+                &["type", "emission", "axis", "retardance", "path_difference"],
+            )?;
+            let retardance = match (map.get("retardance"), map.get("path_difference")) {
+                (Some(_), None) => field("retardance", Role::Plain)?,
+                (None, Some(d)) => path_difference(number(d, "path_difference")?)?,
+                _ => {
+                    return Err(
+                        "needs one of 'retardance' (waves) or 'path_difference' (nm)".into(),
+                    );
+                }
+            };
+            Material::Retarder {
+                axis: axis(map)?,
+                retardance,
+            }
+        }
         _ => return Err(format!("type {kind} is not one of {MATERIAL_TYPES}")),
     };
     Ok(SpectralMaterial {
@@ -120,6 +149,46 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
         emission,
         ..SpectralMaterial::default()
     })
+}
+
+/// A polarizing sheet's axis: a direction [x, y, z] in world space, not zero.
+fn axis(map: &Map<String, Value>) -> Result<glam::Vec3, String> {
+    let v = map
+        .get("axis")
+        .ok_or("needs 'axis' (a direction [x, y, z])")?;
+    let components = v
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or("axis must be a direction [x, y, z]")?;
+    let mut out = [0.0f32; 3];
+    for (o, c) in out.iter_mut().zip(components) {
+        let x = number(c, "axis")?;
+        if !x.is_finite() || x.abs() > 1e30 {
+            return Err(format!("axis component {x} is not a usable number"));
+        }
+        *o = x as f32;
+    }
+    glam::Vec3::from(out)
+        .try_normalize()
+        .ok_or_else(|| "axis must not be zero".into())
+}
+
+/// The retardance in waves of a plate whose optical path difference is `nm` at every
+/// wavelength (a zero-order plate without dispersion of its birefringence): `nm / lambda`,
+/// tabulated at 1 nm over 200-2500 nm.
+fn path_difference(nm: f64) -> Result<SceneSpectrum, String> {
+    if !(nm.is_finite() && nm >= 0.0 && nm <= 1e6) {
+        return Err(format!("path_difference {nm} must be in [0, 1e6] nm"));
+    }
+    let values: Vec<f64> = (200..=2500).map(|l| nm / f64::from(l)).collect();
+    let table = prism_spectrum::spectra::PiecewiseLinear::from_regular(
+        200.0,
+        1.0,
+        &values,
+        prism_spectrum::spectra::Extrapolation::Clamp,
+    )
+    .map_err(|e| format!("path_difference: {e}"))?;
+    Ok(SceneSpectrum::Table(Arc::new(table)))
 }
 
 /// A fluorescent material from absorption, re-emission and quantum yield, or from a full

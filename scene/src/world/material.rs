@@ -9,7 +9,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 use super::{Layers, RgbTexture, SceneSpectrum, SurfaceFrame, TexCoords};
 use crate::bsdf::{
     BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, RoughConductor,
-    RoughDielectric, Transmissive, TransportMode,
+    RoughDielectric, Sheet, SheetElement, Transmissive, TransportMode,
 };
 
 /// A surface's material, with spectral parameters not yet sampled.
@@ -72,6 +72,23 @@ pub enum Material {
         /// The inelastic re-radiation and its sampler.
         reradiation: Arc<ReradiationSampler>,
     },
+    /// A thin ideal linear polarizer (a filter sheet): light crosses it unbent, the part
+    /// polarized along `axis` passing with `transmittance`, the rest absorbed.
+    Polarizer {
+        /// The transmission axis (world space), projected onto the sheet and across the
+        /// light's direction.
+        axis: Vec3,
+        /// The fraction of light polarized along the axis that passes, in [0, 1].
+        transmittance: SceneSpectrum,
+    },
+    /// A thin linear retarder (a wave plate): light crosses it unbent, the component
+    /// polarized across `axis` delayed by `retardance` waves.
+    Retarder {
+        /// The fast axis (world space), projected like a polarizer's.
+        axis: Vec3,
+        /// The delay in waves (0.25: a quarter-wave plate) per wavelength.
+        retardance: SceneSpectrum,
+    },
 }
 
 impl Material {
@@ -97,8 +114,10 @@ impl Material {
 
     /// Whether light can cross it (glass, whole or in part, or diffuse transmission).
     pub fn transmissive(&self) -> bool {
-        matches!(self, Material::Dielectric { .. })
-            || self.transmission().is_some()
+        matches!(
+            self,
+            Material::Dielectric { .. } | Material::Polarizer { .. } | Material::Retarder { .. }
+        ) || self.transmission().is_some()
             || self.diffuse_transmission().is_some()
     }
 
@@ -132,6 +151,7 @@ impl Material {
             Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
                 Ggx::new(roughness * roughness, roughness * roughness).effectively_smooth()
             }
+            Material::Polarizer { .. } | Material::Retarder { .. } => true,
             Material::MetallicRoughness {
                 roughness, texture, ..
             } if self.transmission().is_some() => {
@@ -169,7 +189,19 @@ impl Material {
     /// Whether its BSDF needs the surface's tangent frame at a hit
     /// ([`Material::bsdf_oriented`]).
     pub fn oriented(&self) -> bool {
-        matches!(self, Material::MetallicRoughness { layers: Some(l), .. } if l.oriented())
+        match self {
+            Material::MetallicRoughness {
+                layers: Some(l), ..
+            } => l.oriented(),
+            Material::Polarizer { .. } | Material::Retarder { .. } => true,
+            _ => false,
+        }
+    }
+
+    /// Whether it is a polarizing element (a polarizer or a retarder), whose effect only
+    /// polarized renders show.
+    pub fn polarizing_element(&self) -> bool {
+        matches!(self, Material::Polarizer { .. } | Material::Retarder { .. })
     }
 
     /// Whether the material re-radiates (fluorescence).
@@ -300,7 +332,35 @@ impl Material {
             Material::Fluorescent { reflectance, .. } => {
                 Bsdf::Diffuse(Diffuse::new(base(reflectance)))
             }
+            Material::Polarizer {
+                axis,
+                transmittance,
+            } => Bsdf::Sheet(Sheet {
+                element: SheetElement::Polarizer,
+                axis: local_axis(*axis, frame),
+                transmittance: transmittance
+                    .at(wavelengths)
+                    .map(|t| 0.5 * t.clamp(0.0, 1.0)),
+            }),
+            Material::Retarder { axis, retardance } => {
+                let waves = retardance.at(wavelengths);
+                Bsdf::Sheet(Sheet {
+                    element: SheetElement::Retarder(std::array::from_fn(|i| {
+                        std::f32::consts::TAU * waves[i]
+                    })),
+                    axis: local_axis(*axis, frame),
+                    transmittance: SampledSpectrum::splat(1.0),
+                })
+            }
         }
+    }
+}
+
+/// A sheet's world axis in the local shading frame (read as local without a frame).
+fn local_axis(axis: Vec3, frame: Option<&SurfaceFrame>) -> Vec3 {
+    match frame {
+        Some(f) => f.frame.to_local(axis),
+        None => axis,
     }
 }
 
@@ -320,6 +380,8 @@ pub enum Bsdf<'a, const N: usize> {
     Dielectric(RoughDielectric<N>),
     /// Smooth or rough conductor.
     Conductor(RoughConductor<N>),
+    /// A polarizing filter or a wave plate.
+    Sheet(Sheet<N>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -333,6 +395,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.f(wo, wi),
             Bsdf::Dielectric(b) => b.f(wo, wi),
             Bsdf::Conductor(b) => b.f(wo, wi),
+            Bsdf::Sheet(_) => SampledSpectrum::splat(0.0),
         }
     }
 
@@ -346,6 +409,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
+            Bsdf::Sheet(_) => 0.0,
         }
     }
 
@@ -359,6 +423,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.sample(wo, uc, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
+            Bsdf::Sheet(b) => b.sample(wo),
         }
     }
 
@@ -368,6 +433,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Dielectric(b) => b.distribution.effectively_smooth(),
             Bsdf::Conductor(b) => b.distribution.effectively_smooth(),
             Bsdf::Transmissive(b) => b.is_delta(),
+            Bsdf::Sheet(_) => true,
             _ => false,
         }
     }
