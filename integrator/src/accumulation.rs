@@ -125,8 +125,9 @@ pub fn encode_accumulation(
     let mut extra = String::new();
     if let Some(bands) = film.bands() {
         let (n, sums) = (bands.count(), film.spectral_sums());
-        for b in 0..n {
-            let values = sums.iter().skip(b).step_by(n).copied();
+        let width = film.spectral_width();
+        for b in 0..width {
+            let values = sums.iter().skip(b).step_by(width).copied();
             list.extend(split_channels(&band_channel(b), values));
         }
         let (min, max) = bands.range();
@@ -279,6 +280,10 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             .with_coverage(values(COVERAGE)?)
             .ok_or_else(|| bad("coverage counts that are negative or not finite".into()))?;
     }
+    let polarized = fact(&facts, "polarized") == Some("1");
+    if polarized {
+        film = film.with_polarization();
+    }
     if let Some(text) = fact(&facts, "bands") {
         let parse = || -> Option<SpectralBands> {
             let mut parts = text.split(':');
@@ -287,7 +292,7 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             parts.next().is_none().then_some(bands.ok()?)
         };
         let bands = parse().ok_or_else(|| bad(format!("bands '{text}' are not A:B:N")))?;
-        let n = bands.count();
+        let n = bands.count() * if polarized { 4 } else { 1 };
         let per_band = (0..n)
             .map(|b| values(&band_channel(b)))
             .collect::<Result<Vec<_>, _>>()?;
@@ -310,7 +315,7 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
             .with_energy_sums(sums)
             .ok_or_else(|| bad("non-finite energy sums".into()))?;
     }
-    if fact(&facts, "polarized") == Some("1") {
+    if polarized {
         let channels = STOKES
             .iter()
             .flatten()

@@ -33,7 +33,8 @@ pub struct Film {
     samples: u64,
     nonfinite: u64,
     /// Per-band sums of spectral radiance estimates (W m^-2 sr^-1 nm^-1 per sample),
-    /// `bands.count()` values per pixel, when the film is spectral.
+    /// `bands.count()` values per pixel and Stokes component (S0's, then S1..S3's when
+    /// polarized), when the film is spectral.
     spectral: Option<(SpectralBands, Vec<f64>)>,
     /// Per-pixel sums of (radiance W m^-2 sr^-1, photon radiance s^-1 m^-2 sr^-1)
     /// estimates, when the film records energy.
@@ -67,7 +68,29 @@ impl Film {
     /// This film, also recording the Stokes components S1, S2, S3 per pixel.
     pub fn with_polarization(mut self) -> Self {
         self.stokes = Some(vec![[[0.0; 3]; 3]; self.sums.len()]);
+        if let Some((bands, sums)) = &mut self.spectral {
+            *sums = vec![0.0; self.sums.len() * bands.count() * 4];
+        }
         self
+    }
+
+    /// The spectral sums per pixel: the bands of each Stokes component kept.
+    pub(crate) fn spectral_width(&self) -> usize {
+        let components = if self.stokes.is_some() { 4 } else { 1 };
+        self.bands().map_or(0, |b| b.count() * components)
+    }
+
+    /// The estimated spectral radiance of Stokes component `k` (0..4) of pixel (x, y) per
+    /// band, when the film is spectral and (for k > 0) polarized.
+    pub fn stokes_spectrum(&self, x: u32, y: u32, k: usize) -> Option<Vec<f64>> {
+        let (bands, sums) = self.spectral.as_ref()?;
+        let count = bands.count();
+        if k * count >= self.spectral_width() {
+            return None;
+        }
+        let n = self.samples.max(1) as f64;
+        let at = (y * self.width + x) as usize * self.spectral_width() + k * count;
+        Some(sums[at..at + count].iter().map(|v| v / n).collect())
     }
 
     /// Whether the film records polarization (a polarized render's).
@@ -157,17 +180,15 @@ impl Film {
         self.spectral.as_ref().map(|(b, _)| *b)
     }
 
-    /// The per-band sums, `bands().count()` per pixel (empty when not spectral).
+    /// The per-band sums, `bands().count()` per pixel (S0's; then S1's, S2's and S3's
+    /// when polarized), empty when not spectral.
     pub fn spectral_sums(&self) -> &[f64] {
         self.spectral.as_ref().map_or(&[], |(_, s)| s)
     }
 
     /// The estimated spectral radiance of pixel (x, y) per band, when the film is spectral.
     pub fn spectrum(&self, x: u32, y: u32) -> Option<Vec<f64>> {
-        let (bands, sums) = self.spectral.as_ref()?;
-        let n = self.samples.max(1) as f64;
-        let at = (y * self.width + x) as usize * bands.count();
-        Some(sums[at..at + bands.count()].iter().map(|v| v / n).collect())
+        self.stokes_spectrum(x, y, 0)
     }
 
     /// A film from its parts (merging and resuming): sums per pixel, samples per pixel,
@@ -219,7 +240,8 @@ impl Film {
         bands: SpectralBands,
         sums: Vec<f64>,
     ) -> Option<Self> {
-        let fits = sums.len() == self.sums.len() * bands.count();
+        let components = if self.stokes.is_some() { 4 } else { 1 };
+        let fits = sums.len() == self.sums.len() * bands.count() * components;
         (fits && sums.iter().all(|v| v.is_finite())).then(|| {
             self.spectral = Some((bands, sums));
             self

@@ -163,7 +163,7 @@ pub(crate) struct Splatter<'a> {
 impl<'a> Splatter<'a> {
     pub(crate) fn new(film: &'a mut crate::Film, filter: &'a FilterSampler) -> Self {
         let (width, height) = (film.width(), film.height());
-        let band_count = film.bands().map_or(0, |b| b.count());
+        let band_count = film.spectral_width();
         let sums = film.sums_mut();
         Self {
             width,

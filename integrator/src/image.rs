@@ -51,6 +51,9 @@ crate::settings::setters!(ExrMetadata {
 /// wavelength range), `energy.eV` (the same in eV s^-1 m^-2 sr^-1) and `energy.photons`
 /// (photons s^-1 m^-2 sr^-1).
 ///
+/// A polarized spectral film writes the bands of every Stokes component, `S0.<nm>nm` to
+/// `S3.<nm>nm` (the layout's polarized form), besides S0..S3 in RGB.
+///
 /// A polarized film adds the Stokes components as RGB images in `space`, `S0.R`, `S0.G`,
 /// `S0.B` (equal to R, G, B), `S1.R`, ..., `S3.B`: the layout Mitsuba 3's `stokes`
 /// integrator writes, in the same camera frame (x = ray x camera up, so S1 > 0 is light
@@ -106,14 +109,17 @@ pub fn encode_exr(
     if let Some(bands) = film.bands() {
         let n = film.samples().max(1) as f64;
         let count = bands.count();
+        let width = film.spectral_width();
         let sums = film.spectral_sums();
-        for b in 0..count {
+        // Band b of Stokes component k (only S0 unless polarized).
+        for i in 0..width {
+            let (k, b) = (i / count, i % count);
             let name = format!(
-                "S0.{}nm",
+                "S{k}.{}nm",
                 format!("{:.6}", bands.center(b)).replace('.', ",")
             );
             let values = (0..w * h)
-                .map(|p| saturating_f32(sums[p * count + b] / n))
+                .map(|p| saturating_f32(sums[p * width + i] / n))
                 .collect();
             list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
         }

@@ -160,11 +160,12 @@ impl<'a> Renderer<'a> {
             outputs: Outputs {
                 bands: settings.bands,
                 energy: settings.energy,
+                polarized: settings.is_polarized(),
             },
         };
         self.pool.install(|| {
             let width = settings.width as usize;
-            let spectral_width = width * settings.bands.map_or(0, |b| b.count());
+            let spectral_width = width * pass.spectral_width();
             let FilmSums {
                 xyz: sums,
                 spectral,
@@ -325,7 +326,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     let (w, h) = (settings.width, settings.height);
     let aspect = w as f32 / h as f32;
     let (mut rays, mut rejected) = (0u64, 0u64);
-    let band_count = settings.outputs.bands.map_or(0, |b| b.count());
+    let band_count = settings.outputs.spectral_width();
     let mut value = SampleValue::default();
     for (x, sum) in row.iter_mut().enumerate() {
         let pixel = u64::from(y) * u64::from(w) + x as u64;

@@ -17,6 +17,16 @@ const PHOTONS_PER_JOULE_NM: f64 =
 pub(crate) struct Outputs {
     pub bands: Option<SpectralBands>,
     pub energy: bool,
+    /// Whether the bands are kept per Stokes component.
+    pub polarized: bool,
+}
+
+impl Outputs {
+    /// Spectral sums per pixel.
+    pub(crate) fn spectral_width(&self) -> usize {
+        let components = if self.polarized { 4 } else { 1 };
+        self.bands.map_or(0, |b| b.count() * components)
+    }
 }
 
 /// One sample's value, accumulated over the radiance estimates its path reports.
@@ -53,7 +63,8 @@ impl SampleValue {
             Some(camera) => camera.channels(spectrum, lambdas),
             None => spectrum.to_xyz(lambdas, tracer.observer).to_array(),
         };
-        if let Some(polarization) = radiance.polarization() {
+        let polarization = radiance.polarization();
+        if let Some(polarization) = polarization {
             for (sum, component) in self.stokes.iter_mut().zip(polarization) {
                 for (acc, v) in sum.iter_mut().zip(colour(component)) {
                     *acc += v;
@@ -85,6 +96,13 @@ impl SampleValue {
                 if let (true, Some(band)) = (pdf > 0.0, bands.band_of(lambdas.lambda(j))) {
                     self.binned
                         .push((band, f64::from(radiance[j]) / pdf * scale));
+                    // S1..S3's bands follow S0's in the pixel's spectral sums.
+                    for (k, component) in polarization.into_iter().flatten().enumerate() {
+                        self.binned.push((
+                            band + (k + 1) * bands.count(),
+                            f64::from(component[j]) / pdf * scale,
+                        ));
+                    }
                 }
             }
         }

@@ -287,3 +287,78 @@ fn wave_plates_make_circular_and_rotated_light() {
         "{along:?}"
     );
 }
+
+/// With spectral bands a polarized film keeps every Stokes component per band (S1's
+/// share of S0 is Fresnel's in every band of the non-dispersive glass), and it survives
+/// an EXR (the polarized spectral layout's channels) and an accumulation file, and splits
+/// into sample ranges that merge into the whole.
+#[test]
+fn polarized_bands_files_and_merges() {
+    use prism_integrator::{
+        ExrMetadata, SpectralBands, decode_accumulation, decode_exr, encode_accumulation,
+        encode_exr,
+    };
+    let theta = 65f64.to_radians();
+    let scene = glass_plane(theta);
+    let bands = SpectralBands::new(400.0, 700.0, 6).unwrap();
+    let settings = settings().bands(Some(bands));
+    let (film, _) = render(&scene, &settings).unwrap();
+    let (rs, rp) = fresnel(theta);
+    let mut checked = 0;
+    for (x, y) in [(1, 1), (3, 2), (5, 5)] {
+        let s0 = film.stokes_spectrum(x, y, 0).unwrap();
+        let s1 = film.stokes_spectrum(x, y, 1).unwrap();
+        assert_eq!(Some(s0.clone()), film.spectrum(x, y));
+        for (a, b) in s0.iter().zip(&s1) {
+            if *a > 0.0 {
+                // Within the pixel's spread of angles (a thousandth of a radian).
+                assert!((b / a - (rs - rp) / (rs + rp)).abs() < 3e-3, "{b} / {a}");
+                checked += 1;
+            }
+        }
+        assert!(
+            film.stokes_spectrum(x, y, 3)
+                .unwrap()
+                .iter()
+                .all(|v| v.abs() < 1e-6)
+        );
+        assert!(film.stokes_spectrum(x, y, 4).is_none());
+    }
+    assert!(checked > 6);
+    // EXR: S0..S3 in RGB and per band.
+    let image = decode_exr(
+        &encode_exr(
+            &film,
+            prism_spectrum::color::RgbSpaceId::Srgb.space(),
+            &ExrMetadata::default(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let names: Vec<&str> = image.channels.iter().map(|(n, _)| n.as_str()).collect();
+    for name in [
+        "R",
+        "S0.R",
+        "S1.G",
+        "S3.B",
+        "S0.425,000000nm",
+        "S3.675,000000nm",
+    ] {
+        assert!(names.contains(&name), "{name} missing from {names:?}");
+    }
+    // Accumulation files keep the Stokes sums exactly; halves merge into the whole.
+    let decoded = decode_accumulation(&encode_accumulation(&film, 0..32, "x").unwrap()).unwrap();
+    assert_eq!(decoded.film, film);
+    let (mut first, _) = render(&scene, &settings.clone().samples(0..16)).unwrap();
+    let (second, _) = render(&scene, &settings.clone().samples(16..32)).unwrap();
+    first.merge(&second).unwrap();
+    for (x, y) in [(0, 0), (4, 3)] {
+        let (a, b) = (first.stokes(x, y).unwrap(), film.stokes(x, y).unwrap());
+        for (p, q) in a.iter().flatten().zip(b.iter().flatten()) {
+            assert!((p - q).abs() <= 1e-12 * q.abs().max(1.0), "{p} vs {q}");
+        }
+    }
+    // A polarized film does not merge with an unpolarized one.
+    let (plain, _) = render(&scene, &settings.clone().polarized(false)).unwrap();
+    assert!(first.merge(&plain).is_err());
+}

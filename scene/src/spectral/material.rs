@@ -177,7 +177,7 @@ fn axis(map: &Map<String, Value>) -> Result<glam::Vec3, String> {
 /// wavelength (a zero-order plate without dispersion of its birefringence): `nm / lambda`,
 /// tabulated at 1 nm over 200-2500 nm.
 fn path_difference(nm: f64) -> Result<SceneSpectrum, String> {
-    if !(nm.is_finite() && nm >= 0.0 && nm <= 1e6) {
+    if !(0.0..=1e6).contains(&nm) {
         return Err(format!("path_difference {nm} must be in [0, 1e6] nm"));
     }
     let values: Vec<f64> = (200..=2500).map(|l| nm / f64::from(l)).collect();
