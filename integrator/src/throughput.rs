@@ -15,7 +15,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 use prism_scene::geometry::Frame;
-use prism_scene::polarization::{Interaction, Mueller, interactions, rotate_frame};
+use prism_scene::polarization::{Interaction, Mueller, interactions, polarizes, rotate_frame};
 use prism_scene::world::Bsdf;
 use prism_spectrum::SampledSpectrum;
 
@@ -188,11 +188,21 @@ impl<const N: usize> Polarized<N> {
     fn compose(&self, vertex: &Vertex<'_, '_, N>, lanes: &[Interaction; N]) -> Self {
         let travel = vertex.frame.to_world(vertex.wo);
         let mut next = *self;
+        // Lanes share their frames but where dispersion tilts a rough refraction's
+        // microfacet: one rotation serves every lane with the same frame.
+        let mut rotation: Option<(Vec3, Mat4)> = None;
         for (lane, interaction) in lanes.iter().enumerate() {
-            let out_basis = vertex.frame.to_world(interaction.outgoing_basis);
-            let rotation = rotate_frame(travel, out_basis, self.basis);
-            next.mueller[lane] =
-                self.mueller[lane] * rotation.matrix() * interaction.mueller.matrix();
+            let local = interaction.outgoing_basis;
+            let turn = match rotation {
+                Some((basis, m)) if basis == local => m,
+                _ => {
+                    let out_basis = vertex.frame.to_world(local);
+                    let m = rotate_frame(travel, out_basis, self.basis).matrix();
+                    rotation = Some((local, m));
+                    m
+                }
+            };
+            next.mueller[lane] = self.mueller[lane] * turn * interaction.mueller.matrix();
         }
         // Every lane's input frame is the s axis of its plane of incidence: the same
         // vector for all lanes but a depolarizer's (whose frame is arbitrary, any will do).
@@ -244,6 +254,13 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
         light: &SampledSpectrum<N>,
         weight: f32,
     ) {
+        if !polarizes(vertex.bsdf, false) {
+            // A depolarizer passes only S0, whatever the frames.
+            for (lane, m) in self.mueller.iter().enumerate() {
+                radiance.add(lane, m.x_axis * (f[lane] * light[lane] * weight));
+            }
+            return;
+        }
         let lanes = interactions(vertex.bsdf, vertex.wo, wi, f, false);
         let through = self.compose(vertex, &lanes);
         through.add_emitted(radiance, light, weight);
@@ -256,6 +273,16 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
         delta: bool,
         weight: f32,
     ) {
+        if !polarizes(vertex.bsdf, delta) {
+            // T times a depolarizer of value f: T's first column, scaled; the light
+            // arriving next is measured in any frame (only its S0 matters).
+            for (lane, m) in self.mueller.iter_mut().enumerate() {
+                let column = m.x_axis * (f[lane] * weight);
+                *m = Mat4::from_cols(column, Vec4::ZERO, Vec4::ZERO, Vec4::ZERO);
+            }
+            self.basis = vertex.frame.to_world(wi).any_orthonormal_vector();
+            return;
+        }
         let lanes = interactions(vertex.bsdf, vertex.wo, wi, f, delta);
         *self = self.compose(vertex, &lanes);
         self.scale_uniform(weight);
@@ -284,5 +311,56 @@ impl CameraFrame {
                 Mueller::rotated(degrees.to_radians(), &Mueller::linear_polarizer(1.0)).matrix()
             }),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use prism_scene::bsdf::Diffuse;
+
+    /// The depolarizer's shortcut is the general composition: T R M with M a depolarizer
+    /// keeps T's first column times the value, whatever the frames.
+    #[test]
+    fn depolarizing_shortcut_is_the_general_product() {
+        let t = Polarized::<2> {
+            mueller: [
+                Mat4::from_cols_array(&[
+                    0.9, 0.2, -0.1, 0.05, 0.3, 0.7, 0.1, 0.0, -0.2, 0.1, 0.6, 0.2, 0.0, 0.1, -0.3,
+                    0.5,
+                ]),
+                Mat4::IDENTITY * 0.4,
+            ],
+            basis: Vec3::X,
+        };
+        let bsdf = Bsdf::Diffuse(Diffuse::new(SampledSpectrum([0.8, 0.3])));
+        let frame = Frame::from_normal(Vec3::new(0.2, 0.3, 0.9).normalize());
+        let wo = Vec3::new(0.3, -0.2, 0.9).normalize();
+        let wi = Vec3::new(-0.5, 0.4, 0.7).normalize();
+        let vertex = Vertex {
+            bsdf: &bsdf,
+            frame: &frame,
+            wo,
+        };
+        let f = bsdf.f(wo, wi);
+        let mut fast = t;
+        fast.scatter(&vertex, wi, &f, false, 1.7);
+        let mut general = t.compose(&vertex, &interactions(&bsdf, wo, wi, &f, false));
+        general.scale_uniform(1.7);
+        for (a, b) in fast.mueller.iter().zip(&general.mueller) {
+            assert!(a.abs_diff_eq(*b, 1e-6), "{a} vs {b}");
+        }
+        let light = SampledSpectrum([2.0, 3.0]);
+        let (mut a, mut b) = (Polarized::<2>::black(), Polarized::<2>::black());
+        t.add_scattered(&mut a, &vertex, wi, &f, &light, 0.5);
+        t.compose(&vertex, &interactions(&bsdf, wo, wi, &f, false))
+            .add_emitted(&mut b, &light, 0.5);
+        for k in 0..3 {
+            for lane in 0..2 {
+                let (x, y) = (a.polarization[k][lane], b.polarization[k][lane]);
+                assert!((x - y).abs() < 1e-6, "{x} vs {y}");
+            }
+        }
+        assert!((a.s0[0] - b.s0[0]).abs() < 1e-6 && (a.s0[1] - b.s0[1]).abs() < 1e-6);
     }
 }

@@ -47,12 +47,14 @@ pub fn interactions<const N: usize>(
     }
 }
 
-/// Whether the BSDF has a polarizing model (the rest depolarize).
-pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>) -> bool {
-    matches!(
-        bsdf,
-        Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::Sheet(_)
-    ) || matches!(bsdf, Bsdf::Transmissive(t) if matches!(t.glass, Glass::Thick(_)))
+/// Whether [`interactions`] gives `bsdf` (for a sampled delta: `delta`) anything but
+/// depolarizers, whose frames do not matter: a renderer may then skip the frames.
+pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>, delta: bool) -> bool {
+    match bsdf {
+        Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::Sheet(_) => true,
+        Bsdf::Transmissive(t) => delta && matches!(t.glass, Glass::Thick(_)),
+        _ => false,
+    }
 }
 
 fn depolarizing<const N: usize>(
