@@ -321,6 +321,10 @@ impl Tracer<'_> {
                             &f,
                             &light.radiance,
                             w / light.pdf,
+                            || {
+                                let p = self.scene.light_polarization(light.light)?;
+                                Some(p.stokes(-light.wi))
+                            },
                         );
                     }
                 }

@@ -15,7 +15,9 @@
 
 use glam::{Mat4, Vec3, Vec4};
 use prism_scene::geometry::Frame;
-use prism_scene::polarization::{Interaction, Mueller, interactions, polarizes, rotate_frame};
+use prism_scene::polarization::{
+    Interaction, Mueller, Stokes, interactions, polarizes, rotate_frame,
+};
 use prism_scene::world::Bsdf;
 use prism_spectrum::SampledSpectrum;
 
@@ -88,8 +90,10 @@ pub(crate) trait Throughput<const N: usize>: Sized {
     fn max_value(&self) -> f32;
     /// Adds unpolarized radiance `le` arriving along the path's last ray, times `weight`.
     fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32);
-    /// Adds unpolarized radiance `light` arriving at `vertex` from `wi` (local) and
-    /// scattered towards the path with BSDF value `f` (cosine included), times `weight`.
+    /// Adds radiance `light` arriving at `vertex` from `wi` (local) and scattered
+    /// towards the path with BSDF value `f` (cosine included), times `weight`; the light
+    /// is unpolarized unless `polarization` gives its Stokes vector of unit intensity and
+    /// the basis of its frame (world), read only by polarized paths.
     fn add_scattered(
         &self,
         radiance: &mut Self::Radiance,
@@ -98,6 +102,7 @@ pub(crate) trait Throughput<const N: usize>: Sized {
         f: &SampledSpectrum<N>,
         light: &SampledSpectrum<N>,
         weight: f32,
+        polarization: impl FnOnce() -> Option<(Stokes, Vec3)>,
     );
     /// Continues the path at `vertex` towards `wi` (local) with BSDF value (or delta
     /// weight, `delta`) `f`, times `weight` (the cosine over the density).
@@ -147,6 +152,7 @@ impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
         f: &SampledSpectrum<N>,
         light: &SampledSpectrum<N>,
         weight: f32,
+        _: impl FnOnce() -> Option<(Stokes, Vec3)>,
     ) {
         *radiance += *self * *f * *light * weight;
     }
@@ -253,6 +259,7 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
         f: &SampledSpectrum<N>,
         light: &SampledSpectrum<N>,
         weight: f32,
+        polarization: impl FnOnce() -> Option<(Stokes, Vec3)>,
     ) {
         if !polarizes(vertex.bsdf, false) {
             // A depolarizer passes only S0, whatever the frames.
@@ -263,7 +270,18 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
         }
         let lanes = interactions(vertex.bsdf, vertex.wo, wi, f, false);
         let through = self.compose(vertex, &lanes);
-        through.add_emitted(radiance, light, weight);
+        let Some((stokes, light_basis)) = polarization() else {
+            through.add_emitted(radiance, light, weight);
+            return;
+        };
+        // The light's Stokes vector in the frame the interactions expect.
+        let travel = -vertex.frame.to_world(wi);
+        let arriving = rotate_frame(travel, light_basis, through.basis)
+            .apply(stokes)
+            .0;
+        for (lane, m) in through.mueller.iter().enumerate() {
+            radiance.add(lane, *m * arriving * (light[lane] * weight));
+        }
     }
     fn scatter(
         &mut self,
@@ -352,7 +370,7 @@ mod tests {
         }
         let light = SampledSpectrum([2.0, 3.0]);
         let (mut a, mut b) = (Polarized::<2>::black(), Polarized::<2>::black());
-        t.add_scattered(&mut a, &vertex, wi, &f, &light, 0.5);
+        t.add_scattered(&mut a, &vertex, wi, &f, &light, 0.5, || None);
         t.compose(&vertex, &interactions(&bsdf, wo, wi, &f, false))
             .add_emitted(&mut b, &light, 0.5);
         for k in 0..3 {

@@ -362,3 +362,77 @@ fn polarized_bands_files_and_merges() {
     let (plain, _) = render(&scene, &settings.clone().polarized(false)).unwrap();
     assert!(first.merge(&plain).is_err());
 }
+
+/// A directional light polarized along s or p (the light's x axis across or in the plane
+/// of incidence), reflected into the camera by nearly smooth glass: the reflections'
+/// intensities are in Fresnel's proportion R_p / R_s, p-polarized light all but vanishes
+/// at Brewster's angle, and unpolarized light (degree 0) is the unpolarized render.
+#[test]
+fn polarized_light_reflects_in_fresnels_proportion() {
+    use prism_scene::polarization::LinearPolarization;
+    let scene = |theta: f64, polarization: Option<f32>| {
+        let theta = theta as f32;
+        let eye = Vec3::new(theta.sin(), 0.0, theta.cos()) * 3.0;
+        let mut scene = Scene::new(SceneParts {
+            attributes: Default::default(),
+            triangle_material: vec![0, 0],
+            triangles: square_z0(50.0),
+            materials: vec![Material::Dielectric {
+                ior: SceneSpectrum::Constant(ETA),
+                roughness: 0.1,
+                absorption: None,
+            }],
+            emission: vec![],
+            lights: vec![Light::Directional {
+                direction: Vec3::new(theta.sin(), 0.0, -theta.cos()),
+                irradiance: SceneSpectrum::Constant(1.0),
+            }],
+            camera: Camera::look_at(eye, Vec3::ZERO, Vec3::Z, 0.002),
+            quality: BvhQuality::Medium,
+        })
+        .unwrap();
+        if let Some(angle) = polarization {
+            let p = LinearPolarization {
+                degree: if angle.is_nan() { 0.0 } else { 1.0 },
+                angle: if angle.is_nan() {
+                    0.0
+                } else {
+                    angle.to_radians()
+                },
+                // The light's x axis across the plane of incidence: s at angle 0.
+                axis: Vec3::Y,
+            };
+            scene.polarize_light(0, p).unwrap();
+        }
+        scene
+    };
+    let seen = |theta: f64, polarization: Option<f32>| {
+        let (film, _) = render(&scene(theta, polarization), &settings()).unwrap();
+        mean_stokes(&film)
+    };
+    let theta = 45f64.to_radians();
+    let (s_light, p_light) = (seen(theta, Some(0.0)), seen(theta, Some(90.0)));
+    let (rs, rp) = fresnel(theta);
+    let ratio = p_light[0] / s_light[0];
+    assert!(
+        (ratio / (rp / rs) - 1.0).abs() < 0.05,
+        "{ratio} vs {}",
+        rp / rs
+    );
+    // Both stay polarized as they came: s along the image's rows (S1 > 0), p across.
+    assert!(s_light[1] / s_light[0] > 0.99 && p_light[1] / p_light[0] < -0.99);
+    let brewster = ETA.atan();
+    let (s_light, p_light) = (seen(brewster, Some(0.0)), seen(brewster, Some(90.0)));
+    assert!(p_light[0] < 2e-3 * s_light[0], "{p_light:?} {s_light:?}");
+    // Degree 0 is unpolarized light.
+    let (none, plain) = (seen(theta, Some(f32::NAN)), seen(theta, None));
+    assert!((none[0] - plain[0]).abs() < 1e-6 * plain[0] && none[1] == plain[1]);
+    // Light at 45 degrees: halfway in intensity, and S2 carries its angle through.
+    let diagonal = seen(theta, Some(45.0));
+    let (s45, p45) = (seen(theta, Some(0.0)), seen(theta, Some(90.0)));
+    assert!(
+        (diagonal[0] / (0.5 * (s45[0] + p45[0])) - 1.0).abs() < 1e-3,
+        "{diagonal:?}"
+    );
+    assert!(diagonal[2].abs() > 0.1 * diagonal[0], "{diagonal:?}");
+}

@@ -471,3 +471,87 @@ fn dielectric_lobes_carry_the_scalar_value() {
     // Fully polarized along s, the frame's x axis: S1 = +S0.
     assert!((out.0.y - out.0.x).abs() < 1e-3 * out.0.x, "{out:?}");
 }
+
+/// A glTF document: one triangle and a spot light on a node turned 90 degrees about +z,
+/// its `PRISM_spectral` description `light` (JSON).
+#[cfg(feature = "gltf")]
+fn spot_light_document(light: &str) -> Vec<u8> {
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0,
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {{"KHR_lights_punctual": {{"lights": [{{"name": "lamp", "type": "spot", "intensity": 10, "spot": {{}},
+            "extensions": {{"PRISM_spectral": {light}}}}}]}}}},
+        "scenes": [{{"nodes": [0, 1]}}],
+        "nodes": [{{"mesh": 0}}, {{"rotation": [0, 0, {h}, {h}], "translation": [0, 0, 2],
+            "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}}],
+        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
+        "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+            "min": [0, 0, 0], "max": [1, 1, 0]}}],
+        "bufferViews": [{{"buffer": 0, "byteLength": 36}}],
+        "buffers": [{{"byteLength": 36, "uri": "triangle.bin"}}]}}"#
+    )
+    .into_bytes()
+}
+
+/// A light's `polarization` reaches the scene's light, its angle measured from the
+/// light node's x axis (here turned onto +y); bad values are errors naming the light.
+#[cfg(feature = "gltf")]
+#[test]
+fn lights_carry_their_polarization_from_gltf() {
+    use prism_scene::load::{LoadOptions, load_scene};
+    use prism_scene::world::{Scene, SceneOptions};
+    let load = |light: &str| {
+        let doc = spot_light_document(light);
+        let triangle: Vec<u8> = [0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+            .iter()
+            .flat_map(|c| c.to_le_bytes())
+            .collect();
+        let resolve = move |uri: &str| match uri {
+            "triangle.bin" => Ok(triangle.clone()),
+            _ => Err(std::io::Error::other("no such file")),
+        };
+        load_scene(&doc, &resolve, &LoadOptions::default())
+            .and_then(|loaded| Scene::from_loaded(loaded, &SceneOptions::default()))
+    };
+    let scene =
+        load(r#"{"spectrum": "illuminant:D65", "polarization": {"degree": 0.75, "angle": 30}}"#)
+            .unwrap();
+    let index = scene
+        .lights()
+        .all()
+        .iter()
+        .position(|l| matches!(l, prism_scene::world::Light::Spot { .. }))
+        .unwrap() as u32;
+    let p = scene
+        .light_polarization(index)
+        .expect("the spot light is polarized");
+    assert!((p.degree - 0.75).abs() < 1e-6 && (p.angle - 30f32.to_radians()).abs() < 1e-6);
+    assert!(p.axis.abs_diff_eq(Vec3::Y, 1e-5), "{}", p.axis);
+    // Light shining straight down its axis: Stokes (1, 0.75 cos 60, 0.75 sin 60, 0) in
+    // the frame of the light's x axis.
+    let (stokes, basis) = p.stokes(-Vec3::Z);
+    assert!(basis.abs_diff_eq(Vec3::Y, 1e-5));
+    assert!(
+        stokes
+            .0
+            .abs_diff_eq(Vec4::new(1.0, 0.375, 0.75 * 0.866_025_4, 0.0), 1e-5)
+    );
+    let unpolarized = load(r#"{"spectrum": "illuminant:D65"}"#).unwrap();
+    assert!(
+        (0..unpolarized.lights().all().len() as u32)
+            .all(|i| unpolarized.light_polarization(i).is_none())
+    );
+    for bad in [
+        r#"{"spectrum": 1, "polarization": {"degree": 1.5}}"#,
+        r#"{"spectrum": 1, "polarization": {"angle": "up"}}"#,
+        r#"{"spectrum": 1, "polarization": {"dgree": 1}}"#,
+        r#"{"spectrum": 1, "polarization": 0.5}"#,
+    ] {
+        let error = load(bad).err().expect(bad).to_string();
+        assert!(
+            error.contains("lamp") && error.contains("polarization") || error.contains("dgree"),
+            "{error}"
+        );
+    }
+}

@@ -62,6 +62,8 @@ pub struct LoadedGeometry {
     pub materials: Vec<MaterialDesc>,
     /// The lights: emissive instances, then punctual lights in traversal order.
     pub lights: Vec<LightDesc>,
+    /// The polarized lights' emission, by index into `lights` (most scenes: none).
+    pub light_polarization: Vec<(usize, crate::polarization::LinearPolarization)>,
     /// The scene-wide spectral description (the root's `PRISM_spectral`).
     pub spectral: SpectralScene,
     /// What the caller should tell the user about the file: one line each, such as an
@@ -364,6 +366,7 @@ pub fn load_scene(
                     })
                 })
                 .transpose()?;
+            let polarization = description.as_ref().and_then(|d| d.polarization);
             punctual_lights.push(punctual(
                 &node,
                 &light,
@@ -371,6 +374,17 @@ pub fn load_scene(
                 &|rgb| upsampler.emission(rgb),
                 description,
             )?);
+            if let Some((degree, angle)) = polarization {
+                // Counted among the punctual lights; shifted past the area lights below.
+                out.light_polarization.push((
+                    punctual_lights.len() - 1,
+                    crate::polarization::LinearPolarization {
+                        degree,
+                        angle,
+                        axis: world.transform_vector3(Vec3::X).normalize_or(Vec3::X),
+                    },
+                ));
+            }
         }
         if let Some(camera) = node.camera() {
             out.cameras.push(make_camera(&node, &camera, world)?);
@@ -419,6 +433,10 @@ pub fn load_scene(
             })
         })
         .collect();
+    let areas = out.lights.len();
+    for (index, _) in &mut out.light_polarization {
+        *index += areas;
+    }
     out.lights.extend(punctual_lights);
     Ok(out)
 }

@@ -26,12 +26,14 @@
 
 mod bsdf;
 mod fresnel;
+mod light;
 mod mueller;
 mod stokes;
 mod surface;
 
 pub use bsdf::{interactions, polarizes};
 pub use fresnel::{FresnelAmplitudes, fresnel_amplitudes};
+pub use light::LinearPolarization;
 pub use mueller::Mueller;
 pub use stokes::{Stokes, rotate_frame};
 pub use surface::{Interaction, s_axis};

@@ -15,6 +15,9 @@ pub struct SpectralLight {
     /// W m^-2 nm^-1 for directional lights). Sources outside the visible (UV LEDs) have
     /// no luminance to normalize by, so they must be radiometric.
     pub radiometric: bool,
+    /// Partial linear polarization of its light: degree in [0, 1] and angle (radians,
+    /// from the light's x axis towards its y axis), if any.
+    pub polarization: Option<(f32, f32)>,
 }
 
 /// Parses a light's description: `{"spectrum": S, "units": "photometric" | "radiometric"}`.
@@ -22,7 +25,7 @@ pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String
     let map = value
         .as_object()
         .ok_or("PRISM_spectral on a light must be an object")?;
-    only_keys(map, &["spectrum", "units"])?;
+    only_keys(map, &["spectrum", "units", "polarization"])?;
     let spectrum = spectrum(
         map.get("spectrum").ok_or("needs 'spectrum'")?,
         Role::Emission,
@@ -34,10 +37,38 @@ pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String
         Some(Some("radiometric")) => true,
         Some(_) => return Err("units must be \"photometric\" or \"radiometric\"".into()),
     };
+    let polarization = map.get("polarization").map(polarization).transpose()?;
     Ok(SpectralLight {
         spectrum,
         radiometric,
+        polarization,
     })
+}
+
+/// `{"degree": D, "angle": DEGREES}`: degree in [0, 1] (default 1), angle from the
+/// light's x axis towards its y axis (default 0).
+fn polarization(value: &Value) -> Result<(f32, f32), String> {
+    let map = value
+        .as_object()
+        .ok_or("polarization must be {\"degree\": D, \"angle\": DEGREES}")?;
+    only_keys(map, &["degree", "angle"])?;
+    let degree = match map.get("degree") {
+        None => 1.0,
+        Some(d) => super::value::number(d, "polarization degree")?,
+    };
+    if !(0.0..=1.0).contains(&degree) {
+        return Err(format!("polarization degree {degree} is outside [0, 1]"));
+    }
+    let angle = match map.get("angle") {
+        None => 0.0,
+        Some(a) => super::value::number(a, "polarization angle")?,
+    };
+    if !(angle.is_finite() && angle.abs() <= 360.0) {
+        return Err(format!(
+            "polarization angle {angle} must be degrees in [-360, 360]"
+        ));
+    }
+    Ok((degree as f32, (angle as f32).to_radians()))
 }
 
 /// What the root's `PRISM_spectral` says about the whole scene.

@@ -169,7 +169,12 @@ impl Scene {
         let mut emission = Vec::new();
         let mut emission_of_material = vec![None; loaded.materials.len()];
         let mut lights = Vec::new();
-        for desc in &loaded.lights {
+        // Scene light indices of the descriptions' polarizations.
+        let mut polarized = Vec::new();
+        for (d, desc) in loaded.lights.iter().enumerate() {
+            if let Some((_, p)) = loaded.light_polarization.iter().find(|(i, _)| *i == d) {
+                polarized.push((lights.len(), *p));
+            }
             match desc {
                 LightDesc::Area {
                     instance,
@@ -286,9 +291,12 @@ impl Scene {
             camera,
             quality: options.quality,
         })
-        .map(|mut scene| {
+        .and_then(|mut scene| {
             scene.lit_by_default = lit_by_default;
-            scene
+            for (index, polarization) in polarized {
+                scene.polarize_light(index, polarization)?;
+            }
+            Ok(scene)
         })
     }
 }

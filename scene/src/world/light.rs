@@ -105,6 +105,8 @@ pub struct LightSample<const N: usize> {
     pub pdf: f32,
     /// Whether the light is a delta in direction (BSDF sampling can never hit it).
     pub delta: bool,
+    /// Which of the scene's lights it is ([`super::Scene::light_polarization`]).
+    pub light: u32,
 }
 
 /// A light path's first ray, sampled from a light's emission.
@@ -419,6 +421,7 @@ impl Lights {
                     return None;
                 }
                 LightSample {
+                    light: index as u32,
                     wi,
                     distance,
                     radiance: cache.get(emission, *e, wavelengths, &uv.into()),
@@ -434,6 +437,7 @@ impl Lights {
                 let d2 = to.length_squared();
                 let distance = d2.sqrt();
                 LightSample {
+                    light: index as u32,
                     wi: to / distance,
                     distance,
                     radiance: intensity.at(wavelengths) * (1.0 / d2),
@@ -454,6 +458,7 @@ impl Lights {
                 let wi = to / distance;
                 let falloff = spot_falloff(-wi.dot(*direction), *cos_inner, *cos_outer);
                 LightSample {
+                    light: index as u32,
                     wi,
                     distance,
                     radiance: intensity.at(wavelengths) * (falloff / d2),
@@ -465,6 +470,7 @@ impl Lights {
                 direction,
                 irradiance,
             } => LightSample {
+                light: index as u32,
                 wi: -*direction,
                 distance: f32::INFINITY,
                 radiance: irradiance.at(wavelengths),
@@ -472,6 +478,7 @@ impl Lights {
                 delta: true,
             },
             Light::Environment { radiance } => LightSample {
+                light: index as u32,
                 wi: uniform_sphere(u),
                 distance: f32::INFINITY,
                 radiance: radiance.at(wavelengths),
@@ -481,6 +488,7 @@ impl Lights {
             Light::EnvironmentMap { map } => {
                 let (wi, pdf, radiance) = map.sample(u, wavelengths)?;
                 LightSample {
+                    light: index as u32,
                     wi,
                     distance: f32::INFINITY,
                     radiance,

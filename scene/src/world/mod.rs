@@ -195,6 +195,8 @@ pub struct Scene {
     /// Whether any material reads the surface's tangent frame (anisotropy, a coat's
     /// normal texture): only then does [`Scene::bsdf`] look.
     oriented_materials: bool,
+    /// Per light, its emission's linear polarization; empty when no light is polarized.
+    light_polarization: Vec<Option<crate::polarization::LinearPolarization>>,
 }
 
 impl Scene {
@@ -345,7 +347,45 @@ impl Scene {
             lit_by_default: false,
             filters_textures,
             oriented_materials,
+            light_polarization: Vec::new(),
         })
+    }
+
+    /// Makes light `index`'s emission (a point, spot or directional light's) partly
+    /// linearly polarized, as polarized renders see it; unpolarized renders see its
+    /// intensity only. An index past the lights is an error.
+    pub fn polarize_light(
+        &mut self,
+        index: usize,
+        polarization: crate::polarization::LinearPolarization,
+    ) -> Result<(), crate::LoadError> {
+        let lights = self.lights.all();
+        match lights.get(index) {
+            Some(Light::Point { .. } | Light::Spot { .. } | Light::Directional { .. }) => {}
+            Some(_) => {
+                return Err(crate::LoadError::Scene(format!(
+                    "light {index}: only point, spot and directional lights can be polarized"
+                )));
+            }
+            None => {
+                return Err(crate::LoadError::Scene(format!(
+                    "light {index} does not exist (the scene has {})",
+                    lights.len()
+                )));
+            }
+        }
+        let count = lights.len();
+        self.light_polarization.resize(count, None);
+        self.light_polarization[index] = Some(polarization);
+        Ok(())
+    }
+
+    /// The linear polarization of light `index`'s emission, if it has one.
+    pub fn light_polarization(
+        &self,
+        index: u32,
+    ) -> Option<&crate::polarization::LinearPolarization> {
+        self.light_polarization.get(index as usize)?.as_ref()
     }
 
     /// Whether the scene's file had no light of its own (no punctual light, no
