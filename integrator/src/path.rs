@@ -13,7 +13,7 @@ use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use crate::throughput::{Throughput, Vertex};
+use crate::throughput::{Arrival, Throughput, Vertex};
 
 /// What every path of a render shares.
 pub(crate) struct Tracer<'a> {
@@ -314,18 +314,16 @@ impl Tracer<'_> {
                         } else {
                             power_heuristic(1, light.pdf, 1, bsdf.pdf(wo, wi))
                         };
-                        beta.add_scattered(
-                            &mut radiance,
-                            &vertex,
+                        let arrival = Arrival {
                             wi,
-                            &f,
-                            &light.radiance,
-                            w / light.pdf,
-                            || {
-                                let p = self.scene.light_polarization(light.light)?;
-                                Some(p.stokes(-light.wi))
-                            },
-                        );
+                            f: &f,
+                            radiance: &light.radiance,
+                            weight: w / light.pdf,
+                        };
+                        beta.add_scattered(&mut radiance, &vertex, arrival, || {
+                            let p = self.scene.light_polarization(light.light)?;
+                            Some(p.stokes(-light.wi))
+                        });
                     }
                 }
             }

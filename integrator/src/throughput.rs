@@ -29,6 +29,15 @@ pub(crate) struct Vertex<'v, 'b, const N: usize> {
     pub wo: Vec3,
 }
 
+/// Light arriving at a vertex from a sampled light: its direction `wi` (local), the
+/// BSDF's value there `f` (cosine included), its `radiance` and the estimator's `weight`.
+pub(crate) struct Arrival<'a, const N: usize> {
+    pub wi: Vec3,
+    pub f: &'a SampledSpectrum<N>,
+    pub radiance: &'a SampledSpectrum<N>,
+    pub weight: f32,
+}
+
 /// The radiance a path gathers: a spectrum, or per lane a Stokes vector.
 pub(crate) trait Radiance<const N: usize>: Clone {
     /// Intensity (S0) per lane.
@@ -90,18 +99,14 @@ pub(crate) trait Throughput<const N: usize>: Sized {
     fn max_value(&self) -> f32;
     /// Adds unpolarized radiance `le` arriving along the path's last ray, times `weight`.
     fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32);
-    /// Adds radiance `light` arriving at `vertex` from `wi` (local) and scattered
-    /// towards the path with BSDF value `f` (cosine included), times `weight`; the light
-    /// is unpolarized unless `polarization` gives its Stokes vector of unit intensity and
-    /// the basis of its frame (world), read only by polarized paths.
+    /// Adds the light `arrival` describes, scattered at `vertex` towards the path; the
+    /// light is unpolarized unless `polarization` gives its Stokes vector of unit
+    /// intensity and the basis of its frame (world), read only by polarized paths.
     fn add_scattered(
         &self,
         radiance: &mut Self::Radiance,
         vertex: &Vertex<'_, '_, N>,
-        wi: Vec3,
-        f: &SampledSpectrum<N>,
-        light: &SampledSpectrum<N>,
-        weight: f32,
+        arrival: Arrival<'_, N>,
         polarization: impl FnOnce() -> Option<(Stokes, Vec3)>,
     );
     /// Continues the path at `vertex` towards `wi` (local) with BSDF value (or delta
@@ -148,13 +153,10 @@ impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
         &self,
         radiance: &mut Self::Radiance,
         _: &Vertex<'_, '_, N>,
-        _: Vec3,
-        f: &SampledSpectrum<N>,
-        light: &SampledSpectrum<N>,
-        weight: f32,
+        arrival: Arrival<'_, N>,
         _: impl FnOnce() -> Option<(Stokes, Vec3)>,
     ) {
-        *radiance += *self * *f * *light * weight;
+        *radiance += *self * *arrival.f * *arrival.radiance * arrival.weight;
     }
     #[inline]
     fn scatter(
@@ -255,12 +257,15 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
         &self,
         radiance: &mut Self::Radiance,
         vertex: &Vertex<'_, '_, N>,
-        wi: Vec3,
-        f: &SampledSpectrum<N>,
-        light: &SampledSpectrum<N>,
-        weight: f32,
+        arrival: Arrival<'_, N>,
         polarization: impl FnOnce() -> Option<(Stokes, Vec3)>,
     ) {
+        let Arrival {
+            wi,
+            f,
+            radiance: light,
+            weight,
+        } = arrival;
         if !polarizes(vertex.bsdf, false) {
             // A depolarizer passes only S0, whatever the frames.
             for (lane, m) in self.mueller.iter().enumerate() {
@@ -370,7 +375,13 @@ mod tests {
         }
         let light = SampledSpectrum([2.0, 3.0]);
         let (mut a, mut b) = (Polarized::<2>::black(), Polarized::<2>::black());
-        t.add_scattered(&mut a, &vertex, wi, &f, &light, 0.5, || None);
+        let arrival = Arrival {
+            wi,
+            f: &f,
+            radiance: &light,
+            weight: 0.5,
+        };
+        t.add_scattered(&mut a, &vertex, arrival, || None);
         t.compose(&vertex, &interactions(&bsdf, wo, wi, &f, false))
             .add_emitted(&mut b, &light, 0.5);
         for k in 0..3 {
