@@ -271,3 +271,103 @@ pub fn encode_png(film: &Film, space: &RgbColorSpace, display: DisplaySettings) 
     }
     crate::png::encode_8bit(w, h, channels == 4, &raw)
 }
+
+/// The polarization of a polarized film as an 8-bit RGB PNG: per pixel, the hue is the
+/// angle of linear polarization (0 degrees, along the image's rows: red; 60: yellow; 90,
+/// along its columns: cyan; 120: blue), the saturation its degree (grey: unpolarized, full
+/// colour: fully polarized) and the brightness the tone-mapped intensity, all read from
+/// luminance (Y; a camera's channels' mean). None for a film without polarization.
+pub fn encode_polarization_png(
+    film: &Film,
+    space: &RgbColorSpace,
+    display: DisplaySettings,
+) -> Option<Vec<u8>> {
+    let (w, h) = (film.width(), film.height());
+    let weights = space.luminance_weights();
+    let transfer = space.transfer();
+    let mut raw = Vec::with_capacity((w as usize * 3 + 1) * h as usize);
+    for y in 0..h {
+        raw.push(0u8);
+        for x in 0..w {
+            let stokes = film.stokes(x, y)?;
+            let [s0, s1, s2] = [0, 1, 2].map(|k| {
+                let c = stokes[k];
+                if film.is_raw() {
+                    (c[0] + c[1] + c[2]) / 3.0
+                } else {
+                    c[1]
+                }
+            });
+            let (degree, angle) = linear_polarization(s0, s1, s2);
+            let grey = display_8bit(
+                [s0; 3],
+                display.exposure,
+                display.tone_map,
+                weights,
+                transfer,
+            );
+            let value = f64::from(grey[1]) / 255.0;
+            raw.extend_from_slice(&hsv_8bit(angle / std::f64::consts::PI, degree, value));
+        }
+    }
+    Some(crate::png::encode_8bit(w, h, false, &raw))
+}
+
+/// Degree in [0, 1] and angle in [0, pi) of linear polarization of (s0, s1, s2); (0, 0)
+/// where there is no light.
+fn linear_polarization(s0: f64, s1: f64, s2: f64) -> (f64, f64) {
+    if !(s0 > 0.0 && s1.is_finite() && s2.is_finite()) {
+        return (0.0, 0.0);
+    }
+    let degree = (s1.hypot(s2) / s0).min(1.0);
+    let angle = (0.5 * s2.atan2(s1)).rem_euclid(std::f64::consts::PI);
+    (degree, if angle.is_finite() { angle } else { 0.0 })
+}
+
+/// HSV (hue as a fraction of the circle) to 8-bit RGB.
+fn hsv_8bit(hue: f64, saturation: f64, value: f64) -> [u8; 3] {
+    let h = hue.rem_euclid(1.0) * 6.0;
+    let sector = h.floor();
+    let f = h - sector;
+    let (v, s) = (value.clamp(0.0, 1.0), saturation.clamp(0.0, 1.0));
+    let (p, q, t) = (v * (1.0 - s), v * (1.0 - s * f), v * (1.0 - s * (1.0 - f)));
+    let rgb = match sector as u32 % 6 {
+        0 => [v, t, p],
+        1 => [q, v, p],
+        2 => [p, v, t],
+        3 => [p, q, v],
+        4 => [t, p, v],
+        _ => [v, p, q],
+    };
+    rgb.map(|c| (c * 255.0).round() as u8)
+}
+
+#[cfg(test)]
+mod polarization_png_tests {
+    use super::*;
+
+    #[test]
+    fn hue_follows_the_angle_and_saturation_the_degree() {
+        assert_eq!(hsv_8bit(0.0, 1.0, 1.0), [255, 0, 0]);
+        assert_eq!(hsv_8bit(0.5, 1.0, 1.0), [0, 255, 255]);
+        assert_eq!(hsv_8bit(0.3, 0.0, 0.5), [128, 128, 128]);
+        // Horizontal, vertical and diagonal polarization; none; no light.
+        let close =
+            |(d, a): (f64, f64), (e, b): (f64, f64)| (d - e).abs() < 1e-12 && (a - b).abs() < 1e-12;
+        assert!(close(linear_polarization(1.0, 1.0, 0.0), (1.0, 0.0)));
+        assert!(close(
+            linear_polarization(2.0, -1.0, 0.0),
+            (0.5, std::f64::consts::FRAC_PI_2)
+        ));
+        assert!(close(
+            linear_polarization(1.0, 0.0, 0.5),
+            (0.5, std::f64::consts::FRAC_PI_4)
+        ));
+        assert!(close(
+            linear_polarization(1.0, 0.0, -1.0),
+            (1.0, 3.0 * std::f64::consts::FRAC_PI_4)
+        ));
+        assert!(close(linear_polarization(0.0, 0.0, 0.0), (0.0, 0.0)));
+        assert!(close(linear_polarization(1.0, f64::NAN, 0.0), (0.0, 0.0)));
+    }
+}

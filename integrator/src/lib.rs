@@ -56,6 +56,7 @@ mod film;
 mod filter;
 mod image;
 mod light_path;
+mod light_throughput;
 mod path;
 mod png;
 mod render;
@@ -82,7 +83,7 @@ pub use compare::{ChannelImage, Comparison, compare_images};
 pub use error::RenderError;
 pub use film::Film;
 pub use filter::Filter;
-pub use image::{DisplaySettings, encode_png};
+pub use image::{DisplaySettings, encode_png, encode_polarization_png};
 #[cfg(feature = "exr")]
 pub use image::{ExrMetadata, encode_exr};
 pub use render::{RenderStats, Renderer, render, render_into};

@@ -18,9 +18,11 @@ use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::bsdf::TransportMode;
-use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+use prism_spectrum::SampledWavelengths;
 
+use crate::light_throughput::LightThroughput;
 use crate::path::{Frame, Tracer, absorb, wavelengths};
+use crate::throughput::Vertex;
 
 /// Sample-stream dimensions of a light path: the wavelength (0), the light choice, its
 /// position and direction (1-5), then a fixed block per bounce.
@@ -41,12 +43,13 @@ impl Tracer<'_> {
     /// aspect ratio `aspect`; every connection to the camera goes to `sink` with its film
     /// position, its radiance (the contribution to the film's mean in that pixel, given
     /// one light path per pixel and sample) and the wavelengths it was estimated with.
-    /// Returns the rays traced.
-    pub(crate) fn trace_light<const N: usize>(
+    /// Returns the rays traced. `L` is what the path carries: a spectrum, or Stokes
+    /// vectors for polarized renders.
+    pub(crate) fn trace_light<const N: usize, L: LightThroughput<N>>(
         &self,
         stream: &mut SobolStream,
         aspect: f32,
-        sink: &mut impl FnMut(Vec2, &SampledSpectrum<N>, &SampledWavelengths<N>),
+        sink: &mut impl FnMut(Vec2, &L::Radiance, &SampledWavelengths<N>),
     ) -> u64 {
         let u_lambda = stream.next_1d();
         let mut package =
@@ -64,7 +67,10 @@ impl Tracer<'_> {
             return 0;
         };
         let mut ray = emitted.ray;
-        let mut beta = emitted.beta;
+        let mut beta = L::start(emitted.beta, ray.direction.normalize(), || {
+            let p = self.scene.light_polarization(emitted.light)?;
+            Some(p.stokes(ray.direction.normalize()))
+        });
         let initial = beta.max_value();
         let camera = self.scene.camera();
         let mut rays = 0u64;
@@ -84,6 +90,11 @@ impl Tracer<'_> {
             let frame = Frame::from_normal(hit.shading_normal);
             let wo_world = -ray.direction.normalize();
             let wo = frame.to_local(wo_world);
+            let vertex = Vertex {
+                bsdf: &bsdf,
+                frame: &frame,
+                wo,
+            };
             // Adjoint BSDFs with shading normals (Veach 1997, §5.3): light paths weigh a
             // bounce by |wo.ns| |wi.ng| / |wo.ng| where camera paths use |wi.ns|.
             let shading = |wi_world: glam::Vec3| {
@@ -107,12 +118,15 @@ impl Tracer<'_> {
                 && let Some(seen) = camera.project(hit.p, aspect)
             {
                 let wi_world = -seen.direction;
-                let f = bsdf.f(wo, frame.to_local(wi_world));
+                let wi = frame.to_local(wi_world);
+                let f = bsdf.f(wo, wi);
                 let weight = shading(wi_world) * seen.importance / (seen.distance * seen.distance);
                 if !f.is_black() && weight > 0.0 && weight.is_finite() {
                     rays += 1;
                     if !self.scene.occluded(&hit.spawn_to(wi_world, seen.distance)) {
-                        sink(seen.film, &(beta * f * weight), &lambdas);
+                        let radiance =
+                            beta.seen(&vertex, wi, wi_world, &f, weight, &self.camera_frame);
+                        sink(seen.film, &radiance, &lambdas);
                     }
                 }
             }
@@ -133,7 +147,7 @@ impl Tracer<'_> {
                 break;
             }
             let wi_world = frame.to_world(sample.wi);
-            beta *= sample.f * (shading(wi_world) / pdf);
+            beta.bounce(&vertex, sample.wi, &sample.f, shading(wi_world) / pdf);
             if sample.wavelength_dependent && !package.secondary_terminated() {
                 // A dispersive refraction sends only the hero on; the connections made so
                 // far went to the film with the whole package.
@@ -153,7 +167,7 @@ impl Tracer<'_> {
                 if q.is_nan() || q <= 0.0 || u_roulette >= q {
                     break;
                 }
-                beta *= 1.0 / q;
+                beta.scale_uniform(1.0 / q);
             }
         }
         rays

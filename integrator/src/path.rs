@@ -13,7 +13,7 @@ use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use crate::throughput::{Arrival, Throughput, Vertex};
+use crate::throughput::{Arrival, Carried, Throughput, Vertex};
 
 /// What every path of a render shares.
 pub(crate) struct Tracer<'a> {
@@ -113,7 +113,7 @@ pub(crate) fn absorb<const N: usize>(
     ray: &Ray,
     hit: &prism_scene::world::Hit,
     transport: &SampledWavelengths<N>,
-    beta: &mut impl Throughput<N>,
+    beta: &mut impl Carried<N>,
 ) {
     if let Some(sigma) = scene.material(hit).absorption()
         && ray.direction.dot(hit.normal) > 0.0

@@ -15,6 +15,7 @@ use rayon::prelude::*;
 use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
+use crate::light_throughput::{LightThroughput, PolarizedLight};
 use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
 use crate::sample_value::{Outputs, SampleValue};
@@ -83,11 +84,9 @@ impl<'a> Renderer<'a> {
 
     /// Whether light paths carry the caustics the camera sees directly: when the scene has
     /// delta surfaces (smooth glass or metal), the settings allow it, and the camera is a
-    /// pinhole (an orthographic camera cannot be connected to). Polarized renders leave
-    /// caustics to camera paths: light paths do not carry polarization.
+    /// pinhole (an orthographic camera cannot be connected to).
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
-            && !self.settings.is_polarized()
             && self.scene.features().specular
             && matches!(
                 self.scene.camera().projection,
@@ -220,12 +219,21 @@ impl<'a> Renderer<'a> {
                 );
         });
         if self.light_caustics() {
-            let light_row = match settings.wavelengths {
-                1 => light_row::<1>,
-                2 => light_row::<2>,
-                4 => light_row::<4>,
-                8 => light_row::<8>,
-                _ => light_row::<16>,
+            macro_rules! light_by_width {
+                ($carrier:ident) => {
+                    match settings.wavelengths {
+                        1 => light_row::<1, $carrier<1>>,
+                        2 => light_row::<2, $carrier<2>>,
+                        4 => light_row::<4, $carrier<4>>,
+                        8 => light_row::<8, $carrier<8>>,
+                        _ => light_row::<16, $carrier<16>>,
+                    }
+                };
+            }
+            let light_row = if settings.is_polarized() {
+                light_by_width!(PolarizedLight)
+            } else {
+                light_by_width!(SampledSpectrum)
             };
             // Rows of light paths run in parallel in batches, and each batch's splats are
             // added in row order: the sums do not depend on the threads, and the batch
@@ -385,7 +393,11 @@ struct RowSplats {
 /// Traces the light paths of every sample of every pixel of row `y` (one per camera
 /// sample: the film's mean divides by the samples per pixel, and light paths' camera
 /// importance is per pixel).
-fn light_row<const N: usize>(tracer: &Tracer, settings: &Rows, y: u32) -> RowSplats {
+fn light_row<const N: usize, L: LightThroughput<N>>(
+    tracer: &Tracer,
+    settings: &Rows,
+    y: u32,
+) -> RowSplats {
     let w = settings.width;
     let aspect = w as f32 / settings.height as f32;
     let mut out = RowSplats::default();
@@ -394,7 +406,7 @@ fn light_row<const N: usize>(tracer: &Tracer, settings: &Rows, y: u32) -> RowSpl
         for s in settings.samples.clone() {
             let mut stream = SobolStream::new(light_seed(settings.seed), pixel, s);
             out.rays +=
-                tracer.trace_light::<N>(&mut stream, aspect, &mut |film, radiance, lambdas| {
+                tracer.trace_light::<N, L>(&mut stream, aspect, &mut |film, radiance, lambdas| {
                     let mut value = SampleValue::default();
                     value.add(tracer, settings.outputs, radiance, lambdas);
                     if value.finite() {

@@ -73,7 +73,7 @@ impl<const N: usize> Radiance<N> for StokesSpectrum<N> {
 
 impl<const N: usize> StokesSpectrum<N> {
     /// Adds `weight` times the Stokes vector `stokes` in lane `lane`.
-    fn add(&mut self, lane: usize, stokes: Vec4) {
+    pub(crate) fn add(&mut self, lane: usize, stokes: Vec4) {
         self.s0[lane] += stokes.x;
         self.polarization[0][lane] += stokes.y;
         self.polarization[1][lane] += stokes.z;
@@ -81,8 +81,19 @@ impl<const N: usize> StokesSpectrum<N> {
     }
 }
 
+/// What camera and light paths alike do to what they carry: weigh it per lane or as a
+/// whole, and read its size (Russian roulette).
+pub(crate) trait Carried<const N: usize> {
+    /// Multiplies every lane by its factor (absorption, the lanes' re-radiation weights).
+    fn scale(&mut self, factor: SampledSpectrum<N>);
+    /// Multiplies every lane by `factor` (Russian roulette's survival).
+    fn scale_uniform(&mut self, factor: f32);
+    /// The largest lane's intensity (its throughput for unpolarized light).
+    fn max_value(&self) -> f32;
+}
+
 /// A camera path's throughput.
-pub(crate) trait Throughput<const N: usize>: Sized {
+pub(crate) trait Throughput<const N: usize>: Carried<N> + Sized {
     /// What the path gathers.
     type Radiance: Radiance<N>;
 
@@ -91,12 +102,6 @@ pub(crate) trait Throughput<const N: usize>: Sized {
     fn start(direction: Vec3, camera: &CameraFrame) -> Self;
     /// No radiance.
     fn black() -> Self::Radiance;
-    /// Multiplies every lane by its factor (absorption, the lanes' re-radiation weights).
-    fn scale(&mut self, factor: SampledSpectrum<N>);
-    /// Multiplies every lane by `factor` (Russian roulette's survival).
-    fn scale_uniform(&mut self, factor: f32);
-    /// The largest lane's throughput for unpolarized light (Russian roulette reads it).
-    fn max_value(&self) -> f32;
     /// Adds unpolarized radiance `le` arriving along the path's last ray, times `weight`.
     fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32);
     /// Adds the light `arrival` describes, scattered at `vertex` towards the path; the
@@ -121,17 +126,7 @@ pub(crate) trait Throughput<const N: usize>: Sized {
     );
 }
 
-impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
-    type Radiance = SampledSpectrum<N>;
-
-    #[inline]
-    fn start(_: Vec3, _: &CameraFrame) -> Self {
-        SampledSpectrum::splat(1.0)
-    }
-    #[inline]
-    fn black() -> Self::Radiance {
-        SampledSpectrum::splat(0.0)
-    }
+impl<const N: usize> Carried<N> for SampledSpectrum<N> {
     #[inline]
     fn scale(&mut self, factor: SampledSpectrum<N>) {
         *self *= factor;
@@ -143,6 +138,19 @@ impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
     #[inline]
     fn max_value(&self) -> f32 {
         SampledSpectrum::max_value(self)
+    }
+}
+
+impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
+    type Radiance = SampledSpectrum<N>;
+
+    #[inline]
+    fn start(_: Vec3, _: &CameraFrame) -> Self {
+        SampledSpectrum::splat(1.0)
+    }
+    #[inline]
+    fn black() -> Self::Radiance {
+        SampledSpectrum::splat(0.0)
     }
     #[inline]
     fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32) {
@@ -219,6 +227,22 @@ impl<const N: usize> Polarized<N> {
     }
 }
 
+impl<const N: usize> Carried<N> for Polarized<N> {
+    fn scale(&mut self, factor: SampledSpectrum<N>) {
+        for (m, f) in self.mueller.iter_mut().zip(factor.0) {
+            *m *= f;
+        }
+    }
+    fn scale_uniform(&mut self, factor: f32) {
+        for m in &mut self.mueller {
+            *m *= factor;
+        }
+    }
+    fn max_value(&self) -> f32 {
+        self.mueller.iter().map(|m| m.x_axis.x).fold(0.0, f32::max)
+    }
+}
+
 impl<const N: usize> Throughput<N> for Polarized<N> {
     type Radiance = StokesSpectrum<N>;
 
@@ -233,19 +257,6 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
             s0: SampledSpectrum::splat(0.0),
             polarization: [SampledSpectrum::splat(0.0); 3],
         }
-    }
-    fn scale(&mut self, factor: SampledSpectrum<N>) {
-        for (m, f) in self.mueller.iter_mut().zip(factor.0) {
-            *m *= f;
-        }
-    }
-    fn scale_uniform(&mut self, factor: f32) {
-        for m in &mut self.mueller {
-            *m *= factor;
-        }
-    }
-    fn max_value(&self) -> f32 {
-        self.mueller.iter().map(|m| m.x_axis.x).fold(0.0, f32::max)
     }
     fn add_emitted(&self, radiance: &mut Self::Radiance, le: &SampledSpectrum<N>, weight: f32) {
         // Unpolarized light is the same in every frame: T's first column.

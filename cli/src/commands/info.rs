@@ -49,6 +49,17 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
         yes(s.uses_fluorescence),
         yes(s.uses_textures)
     );
+    let (elements, lights) = s.polarizing;
+    println!(
+        "polarization   {}",
+        if elements + lights == 0 {
+            "no polarizers, retarders or polarized lights (--polarized still shows what glass and metals do)".into()
+        } else {
+            format!(
+                "{elements} polarizing materials (polarizers, retarders), {lights} polarized lights: render with --polarized to see them"
+            )
+        }
+    );
     println!(
         "glTF           {}",
         if s.gltf_features.is_empty() {

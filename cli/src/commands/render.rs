@@ -10,6 +10,7 @@ use clap::Args;
 use prism_integrator::{
     CameraResponse, DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings,
     ResponseCurve, SpectralBands, decode_accumulation, encode_accumulation, encode_exr, encode_png,
+    encode_polarization_png,
 };
 use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
@@ -90,6 +91,11 @@ pub struct RenderArgs {
     /// through it would. Implies --polarized.
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub camera_polarizer: Option<f32>,
+    /// Also write the polarization as a PNG (needs --polarized): hue the angle of linear
+    /// polarization (red along the image's rows, cyan along its columns), saturation its
+    /// degree, brightness the intensity.
+    #[arg(long, value_name = "FILE.png")]
+    pub polarization_png: Option<PathBuf>,
     /// The wavelengths camera paths sample, nm (default 360:830, or the camera
     /// response's range; wider to include UV or infrared, of which only what the observer
     /// sees shows in RGB).
@@ -302,7 +308,13 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         Some(c) => Some(c),
         None => scene_camera(&loaded)?,
     };
+    let polarizing = loaded.summary().polarizing;
     let scene = Scene::from_loaded(loaded, &options).map_err(|e| e.to_string())?;
+    if polarizing != (0, 0) && !args.polarized && args.camera_polarizer.is_none() {
+        eprintln!(
+            "prism: note: the scene has polarizers, retarders or polarized lights, which only a polarized render shows (--polarized); this one sees their intensity only"
+        );
+    }
     if scene.lit_by_default() {
         eprintln!(
             "prism: the scene has no light source (only glowing surfaces, if any); lighting it with a \
@@ -346,6 +358,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .map(|spec| white_balance(spec, space_id))
         .transpose()?;
     settings.validate().map_err(|e| e.to_string())?;
+    if args.polarization_png.is_some() && !settings.is_polarized() {
+        return Err("--polarization-png needs a polarized render (--polarized)".into());
+    }
     // The film, one pass's film and the output's RGB: 24 + 24 + 12 bytes per pixel.
     let film_bytes = u64::from(width) * u64::from(height) * 60;
     if let Some(available) = crate::memory::available_bytes()
@@ -428,6 +443,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             None => film.clone(),
         };
         write_images(&shown, &args.outputs, space_id, display(args)?, facts)?;
+        if let Some(path) = &args.polarization_png
+            && let Some(bytes) = encode_polarization_png(&shown, space_id.space(), display(args)?)
+        {
+            write_atomically(path, &bytes)?;
+        }
     }
     if stats.nonfinite > 0 {
         eprintln!(

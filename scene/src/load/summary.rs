@@ -31,6 +31,9 @@ pub struct SceneSummary {
     pub uses_dispersion: bool,
     /// Whether a material re-radiates (fluorescence).
     pub uses_fluorescence: bool,
+    /// Materials that are polarizing elements (polarizers, retarders), and lights whose
+    /// emission is polarized: what only a polarized render shows.
+    pub polarizing: (usize, usize),
     /// The glTF features and extensions the file uses that change how it renders.
     pub gltf_features: Vec<String>,
     /// What the lights' spectra are, one line each, distinct.
@@ -117,6 +120,13 @@ impl LoadedGeometry {
                 .materials
                 .iter()
                 .any(|m| surface(m).is_some_and(|s| s.fluorescent())),
+            polarizing: (
+                self.materials
+                    .iter()
+                    .filter(|m| surface(m).is_some_and(|s| s.polarizing_element()))
+                    .count(),
+                self.light_polarization.len(),
+            ),
             gltf_features: self.gltf_features.clone(),
             light_spectra,
             wavelength_range: range,

@@ -118,6 +118,8 @@ pub struct EmissionSample<const N: usize> {
     /// the density of the ray (position and direction) and of choosing the light: the
     /// light path's initial throughput.
     pub beta: SampledSpectrum<N>,
+    /// Which of the scene's lights it left ([`super::Scene::light_polarization`]).
+    pub light: u32,
 }
 
 /// A remapped uniform number (f64 in [0, 1)) as an f32 in [0, 1): rounding to f32 could
@@ -585,8 +587,13 @@ impl Lights {
             }
             Light::Environment { .. } | Light::EnvironmentMap { .. } => return None,
         };
-        (ray.direction.is_finite() && ray.origin.is_finite() && !beta.is_black())
-            .then_some(EmissionSample { ray, beta })
+        (ray.direction.is_finite() && ray.origin.is_finite() && !beta.is_black()).then_some(
+            EmissionSample {
+                ray,
+                beta,
+                light: index as u32,
+            },
+        )
     }
 }
 
