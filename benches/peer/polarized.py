@@ -4,8 +4,8 @@
   cargo build --release -p prism-cli
   python3 benches/peer/polarized.py --spp 1024 --width 128
 
-The scene: Mitsuba's built-in Cornell box (the repository's scenes/cornell-box.gltf) with
-its two boxes replaced by a smooth glass sphere (index 1.5) and a smooth metal sphere
+The scene: Mitsuba's built-in Cornell box (the repository's scenes/cornell-box.gltf, its
+walls made Lambertian like Mitsuba's) with its two boxes replaced by a smooth glass sphere (index 1.5) and a smooth metal sphere
 (complex index 0.2 + 3i at every wavelength), both the same triangle mesh with vertex
 normals in the two renderers (written here as glTF for prism and OBJ for Mitsuba). Mitsuba
 renders it with `scalar_spectral_polarized` and its `stokes` integrator around `path`
@@ -74,6 +74,12 @@ def prism_scene(path, glass, metal):
     keep = [i for i, n in enumerate(doc["nodes"]) if n.get("name") not in ("small-box", "large-box")]
     doc["nodes"] = [doc["nodes"][i] for i in keep]
     doc["scenes"][0]["nodes"] = list(range(len(doc["nodes"])))
+    # The walls as Mitsuba has them, Lambertian (glTF's metallic-roughness has a glossy
+    # coating, which polarizes a little in prism; Mitsuba's diffuse does not).
+    for m in doc["materials"]:
+        if "emitter" not in m["name"]:
+            rgb = m["pbrMetallicRoughness"]["baseColorFactor"][:3]
+            m.setdefault("extensions", {})["PRISM_spectral"] = {"type": "diffuse", "reflectance": {"rgb": rgb}}
     doc["materials"] += [
         {"name": "glass", "extensions": {"PRISM_spectral": {"type": "dielectric", "ior": 1.5}}},
         {"name": "metal", "extensions": {"PRISM_spectral": {"type": "conductor", "eta": ETA_METAL, "k": K_METAL}}},

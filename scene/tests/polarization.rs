@@ -555,3 +555,72 @@ fn lights_carry_their_polarization_from_gltf() {
         );
     }
 }
+
+/// glTF's metallic-roughness material: its polarized lobes sum to the scalar f per lane,
+/// map light to light, and polarize where the coating's reflection dominates (a dark
+/// glossy dielectric near Brewster's angle reflects mostly s light); a metal turns linear
+/// light elliptical.
+#[test]
+fn metallic_roughness_lobes_split_f_by_fresnel() {
+    use prism_scene::bsdf::{CoatingAlbedo, MetallicRoughness};
+    use prism_scene::polarization::interactions;
+    use prism_scene::world::Bsdf;
+    use prism_spectrum::SampledSpectrum;
+    let coating = CoatingAlbedo::new(1.5);
+    let brewster = 1.5f32.atan();
+    let wo = Vec3::new(brewster.sin(), 0.0, brewster.cos());
+    let wi = Vec3::new(-wo.x, 0.0, wo.z);
+    for (base, metallic, roughness) in [
+        ([0.02, 0.03, 0.02, 0.05], 0.0, 0.3),
+        ([0.8, 0.5, 0.2, 0.9], 0.0, 0.6),
+        ([0.95, 0.7, 0.4, 0.9], 1.0, 0.3),
+        ([0.5, 0.5, 0.5, 0.5], 0.5, 0.8),
+    ] {
+        let bsdf = Bsdf::MetallicRoughness(MetallicRoughness::new(
+            SampledSpectrum(base),
+            metallic,
+            roughness,
+            &coating,
+        ));
+        for (wo, wi) in [
+            (wo, wi),
+            (Vec3::new(0.3, 0.4, 0.866), Vec3::new(-0.6, 0.1, 0.79)),
+        ] {
+            let (wo, wi) = (wo.normalize(), wi.normalize());
+            let f = bsdf.f(wo, wi);
+            let value = f * wi.z;
+            let lanes = interactions(&bsdf, wo, wi, &value, false);
+            for (lane, it) in lanes.iter().enumerate() {
+                let m00 = it.mueller.rows()[0][0];
+                assert!(
+                    (m00 - value[lane]).abs() <= 1e-5 * value[lane].max(1e-3),
+                    "{m00} vs {}",
+                    value[lane]
+                );
+                for angle in [0.0, 0.7, 1.5] {
+                    assert!(
+                        it.mueller
+                            .apply(Stokes::linear(1.0, 1.0, angle))
+                            .is_physical(1e-4)
+                    );
+                }
+            }
+        }
+        let lanes = interactions(&bsdf, wo, wi, &bsdf.f(wo, wi), false);
+        let out = lanes[0].mueller.apply(Stokes::unpolarized(1.0));
+        if base[0] < 0.1 {
+            // A dark glossy dielectric at Brewster's angle: mostly the coating's s light.
+            assert!(out.degree_linear() > 0.8, "{out:?}");
+        }
+        if metallic == 1.0 {
+            let diagonal =
+                lanes[0]
+                    .mueller
+                    .apply(Stokes::linear(1.0, 1.0, std::f32::consts::FRAC_PI_4));
+            assert!(
+                diagonal.0.w.abs() > 0.05 * diagonal.intensity(),
+                "{diagonal:?}"
+            );
+        }
+    }
+}

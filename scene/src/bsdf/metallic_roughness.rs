@@ -8,6 +8,18 @@ use super::microfacet::Ggx;
 use super::thin_film::{ThinFilm, conductor_index_from_reflectance};
 use super::{BsdfSample, fresnel_dielectric, same_hemisphere};
 
+/// The specular lobes of a [`MetallicRoughness`] at one pair of directions
+/// ([`MetallicRoughness::specular_parts`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpecularParts<const N: usize> {
+    /// The microfacet normal (local frame, +z side).
+    pub half: Vec3,
+    /// What the dielectric coating reflects, per lane (its share of f).
+    pub coating: SampledSpectrum<N>,
+    /// What the metal reflects, per lane (its share of f).
+    pub metal: SampledSpectrum<N>,
+}
+
 /// `KHR_materials_iridescence` at one hit: a thin film over the dielectric and the metal
 /// alike, whose Fresnel reflectance (solved per wavelength, [`ThinFilm`]) replaces the
 /// bare surface's in proportion `factor`.
@@ -456,28 +468,77 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
             let reflected = self.base[i] * (1.0 - self.transmitted_share());
             let dielectric = microfacet * coated + reflected * diffuse;
             let metal = if m > 0.0 {
-                let f0 = self.base[i];
-                let bare_metal = f0 + (1.0 - f0) * schlick;
-                microfacet
-                    * match self.iridescence() {
-                        Some(film) => {
-                            let (eta_m, k_m) = conductor_index_from_reflectance(f0);
-                            let filmed = film.film_at(i).reflectance(
-                                cos_h,
-                                film.lambdas[i],
-                                1.0,
-                                eta_m,
-                                k_m,
-                            );
-                            bare_metal + film.factor * (filmed - bare_metal)
-                        }
-                        None => bare_metal,
-                    }
+                microfacet * self.metal_fresnel(cos_h, schlick, i)
             } else {
                 0.0
             };
             (1.0 - m) * dielectric + m * metal
         })
+    }
+
+    /// The metal's reflectance at cos `cos_h` (of the microfacet normal; `schlick` =
+    /// (1 - cos_h)^5) in lane `lane`: Schlick's from the base colour, the film mixed in.
+    fn metal_fresnel(&self, cos_h: f32, schlick: f32, lane: usize) -> f32 {
+        let f0 = self.base[lane];
+        let bare_metal = f0 + (1.0 - f0) * schlick;
+        match self.iridescence() {
+            Some(film) => {
+                let (eta_m, k_m) = conductor_index_from_reflectance(f0);
+                let filmed =
+                    film.film_at(lane)
+                        .reflectance(cos_h, film.lambdas[lane], 1.0, eta_m, k_m);
+                bare_metal + film.factor * (filmed - bare_metal)
+            }
+            None => bare_metal,
+        }
+    }
+
+    /// The two specular lobes of f(wo, wi), apart, for directions on one side: what the
+    /// dielectric coating reflects and what the metal reflects (the diffuse base is the
+    /// rest of f), with their microfacet normal. Polarized renders give each its own
+    /// Fresnel Mueller matrix. None across the surface.
+    pub fn specular_parts(&self, wo: Vec3, wi: Vec3) -> Option<SpecularParts<N>> {
+        let (wo, wi) = (self.aligned(wo), self.aligned(wi));
+        if !same_hemisphere(wo, wi) {
+            return None;
+        }
+        let wm = (wo + wi).try_normalize()?;
+        let wm = if wm.z < 0.0 { -wm } else { wm };
+        let d = &self.distribution;
+        let microfacet = d.d(wm) * d.g(wo, wi) / (4.0 * wo.z.abs() * wi.z.abs());
+        let microfacet = if microfacet.is_finite() {
+            microfacet
+        } else {
+            0.0
+        };
+        let cos_h = wo.dot(wm).abs();
+        let bare = fresnel_dielectric(cos_h, self.coating.eta());
+        let schlick = (1.0 - cos_h).powi(5);
+        let m = self.metallic;
+        Some(SpecularParts {
+            half: self.unaligned(wm),
+            coating: SampledSpectrum::from_fn(|i| {
+                (1.0 - m) * microfacet * self.coat_fresnel(cos_h, bare, i)
+            }),
+            metal: SampledSpectrum::from_fn(|i| {
+                m * microfacet * self.metal_fresnel(cos_h, schlick, i)
+            }),
+        })
+    }
+
+    /// The coating's index of refraction (glTF's `ior`).
+    pub fn coating_ior(&self) -> f32 {
+        self.coating.eta()
+    }
+
+    /// The base colour per lane: the metal's reflectance at normal incidence.
+    pub fn base_color(&self) -> &SampledSpectrum<N> {
+        &self.base
+    }
+
+    /// The iridescent film over the surface, if any.
+    pub fn film(&self) -> Option<&Iridescence<N>> {
+        self.iridescence()
     }
 
     /// The density of [`MetallicRoughness::sample`] returning `wi`.

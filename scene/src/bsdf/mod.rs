@@ -32,7 +32,9 @@ pub use fluorescent::{
     FluorescentDiffuse, FluorescentSample, fluorescence_matrix, reradiation_matrix,
 };
 pub use layered::Layered;
-pub use metallic_roughness::{DiffuseTransmission, Iridescence, MetallicRoughness, Specular};
+pub use metallic_roughness::{
+    DiffuseTransmission, Iridescence, MetallicRoughness, Specular, SpecularParts,
+};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;

@@ -10,17 +10,24 @@
 //! - Polarizing sheets (filters and wave plates): the ideal element's matrix with its axis
 //!   projected across the direction of travel.
 //! - Lambertian and fluorescent surfaces depolarize.
-//! - glTF's metallic-roughness family (and the opaque part of a transmissive material)
-//!   depolarizes, as every BSDF without a polarized model does in Mitsuba 3 (its
-//!   `principled` included); a transmissive material's glass sampled as a smooth delta is
-//!   the smooth dielectric's.
+//! - glTF's metallic-roughness material: its dielectric coating's lobe by Fresnel at the
+//!   microfacet normal with the coating's index (an iridescent film's amplitudes where it
+//!   has one), its metal's lobe by Fresnel with the complex index that reflects the base
+//!   colour at normal incidence ([`crate::bsdf::conductor_index_from_reflectance`]), the
+//!   diffuse base depolarizing; each lobe carries its share of the scalar f. (Mitsuba 3's
+//!   `principled` depolarizes as a whole.) Under a sheen or a clear coat, and the opaque
+//!   part of a transmissive material, it depolarizes; a transmissive material's glass
+//!   sampled as a smooth delta is the smooth dielectric's.
 
 use glam::Vec3;
 use num_complex::Complex64;
 use prism_spectrum::SampledSpectrum;
 
-use super::{Interaction, Mueller, fresnel_amplitudes};
-use crate::bsdf::{Glass, RoughConductor, RoughDielectric, Sheet, SheetElement};
+use super::{FresnelAmplitudes, Interaction, Mueller, fresnel_amplitudes};
+use crate::bsdf::{
+    Glass, MetallicRoughness, RoughConductor, RoughDielectric, Sheet, SheetElement,
+    conductor_index_from_reflectance,
+};
 use crate::world::Bsdf;
 
 /// Per lane, the interaction of light arriving from `wi` and leaving towards `wo` (local
@@ -39,6 +46,7 @@ pub fn interactions<const N: usize>(
         Bsdf::Dielectric(d) => dielectric(d, wo, wi, value),
         Bsdf::Conductor(c) => conductor(c, wo, wi, value),
         Bsdf::Sheet(s) => sheet(s, wo, value),
+        Bsdf::MetallicRoughness(b) => metallic_roughness(b, wo, wi, value),
         Bsdf::Transmissive(t) if delta => match &t.glass {
             Glass::Thick(d) => dielectric(d, wo, wi, value),
             Glass::Thin(_) => depolarizing(wo, wi, value),
@@ -51,7 +59,9 @@ pub fn interactions<const N: usize>(
 /// depolarizers, whose frames do not matter: a renderer may then skip the frames.
 pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>, delta: bool) -> bool {
     match bsdf {
-        Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::Sheet(_) => true,
+        Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::Sheet(_) | Bsdf::MetallicRoughness(_) => {
+            true
+        }
         Bsdf::Transmissive(t) => delta && matches!(t.glass, Glass::Thick(_)),
         _ => false,
     }
@@ -143,6 +153,63 @@ fn sheet<const N: usize>(s: &Sheet<N>, wo: Vec3, value: &SampledSpectrum<N>) -> 
             mueller: element.scaled(scale),
             incident_basis: basis,
             outgoing_basis: basis,
+        }
+    })
+}
+
+/// glTF's metallic-roughness material: per lane, the coating's and the metal's Fresnel
+/// matrices carrying their shares of f and a depolarizer the diffuse rest, all scaled by
+/// `value / f` (the caller's factor). Across the surface (diffuse transmission) it
+/// depolarizes.
+fn metallic_roughness<const N: usize>(
+    b: &MetallicRoughness<'_, N>,
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+) -> [Interaction; N] {
+    let Some(parts) = b.specular_parts(wo, wi) else {
+        return depolarizing(wo, wi, value);
+    };
+    let f = b.f(wo, wi);
+    let m = parts.half;
+    let cos = wi.dot(m).abs();
+    let eta = b.coating_ior();
+    std::array::from_fn(|lane| {
+        if !(f[lane] > 0.0 && value[lane].is_finite()) {
+            return Interaction::depolarizing(wi, wo, 0.0);
+        }
+        let film = b.film().filter(|film| film.factor > 0.0);
+        let amplitudes = |base_eta: f32, base_k: f32| match film {
+            Some(film) => {
+                let (s, p) =
+                    film.film_at(lane)
+                        .amplitudes(cos, film.lambdas[lane], 1.0, base_eta, base_k);
+                FresnelAmplitudes {
+                    s,
+                    p,
+                    transmitted_s: 0.0,
+                    transmitted_p: 0.0,
+                }
+            }
+            None => fresnel_amplitudes(
+                f64::from(cos),
+                Complex64::new(f64::from(base_eta), f64::from(base_k)),
+            ),
+        };
+        let coating = Interaction::fresnel(wi, wo, m, &amplitudes(eta, 0.0), parts.coating[lane]);
+        // A dielectric (metallic 0, most materials) has no metal lobe to evaluate.
+        let metal = if parts.metal[lane] > 0.0 {
+            let (eta_m, k_m) = conductor_index_from_reflectance(b.base_color()[lane]);
+            let metal = Interaction::fresnel(wi, wo, m, &amplitudes(eta_m, k_m), parts.metal[lane]);
+            metal.mueller.matrix()
+        } else {
+            glam::Mat4::ZERO
+        };
+        let diffuse = (f[lane] - parts.coating[lane] - parts.metal[lane]).max(0.0);
+        let sum = coating.mueller.matrix() + metal + Mueller::depolarizer(diffuse).matrix();
+        Interaction {
+            mueller: Mueller::from_matrix(sum * (value[lane] / f[lane])),
+            ..coating
         }
     })
 }

@@ -23,6 +23,11 @@ impl Mueller {
         self.0.transpose().to_cols_array_2d()
     }
 
+    /// The element whose matrix is `m` (glam's, column by column).
+    pub fn from_matrix(m: Mat4) -> Self {
+        Self(m)
+    }
+
     /// The matrix itself (columns as glam stores them; `matrix() * stokes.0` applies it).
     pub fn matrix(&self) -> Mat4 {
         self.0
