@@ -624,3 +624,59 @@ fn metallic_roughness_lobes_split_f_by_fresnel() {
         }
     }
 }
+
+/// Under a clear coat and a sheen, the polarized lobes still sum to the scalar f and map
+/// light to light, and a black base under a smooth-ish coat reflects mostly s light at
+/// Brewster's angle (the coat's Fresnel).
+#[test]
+fn layered_lobes_split_f_by_layer() {
+    use prism_scene::bsdf::{
+        Clearcoat, CoatingAlbedo, Layered, MetallicRoughness, Sheen, TransportMode,
+    };
+    use prism_scene::polarization::interactions;
+    use prism_scene::world::Bsdf;
+    use prism_spectrum::SampledSpectrum;
+    let coating = CoatingAlbedo::new(1.5);
+    let brewster = 1.5f32.atan();
+    let wo = Vec3::new(brewster.sin(), 0.0, brewster.cos());
+    let wi = Vec3::new(-wo.x, 0.0, wo.z);
+    for (base, sheen) in [
+        ([0.0, 0.0, 0.0, 0.0], None),
+        ([0.6, 0.4, 0.3, 0.2], Some(0.5)),
+    ] {
+        let bsdf = Bsdf::Layered(Box::new(Layered {
+            base: MetallicRoughness::new(SampledSpectrum(base), 0.0, 0.5, &coating),
+            sheen: sheen.map(|r| Sheen::new(SampledSpectrum([0.3, 0.6, 0.2, 0.9]), r)),
+            clearcoat: Some(Clearcoat::new(1.0, 0.05, None)),
+            mode: TransportMode::Radiance,
+        }));
+        for (wo, wi) in [
+            (wo, wi),
+            (Vec3::new(0.3, 0.4, 0.866), Vec3::new(-0.6, 0.1, 0.79)),
+        ] {
+            let (wo, wi) = (wo.normalize(), wi.normalize());
+            let f = bsdf.f(wo, wi);
+            for (lane, it) in interactions(&bsdf, wo, wi, &f, false).iter().enumerate() {
+                let m00 = it.mueller.rows()[0][0];
+                assert!(
+                    (m00 - f[lane]).abs() <= 1e-5 * f[lane].max(1e-3),
+                    "{m00} vs {}",
+                    f[lane]
+                );
+                for angle in [0.0, 0.7, 1.5] {
+                    assert!(
+                        it.mueller
+                            .apply(Stokes::linear(1.0, 1.0, angle))
+                            .is_physical(1e-4)
+                    );
+                }
+            }
+        }
+        if sheen.is_none() {
+            let out = interactions(&bsdf, wo, wi, &bsdf.f(wo, wi), false)[0]
+                .mueller
+                .apply(Stokes::unpolarized(1.0));
+            assert!(out.degree_linear() > 0.9, "{out:?}");
+        }
+    }
+}

@@ -31,6 +31,17 @@ pub struct Layered<'a, const N: usize> {
     pub mode: TransportMode,
 }
 
+/// A [`Layered`] BSDF's reflection, lobe by lobe ([`Layered::parts`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LayeredParts<const N: usize> {
+    /// The clear coat's lobe (the same in every lane), if there is a coat.
+    pub coat: Option<f32>,
+    /// The sheen's lobe under the coat, per lane.
+    pub sheen: SampledSpectrum<N>,
+    /// What the base's f is multiplied by under the sheen and the coat, per lane.
+    pub base_weight: SampledSpectrum<N>,
+}
+
 impl<const N: usize> Layered<'_, N> {
     /// Directions mirrored into the upper hemisphere when `wo` is below (a back face is
     /// coated alike).
@@ -66,6 +77,41 @@ impl<const N: usize> Layered<'_, N> {
             f = f.map(|v| lobe + kept * v);
         }
         f
+    }
+
+    /// f(wo, wi) for reflection, apart: f = coat + sheen + base_weight f_base(wo, wi),
+    /// the clear coat's lobe (None without a coat), the sheen's (per lane) and what the
+    /// base's is multiplied by under them ([`Layered::f`] sums the same terms). None
+    /// across the surface.
+    pub fn parts(&self, wo: Vec3, wi: Vec3) -> Option<LayeredParts<N>> {
+        if wo.z * wi.z <= 0.0 {
+            return None;
+        }
+        let (wo, wi) = Self::upper(wo, wi);
+        let view = match self.mode {
+            TransportMode::Radiance => wo,
+            TransportMode::Importance => wi,
+        };
+        let (sheen, under_sheen) = match &self.sheen {
+            Some(sheen) => {
+                let lobe = sheen.f_white(wo, wi);
+                let albedo = sheen.albedo(view.z);
+                (
+                    SampledSpectrum::from_fn(|i| sheen.color[i] * lobe),
+                    SampledSpectrum::from_fn(|i| 1.0 - sheen.color[i] * albedo),
+                )
+            }
+            None => (SampledSpectrum::splat(0.0), SampledSpectrum::splat(1.0)),
+        };
+        let (coat, kept) = match &self.clearcoat {
+            Some(coat) => (Some(coat.f(wo, wi)), 1.0 - coat.reflected(view)),
+            None => (None, 1.0),
+        };
+        Some(LayeredParts {
+            coat,
+            sheen: sheen * kept,
+            base_weight: under_sheen * kept,
+        })
     }
 
     /// What the base transmits through the surface (diffuse transmission), through the

@@ -31,7 +31,7 @@ pub use diffuse::Diffuse;
 pub use fluorescent::{
     FluorescentDiffuse, FluorescentSample, fluorescence_matrix, reradiation_matrix,
 };
-pub use layered::Layered;
+pub use layered::{Layered, LayeredParts};
 pub use metallic_roughness::{
     DiffuseTransmission, Iridescence, MetallicRoughness, Specular, SpecularParts,
 };

@@ -15,18 +15,20 @@
 //!   has one), its metal's lobe by Fresnel with the complex index that reflects the base
 //!   colour at normal incidence ([`crate::bsdf::conductor_index_from_reflectance`]), the
 //!   diffuse base depolarizing; each lobe carries its share of the scalar f. (Mitsuba 3's
-//!   `principled` depolarizes as a whole.) Under a sheen or a clear coat, and the opaque
-//!   part of a transmissive material, it depolarizes; a transmissive material's glass
-//!   sampled as a smooth delta is the smooth dielectric's.
+//!   `principled` depolarizes as a whole.) Under a clear coat, the coat's lobe is
+//!   Fresnel's at its index (1.5) and the base's matrices are scaled by what the coat and
+//!   the sheen leave it; the sheen's lobe (a dusty fibre layer) depolarizes. The opaque
+//!   part of a transmissive material depolarizes; a transmissive material's glass sampled
+//!   as a smooth delta is the smooth dielectric's.
 
 use glam::Vec3;
 use num_complex::Complex64;
 use prism_spectrum::SampledSpectrum;
 
-use super::{FresnelAmplitudes, Interaction, Mueller, fresnel_amplitudes};
+use super::{FresnelAmplitudes, Interaction, Mueller, fresnel_amplitudes, s_axis};
 use crate::bsdf::{
-    Glass, MetallicRoughness, RoughConductor, RoughDielectric, Sheet, SheetElement,
-    conductor_index_from_reflectance,
+    CLEARCOAT_IOR, Glass, Layered, MetallicRoughness, RoughConductor, RoughDielectric, Sheet,
+    SheetElement, conductor_index_from_reflectance,
 };
 use crate::world::Bsdf;
 
@@ -47,6 +49,7 @@ pub fn interactions<const N: usize>(
         Bsdf::Conductor(c) => conductor(c, wo, wi, value),
         Bsdf::Sheet(s) => sheet(s, wo, value),
         Bsdf::MetallicRoughness(b) => metallic_roughness(b, wo, wi, value),
+        Bsdf::Layered(b) => layered(b, wo, wi, value),
         Bsdf::Transmissive(t) if delta => match &t.glass {
             Glass::Thick(d) => dielectric(d, wo, wi, value),
             Glass::Thin(_) => depolarizing(wo, wi, value),
@@ -59,9 +62,11 @@ pub fn interactions<const N: usize>(
 /// depolarizers, whose frames do not matter: a renderer may then skip the frames.
 pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>, delta: bool) -> bool {
     match bsdf {
-        Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::Sheet(_) | Bsdf::MetallicRoughness(_) => {
-            true
-        }
+        Bsdf::Dielectric(_)
+        | Bsdf::Conductor(_)
+        | Bsdf::Sheet(_)
+        | Bsdf::MetallicRoughness(_)
+        | Bsdf::Layered(_) => true,
         Bsdf::Transmissive(t) => delta && matches!(t.glass, Glass::Thick(_)),
         _ => false,
     }
@@ -210,6 +215,48 @@ fn metallic_roughness<const N: usize>(
         Interaction {
             mueller: Mueller::from_matrix(sum * (value[lane] / f[lane])),
             ..coating
+        }
+    })
+}
+
+/// glTF's metallic-roughness under a sheen or a clear coat: the coat's lobe by Fresnel at
+/// its index, the sheen depolarizing, the base's own matrices weighted by what the layers
+/// leave it, all scaled by `value / f`.
+fn layered<const N: usize>(
+    b: &Layered<'_, N>,
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+) -> [Interaction; N] {
+    let Some(parts) = b.parts(wo, wi) else {
+        return depolarizing(wo, wi, value);
+    };
+    let f = b.f(wo, wi);
+    let base_f = b.base.f(wo, wi);
+    let base = metallic_roughness(&b.base, wo, wi, &(base_f * parts.base_weight));
+    let m = outside(false, (wo + wi).try_normalize());
+    let m = if wo.z < 0.0 { -m } else { m };
+    let coat_amplitudes = fresnel_amplitudes(
+        f64::from(wi.dot(m).abs()),
+        Complex64::new(f64::from(CLEARCOAT_IOR), 0.0),
+    );
+    std::array::from_fn(|lane| {
+        if !(f[lane] > 0.0 && value[lane].is_finite()) {
+            return Interaction::depolarizing(wi, wo, 0.0);
+        }
+        // Every part in the base's frame (the s axis of the half vector's plane), which the
+        // coat's shares; the sheen's depolarizer has no frame.
+        let coat = parts.coat.map_or(glam::Mat4::ZERO, |lobe| {
+            Interaction::fresnel(wi, wo, m, &coat_amplitudes, lobe)
+                .mueller
+                .matrix()
+        });
+        let sum =
+            base[lane].mueller.matrix() + coat + Mueller::depolarizer(parts.sheen[lane]).matrix();
+        Interaction {
+            mueller: Mueller::from_matrix(sum * (value[lane] / f[lane])),
+            incident_basis: s_axis(m, -wi),
+            outgoing_basis: s_axis(m, -wi),
         }
     })
 }
