@@ -52,7 +52,10 @@ crate::settings::setters!(ExrMetadata {
 /// (photons s^-1 m^-2 sr^-1).
 ///
 /// A polarized spectral film writes the bands of every Stokes component, `S0.<nm>nm` to
-/// `S3.<nm>nm` (the layout's polarized form), besides S0..S3 in RGB.
+/// `S3.<nm>nm` (the layout's polarized form), besides S0..S3 in RGB. The layout's
+/// `polarisationHandedness` attribute is not written: both attribute maps already hold
+/// their one entry (see below). prism's S3 sign is Mitsuba 3's (S3 > 0: positive
+/// helicity about the direction of travel, as `polarization`'s documentation defines).
 ///
 /// A polarized film adds the Stokes components as RGB images in `space`, `S0.R`, `S0.G`,
 /// `S0.B` (equal to R, G, B), `S1.R`, ..., `S3.B`: the layout Mitsuba 3's `stokes`
