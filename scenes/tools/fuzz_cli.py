@@ -188,18 +188,19 @@ def case_args(work, rng, i):
     values = ["0", "1", "-1", "3", "16", "1e9", "1e300", "-1e300", "100000", "4294967296", "nan", "inf", "x", "", "1:1", "830:360", "100:20000", "0:1e300", "5..2", "0..0"]
     options = {o: values for o in ["--spp", "--width", "--height", "--seed", "--threads", "--max-depth", "--wavelengths",
                                    "--spectral-bands", "--spectral-range", "--wavelength-range", "--scene-index", "--clamp",
-                                   "--exposure", "--time", "--checkpoint", "--environment"]}
+                                   "--exposure", "--time", "--checkpoint", "--environment", "--camera-polarizer"]}
     options.update({"--lambda-sampler": ["uniform", "visible", "response", "spd", "x"], "--filter": ["box", "gaussian", "x"],
                     "--camera-response": [os.path.join(SCENES, "nir-camera.csv"), "/nonexistent.csv", os.path.join(SCENES, "cornell-box.bin")],
                     "--white-balance": ["illuminant:A", "blackbody:0", "blackbody:1e30", "daylight:1", "x"],
                     "--space": ["srgb", "acescg", "x"], "--camera": ["camera", "x"], "--bvh": ["slow", "x"],
-                    "--resume": ["/nonexistent.exr", os.path.join(SCENES, "cornell-box.bin")]})
-    scene = rng.choice([os.path.join(SCENES, s) for s in ["cornell-box.gltf", "effects.gltf", "cornell-blacklight.toml"]] + ["/nonexistent.gltf", os.path.join(SCENES, "cornell-box.bin")])
+                    "--resume": ["/nonexistent.exr", os.path.join(SCENES, "cornell-box.bin")],
+                    "--polarization-png": [os.path.join(work, "p.png"), "/nonexistent/dir/p.png"]})
+    scene = rng.choice([os.path.join(SCENES, s) for s in ["cornell-box.gltf", "effects.gltf", "cornell-blacklight.toml", "window.gltf"]] + ["/nonexistent.gltf", os.path.join(SCENES, "cornell-box.bin")])
     args = [scene]
     for _ in range(rng.randint(1, 4)):
         o = rng.choice(list(options))
         args += [o, rng.choice(options[o])]
-    return args + [f for f in ["--energy", "--no-light-paths", "--stats"] if rng.random() < 0.2]
+    return args + [f for f in ["--energy", "--no-light-paths", "--stats", "--polarized"] if rng.random() < 0.2]
 
 
 def mutate_bytes(data, rng):
