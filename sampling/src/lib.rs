@@ -17,6 +17,8 @@
 //!   light SPD with a defensive mixture), hero-wavelength packages with balance-heuristic
 //!   MIS, spectral MIS weights, secondary termination, fluorescence re-radiation sampling.
 //! - [`mis`]: balance and power heuristics. [`stats`]: chi-square testing.
+//! - [`decay`]: phosphorescent delays, single and multi-exponential, restricted to the
+//!   times light sources were on.
 //!
 //! ## Why it is designed so
 //! - **Determinism by construction.** Streams are pure functions of (seed, pixel, sample,
@@ -43,6 +45,7 @@
 //! - P. Shirley, K. Chiu, JGT 2(3), 1997 (concentric disk); E. Heitz, 2019 (triangle).
 //! - M. Radziszewski, K. Boryczko, W. Alda, WSCG 2009 (visible wavelength density).
 
+pub mod decay;
 pub mod distribution;
 mod error;
 mod lanes_exp;
