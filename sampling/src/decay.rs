@@ -61,7 +61,7 @@ impl Decay {
 
     /// The density of delay `d` (0 for negative or NaN delays).
     pub fn pdf(&self, d: f64) -> f64 {
-        if !(d >= 0.0) {
+        if d.is_nan() || d < 0.0 {
             return 0.0;
         }
         self.components
@@ -120,7 +120,7 @@ impl Decay {
 /// exp(-a / tau) - exp(-b / tau) for 0 <= a < b, computed without cancellation.
 fn component_mass(tau: f64, a: f64, b: f64) -> f64 {
     let a = a.max(0.0);
-    if !(b > a) {
+    if b.is_nan() || b <= a {
         return 0.0;
     }
     // e^{-a/tau} (1 - e^{-(b-a)/tau})
