@@ -66,6 +66,13 @@ impl Tracer<'_> {
         else {
             return 0;
         };
+        // At an instant, a light that is off sends nothing (light paths never meet a
+        // phosphor: they stop at fluorescent surfaces).
+        if let Some(t) = self.at
+            && !self.scene.timeline().on(emitted.light, t)
+        {
+            return 0;
+        }
         let mut ray = emitted.ray;
         let mut beta = L::start(emitted.beta, ray.direction.normalize(), || {
             let p = self.scene.light_polarization(emitted.light)?;

@@ -36,6 +36,9 @@ pub(crate) struct Tracer<'a> {
     pub footprint: Option<Footprint>,
     /// The polarized camera frame (read only by polarized renders).
     pub camera_frame: crate::throughput::CameraFrame,
+    /// The instant rendered on the scene's clock (None: the steady state, every source
+    /// always on).
+    pub at: Option<f64>,
 }
 
 /// A pixel's footprint at a point, as pbrt-v4 approximates it for every vertex of a path
@@ -131,6 +134,50 @@ pub(crate) fn wavelengths<const N: usize>(
 }
 
 impl Tracer<'_> {
+    /// Darkens the lanes of `le`, light `light`'s, whose time finds it off.
+    fn gate<const N: usize>(
+        &self,
+        light: Option<u32>,
+        times: &[f64; N],
+        le: &mut SampledSpectrum<N>,
+    ) {
+        let Some(light) = light else { return };
+        let timeline = self.scene.timeline();
+        for (j, t) in times.iter().enumerate() {
+            if !timeline.on(light, *t) {
+                le[j] = 0.0;
+            }
+        }
+    }
+
+    /// At a phosphor, sends each re-emitting lane back to when its light was absorbed: a
+    /// delay drawn with `u` from the decay law restricted to when some source shone,
+    /// weighing the lane by the law's mass there (`prism_sampling::decay`); a lane with
+    /// nothing to absorb is dark.
+    fn delay<const N: usize>(
+        &self,
+        decay: &prism_sampling::decay::Decay,
+        u: f32,
+        reemitted: &[bool; N],
+        times: &mut [f64; N],
+        weights: &mut SampledSpectrum<N>,
+    ) {
+        let on = self.scene.timeline().any_on();
+        for j in 0..N {
+            if !reemitted[j] {
+                continue;
+            }
+            let windows = prism_sampling::decay::delay_windows(times[j], on);
+            match decay.sample_within(f64::from(u), &windows) {
+                Some((d, mass)) => {
+                    times[j] -= d;
+                    weights[j] *= mass as f32;
+                }
+                None => weights[j] = 0.0,
+            }
+        }
+    }
+
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
     /// dimensions; `u_lambda` chose the hero wavelength. The path's radiance goes to
@@ -165,6 +212,9 @@ impl Tracer<'_> {
         // each lane carries the incident wavelength it sampled, while its radiance still
         // counts at the film wavelength it started with.
         let mut transport = lambdas;
+        // The time each lane's light is evaluated at, when rendering an instant: the
+        // camera's, until a phosphor sends a lane back to when its light was absorbed.
+        let mut times = self.at.map(|t| [t; N]);
         let mut emission = EmissionCache::new();
         let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
         let mut radiance = T::black();
@@ -190,10 +240,13 @@ impl Tracer<'_> {
                 if depth == 0 && self.transparent {
                     break;
                 }
-                if let Some((le, light_pdf)) =
+                if let Some((mut le, light_pdf)) =
                     self.scene
                         .escaped(ray.direction.normalize(), &transport, &mut emission)
                 {
+                    if let Some(times) = &times {
+                        self.gate(self.scene.environment_light(), times, &mut le);
+                    }
                     let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
@@ -207,9 +260,14 @@ impl Tracer<'_> {
                 self.scene.set_footprint(&mut hit, wo_world, width);
             }
             absorb(self.scene, &ray, &hit, &transport, &mut beta);
-            let le = self
+            let mut le = self
                 .scene
                 .emitted(&hit, wo_world, &transport, &mut emission);
+            if let Some(times) = &times
+                && !le.is_black()
+            {
+                self.gate(self.scene.light_of(&hit), times, &mut le);
+            }
             if !le.is_black() && !light_caustic {
                 let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
                     let light_pdf = self.scene.light_pdf(from, &hit, &transport, &mut emission);
@@ -242,6 +300,7 @@ impl Tracer<'_> {
                     let r = reflectance.at_uv(hit.tex, &transport);
                     let mut incident = *transport.lambdas();
                     let mut weights = SampledSpectrum::splat(1.0);
+                    let mut reemitted = [false; N];
                     for j in 0..N {
                         let out = transport.lambda(j);
                         let f = reradiation.incident_integral(out) as f32;
@@ -268,6 +327,7 @@ impl Tracer<'_> {
                                         }
                                     };
                                     incident[j] = l;
+                                    reemitted[j] = true;
                                     if p > 0.0 {
                                         total / f * reradiation.value(l, out) as f32 / p
                                     } else {
@@ -278,6 +338,9 @@ impl Tracer<'_> {
                             };
                         }
                         weights[j] = weight;
+                    }
+                    if let (Some(times), Some(decay)) = (&mut times, self.scene.decay_at(&hit)) {
+                        self.delay(decay, stream.next_1d(), &reemitted, times, &mut weights);
                     }
                     beta.scale(weights);
                     transport = match SampledWavelengths::new(incident, *transport.pdfs()) {
@@ -298,10 +361,13 @@ impl Tracer<'_> {
 
             // Next-event estimation.
             if !bsdf.is_delta()
-                && let Some(light) =
+                && let Some(mut light) =
                     self.scene
                         .sample_light(&hit, u_light, &transport, &mut emission)
             {
+                if let Some(times) = &times {
+                    self.gate(Some(light.light), times, &mut light.radiance);
+                }
                 let wi = frame.to_local(light.wi);
                 let f = bsdf.f(wo, wi) * wi.z.abs();
                 // A light dark at every wavelength of the path (chosen by the defensive

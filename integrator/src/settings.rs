@@ -133,6 +133,11 @@ pub struct RenderSettings {
     /// at this many degrees from the image's x axis towards its y axis (up): the film
     /// holds what a photograph through it shows. Implies polarized transport.
     pub camera_polarizer: Option<f32>,
+    /// The instant rendered on the scene's clock, seconds: light sources shine as their
+    /// schedules say at that time, and phosphors glow with what they absorbed before it.
+    /// None: the steady state, every source always on (a scene without schedules or
+    /// lifetimes looks the same either way).
+    pub at: Option<f64>,
 }
 
 impl Default for RenderSettings {
@@ -158,6 +163,7 @@ impl Default for RenderSettings {
             transparent: false,
             polarized: false,
             camera_polarizer: None,
+            at: None,
         }
     }
 }
@@ -183,6 +189,7 @@ setters!(RenderSettings {
     transparent: bool,
     polarized: bool,
     camera_polarizer: Option<f32>,
+    at: Option<f64>,
 });
 
 /// The most worker threads a render may ask for.
@@ -214,6 +221,11 @@ impl RenderSettings {
             return bad(format!(
                 "camera polarizer angle {angle} is not a number of degrees"
             ));
+        }
+        if let Some(t) = self.at
+            && !t.is_finite()
+        {
+            return bad(format!("time {t} is not a number of seconds"));
         }
         if self.width == 0 || self.height == 0 {
             return bad(format!(

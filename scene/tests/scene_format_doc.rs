@@ -126,3 +126,90 @@ fn the_repository_overlays_load() {
         }
     }
 }
+
+/// Bad time entries are one-line errors naming the material or light, and good ones reach
+/// the scene's timeline (the Cornell box's light switched on at 0 and off at 5, its green
+/// wall a phosphor).
+#[test]
+fn time_entries_reach_the_timeline_and_bad_ones_are_errors() {
+    let cornell: Value =
+        serde_json::from_slice(&std::fs::read(scenes_dir().join("cornell-box.gltf")).unwrap())
+            .unwrap();
+    let with = |emitter: Value, green: Value| {
+        let mut doc = cornell.clone();
+        for m in doc["materials"].as_array_mut().unwrap() {
+            match m["name"].as_str() {
+                Some("white-emitter") => {
+                    m["extensions"] = json!({"PRISM_spectral": emitter.clone()})
+                }
+                Some("green") => m["extensions"] = json!({"PRISM_spectral": green.clone()}),
+                _ => {}
+            }
+        }
+        load(&doc, None).and_then(|l| Scene::from_loaded(l, &SceneOptions::default()))
+    };
+    let phosphor = |extra: Value| {
+        let mut p = json!({"type": "fluorescent", "absorption": 0.5, "reemission": "gaussian:520:30", "quantum_yield": 0.9});
+        for (k, v) in extra.as_object().unwrap() {
+            p[k] = v.clone();
+        }
+        p
+    };
+    let scene = with(
+        json!({"emission": {"spectrum": "gaussian:365:12", "scale": 4}, "on": [[0, 5]]}),
+        phosphor(json!({"lifetime": 2.0})),
+    )
+    .unwrap();
+    let timeline = scene.timeline();
+    assert!(timeline.is_timed());
+    assert_eq!(timeline.any_on(), &[(0.0, 5.0)]);
+    let lamp = (0..scene.lights().all().len() as u32)
+        .find(|&i| timeline.schedule(i).is_some())
+        .expect("the lamp's triangles are scheduled");
+    assert!(timeline.on(lamp, 1.0) && !timeline.on(lamp, 5.0));
+    for (emitter, green, needle) in [
+        (
+            json!({"emission": 1.0, "on": [[5, 1]]}),
+            phosphor(json!({})),
+            "reversed",
+        ),
+        (
+            json!({"emission": 1.0, "on": [[0, 5], [4, 6]]}),
+            phosphor(json!({})),
+            "overlap",
+        ),
+        (
+            json!({"emission": 1.0, "on": "always"}),
+            phosphor(json!({})),
+            "schedule",
+        ),
+        (
+            json!({"type": "diffuse", "reflectance": 0.5, "on": [[0]]}),
+            phosphor(json!({})),
+            "emission",
+        ),
+        (
+            json!({"emission": 1.0}),
+            phosphor(json!({"lifetime": -1.0})),
+            "lifetime",
+        ),
+        (
+            json!({"emission": 1.0}),
+            phosphor(json!({"lifetimes": [[1.0, 0.5], [2.0, 0.4]]})),
+            "sum",
+        ),
+        (
+            json!({"emission": 1.0}),
+            json!({"type": "diffuse", "reflectance": 0.5, "lifetime": 1.0}),
+            "fluorescent",
+        ),
+    ] {
+        let error = with(emitter, green).err().expect(needle).to_string();
+        assert!(error.contains(needle), "'{error}' lacks '{needle}'");
+        assert!(
+            error.contains("white-emitter") || error.contains("green"),
+            "'{error}' names no material"
+        );
+        assert_eq!(error.lines().count(), 1, "{error}");
+    }
+}

@@ -96,6 +96,11 @@ pub struct RenderArgs {
     /// degree, brightness the intensity.
     #[arg(long, value_name = "FILE.png")]
     pub polarization_png: Option<PathBuf>,
+    /// Render this instant of the scene's clock, in seconds: lights shine as their "on"
+    /// schedules say then, and phosphorescent materials glow with the light they absorbed
+    /// before it. Without it every light has always been on (the steady state).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub at: Option<f64>,
     /// The wavelengths camera paths sample, nm (default 360:830, or the camera
     /// response's range; wider to include UV or infrared, of which only what the observer
     /// sees shows in RGB).
@@ -348,6 +353,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .energy(args.energy)
         .polarized(args.polarized)
         .camera_polarizer(args.camera_polarizer)
+        .at(args.at)
         .light_paths(!args.no_light_paths)
         .transparent(args.transparent)
         .range(range)
@@ -438,6 +444,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         if let Some(angle) = settings.camera_polarizer {
             facts.push(("camera_polarizer".into(), angle.to_string()));
         }
+        if let Some(t) = settings.at {
+            facts.push(("at".into(), t.to_string()));
+        }
         let shown = match &white_balance {
             Some(m) => film.adapted(m),
             None => film.clone(),
@@ -474,6 +483,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "energy": energy_stats(&film, settings.range),
             "polarized": settings.is_polarized(),
             "camera_polarizer": settings.camera_polarizer,
+            "at": settings.at,
         });
         println!("{json}");
     }
@@ -597,15 +607,20 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
         args.energy,
         args.camera_response,
         args.transparent
-    ) + &polarization_fingerprint(args)
+    ) + &later_settings_fingerprint(args)
 }
 
-/// The polarization settings' part of the fingerprint: empty for an unpolarized render,
+/// The polarization and time settings' part of the fingerprint: empty for a render without,
 /// so that checkpoints written before polarization existed still resume.
-fn polarization_fingerprint(args: &RenderArgs) -> String {
-    match (args.polarized, args.camera_polarizer) {
+fn later_settings_fingerprint(args: &RenderArgs) -> String {
+    let polarization = match (args.polarized, args.camera_polarizer) {
         (false, None) => String::new(),
         (_, filter) => format!(";polarized=1;camera_polarizer={filter:?}"),
+    };
+    // The instant, likewise only when one is rendered.
+    match args.at {
+        Some(t) => format!("{polarization};at={t}"),
+        None => polarization,
     }
 }
 

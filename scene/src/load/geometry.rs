@@ -64,6 +64,8 @@ pub struct LoadedGeometry {
     pub lights: Vec<LightDesc>,
     /// The polarized lights' emission, by index into `lights` (most scenes: none).
     pub light_polarization: Vec<(usize, crate::polarization::LinearPolarization)>,
+    /// The punctual lights' schedules, by index into `lights` (most scenes: none).
+    pub light_schedules: Vec<(usize, crate::world::Schedule)>,
     /// The scene-wide spectral description (the root's `PRISM_spectral`).
     pub spectral: SpectralScene,
     /// What the caller should tell the user about the file: one line each, such as an
@@ -367,6 +369,7 @@ pub fn load_scene(
                 })
                 .transpose()?;
             let polarization = description.as_ref().and_then(|d| d.polarization);
+            let on = description.as_ref().and_then(|d| d.on.clone());
             punctual_lights.push(punctual(
                 &node,
                 &light,
@@ -374,6 +377,9 @@ pub fn load_scene(
                 &|rgb| upsampler.emission(rgb),
                 description,
             )?);
+            if let Some(on) = on {
+                out.light_schedules.push((punctual_lights.len() - 1, on));
+            }
             if let Some((degree, angle)) = polarization {
                 // Counted among the punctual lights; shifted past the area lights below.
                 out.light_polarization.push((
@@ -435,6 +441,9 @@ pub fn load_scene(
         .collect();
     let areas = out.lights.len();
     for (index, _) in &mut out.light_polarization {
+        *index += areas;
+    }
+    for (index, _) in &mut out.light_schedules {
         *index += areas;
     }
     out.lights.extend(punctual_lights);

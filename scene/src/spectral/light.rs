@@ -2,7 +2,7 @@
 
 use serde_json::Value;
 
-use super::value::{Context, Role, only_keys, spectrum};
+use super::value::{Context, Role, only_keys, schedule, spectrum};
 use crate::world::{Environment, SceneSpectrum};
 
 /// A punctual light's spectrum.
@@ -18,6 +18,8 @@ pub struct SpectralLight {
     /// Partial linear polarization of its light: degree in [0, 1] and angle (radians,
     /// from the light's x axis towards its y axis), if any.
     pub polarization: Option<(f32, f32)>,
+    /// When it shines (None: always).
+    pub on: Option<crate::world::Schedule>,
 }
 
 /// Parses a light's description: `{"spectrum": S, "units": "photometric" | "radiometric"}`.
@@ -25,7 +27,7 @@ pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String
     let map = value
         .as_object()
         .ok_or("PRISM_spectral on a light must be an object")?;
-    only_keys(map, &["spectrum", "units", "polarization"])?;
+    only_keys(map, &["spectrum", "units", "polarization", "on"])?;
     let spectrum = spectrum(
         map.get("spectrum").ok_or("needs 'spectrum'")?,
         Role::Emission,
@@ -38,10 +40,15 @@ pub(crate) fn light(value: &Value, cx: &Context) -> Result<SpectralLight, String
         Some(_) => return Err("units must be \"photometric\" or \"radiometric\"".into()),
     };
     let polarization = map.get("polarization").map(polarization).transpose()?;
+    let on = map
+        .get("on")
+        .map(|v| schedule(v).map_err(|e| format!("on: {e}")))
+        .transpose()?;
     Ok(SpectralLight {
         spectrum,
         radiometric,
         polarization,
+        on,
     })
 }
 
@@ -79,6 +86,8 @@ pub struct SpectralScene {
     /// The camera's response curves (channels shown as R, G, B) instead of the CIE 1931
     /// observer.
     pub camera_response: Option<[SceneSpectrum; 3]>,
+    /// When the environment shines (None: always).
+    pub environment_on: Option<crate::world::Schedule>,
 }
 
 /// Parses the root's description: `{"environment": S, "camera_response": {"r": S, "g":
@@ -87,7 +96,7 @@ pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String
     let map = value
         .as_object()
         .ok_or("PRISM_spectral on the root must be an object")?;
-    only_keys(map, &["environment", "camera_response"])?;
+    only_keys(map, &["environment", "camera_response", "environment_on"])?;
     let camera_response = match map.get("camera_response") {
         None => None,
         Some(v) => {
@@ -104,7 +113,15 @@ pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String
             Some([curve("r")?, curve("g")?, curve("b")?])
         }
     };
+    let environment_on = map
+        .get("environment_on")
+        .map(|v| schedule(v).map_err(|e| format!("environment_on: {e}")))
+        .transpose()?;
+    if environment_on.is_some() && !map.contains_key("environment") {
+        return Err("environment_on schedules an environment, and there is none".into());
+    }
     Ok(SpectralScene {
+        environment_on,
         environment: map
             .get("environment")
             .map(|e| environment(e, cx).map_err(|e| format!("environment: {e}")))

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use prism_sampling::wavelength::{ReradiationSampler, WavelengthRange};
 use serde_json::{Map, Value};
 
-use super::value::{Context, Role, ior, metal, number, only_keys, spectrum};
+use super::value::{Context, Role, ior, metal, number, only_keys, schedule, spectrum};
 use crate::bsdf::fluorescence_matrix;
 use crate::world::{Material, SceneSpectrum};
 
@@ -32,13 +32,45 @@ pub struct SpectralMaterial {
     /// A spectral index (a named glass, a table, Cauchy or Sellmeier coefficients)
     /// replacing `KHR_materials_iridescence`'s film index.
     pub film_ior: Option<SceneSpectrum>,
+    /// When its emission shines (None: always).
+    pub on: Option<crate::world::Schedule>,
+    /// A fluorescent material's decay law, making it phosphorescent (None: its
+    /// re-emission is instantaneous).
+    pub decay: Option<prism_sampling::decay::Decay>,
 }
 
 /// Parses a material's description.
 pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, String> {
-    let map = value
+    let mut map = value
         .as_object()
-        .ok_or("PRISM_spectral on a material must be an object")?;
+        .ok_or("PRISM_spectral on a material must be an object")?
+        .clone();
+    // Time, which any type may have: a schedule for its emission, a lifetime for a
+    // fluorescent one.
+    let on = map
+        .remove("on")
+        .map(|v| schedule(&v).map_err(|e| format!("on: {e}")))
+        .transpose()?;
+    let decay = decay(map.remove("lifetime"), map.remove("lifetimes"))?;
+    let mut description = surface_and_emission(&map, cx)?;
+    if on.is_some() && description.emission.is_none() {
+        return Err("'on' schedules an emission, and the material has none".into());
+    }
+    if decay.is_some() && !matches!(description.surface, Some(Material::Fluorescent { .. })) {
+        return Err(
+            "a lifetime needs \"type\": \"fluorescent\" (what it absorbs and re-emits)".into(),
+        );
+    }
+    description.on = on;
+    description.decay = decay;
+    Ok(description)
+}
+
+/// The material's surface and emission (every key but the time ones).
+fn surface_and_emission(
+    map: &Map<String, Value>,
+    cx: &Context,
+) -> Result<SpectralMaterial, String> {
     let emission = map
         .get("emission")
         .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("emission: {e}")))
@@ -62,6 +94,7 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
                 .get("film_ior")
                 .map(|v| ior(v, cx).map_err(|e| format!("film_ior: {e}")))
                 .transpose()?,
+            ..SpectralMaterial::default()
         });
     };
     let field = |key: &str, role: Role| -> Result<SceneSpectrum, String> {
@@ -189,6 +222,39 @@ fn path_difference(nm: f64) -> Result<SceneSpectrum, String> {
     )
     .map_err(|e| format!("path_difference: {e}"))?;
     Ok(SceneSpectrum::Table(Arc::new(table)))
+}
+
+/// `lifetime`: seconds (exponential decay), or `lifetimes`: [[seconds, weight], ...]
+/// (multi-exponential, weights summing to 1).
+fn decay(
+    lifetime: Option<Value>,
+    lifetimes: Option<Value>,
+) -> Result<Option<prism_sampling::decay::Decay>, String> {
+    use prism_sampling::decay::Decay;
+    match (lifetime, lifetimes) {
+        (None, None) => Ok(None),
+        (Some(_), Some(_)) => Err("give 'lifetime' or 'lifetimes', not both".into()),
+        (Some(t), None) => {
+            let t = number(&t, "lifetime")?;
+            Decay::exponential(t)
+                .map(Some)
+                .map_err(|e| format!("lifetime {t} s: {e}"))
+        }
+        (None, Some(list)) => {
+            let pairs = list
+                .as_array()
+                .ok_or("lifetimes must be [[seconds, weight], ...]")?
+                .iter()
+                .map(|pair| match pair.as_array().map(Vec::as_slice) {
+                    Some([t, w]) => Ok((number(t, "lifetime")?, number(w, "lifetime weight")?)),
+                    _ => Err("lifetimes must be [[seconds, weight], ...]".to_string()),
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            Decay::multi(&pairs)
+                .map(Some)
+                .map_err(|e| format!("lifetimes: {e}"))
+        }
+    }
 }
 
 /// A fluorescent material from absorption, re-emission and quantum yield, or from a full

@@ -269,3 +269,21 @@ pub(crate) fn metal(name: &str) -> Result<(SceneSpectrum, SceneSpectrum), String
         SceneSpectrum::Table(Arc::new(m.k)),
     ))
 }
+
+/// A schedule: `[[start, end], ...]` in seconds, an end omitted (`[start]`) or null for
+/// "until further notice"; in order, not overlapping.
+pub(crate) fn schedule(value: &Value) -> Result<crate::world::Schedule, String> {
+    let list = value
+        .as_array()
+        .ok_or("a schedule is [[start, end], ...] in seconds")?;
+    let intervals = list
+        .iter()
+        .map(|entry| match entry.as_array().map(Vec::as_slice) {
+            Some([start]) => Ok((number(start, "start")?, f64::INFINITY)),
+            Some([start, Value::Null]) => Ok((number(start, "start")?, f64::INFINITY)),
+            Some([start, end]) => Ok((number(start, "start")?, number(end, "end")?)),
+            _ => Err("a schedule is [[start, end], ...] in seconds".to_string()),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    crate::world::Schedule::new(intervals)
+}

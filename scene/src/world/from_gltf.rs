@@ -169,11 +169,15 @@ impl Scene {
         let mut emission = Vec::new();
         let mut emission_of_material = vec![None; loaded.materials.len()];
         let mut lights = Vec::new();
-        // Scene light indices of the descriptions' polarizations.
+        // Scene light indices of the descriptions' polarizations and schedules.
         let mut polarized = Vec::new();
+        let mut schedules = Vec::new();
         for (d, desc) in loaded.lights.iter().enumerate() {
             if let Some((_, p)) = loaded.light_polarization.iter().find(|(i, _)| *i == d) {
                 polarized.push((lights.len(), *p));
+            }
+            if let Some((_, s)) = loaded.light_schedules.iter().find(|(i, _)| *i == d) {
+                schedules.push((lights.len(), std::sync::Arc::new(s.clone())));
             }
             match desc {
                 LightDesc::Area {
@@ -190,7 +194,15 @@ impl Scene {
                         emission.push(spectrum);
                         emission.len() as u32 - 1
                     });
+                    let on = desc
+                        .spectral
+                        .as_ref()
+                        .and_then(|s| s.on.clone())
+                        .map(std::sync::Arc::new);
                     for t in instance.first..instance.first + instance.count {
+                        if let Some(on) = &on {
+                            schedules.push((lights.len(), on.clone()));
+                        }
                         lights.push(Light::Triangle {
                             triangle: t as u32,
                             emission: e,
@@ -235,8 +247,23 @@ impl Scene {
             .as_ref()
             .or(loaded.spectral.environment.as_ref());
         if let Some(environment) = environment {
+            // The file's schedule is its environment's; one given in its place has none.
+            if options.environment.is_none()
+                && let Some(on) = &loaded.spectral.environment_on
+            {
+                schedules.push((lights.len(), std::sync::Arc::new(on.clone())));
+            }
             lights.push(environment.light());
         }
+        let decays: Vec<_> = loaded
+            .materials
+            .iter()
+            .enumerate()
+            .filter_map(|(m, desc)| {
+                let decay = desc.spectral.as_ref()?.decay.clone()?;
+                Some((m, std::sync::Arc::new(decay)))
+            })
+            .collect();
         // A file with no light meant to light it (most real assets: viewers light them
         // with an environment) is lit as a glTF viewer would, by a neutral environment:
         // D65 of emissive-colour value 1. Emission no brighter than an emissive colour of
@@ -295,6 +322,10 @@ impl Scene {
             scene.lit_by_default = lit_by_default;
             for (index, polarization) in polarized {
                 scene.polarize_light(index, polarization)?;
+            }
+            let timeline = super::Timeline::new(scene.lights().all().len(), schedules, decays);
+            if timeline.is_timed() {
+                scene.set_timeline(timeline)?;
             }
             Ok(scene)
         })

@@ -19,6 +19,7 @@ mod normal_map;
 mod spectrum;
 mod tex_coords;
 mod texture;
+mod time;
 
 pub use alpha::{Alpha, AlphaMode};
 pub use builder::SceneBuilder;
@@ -39,6 +40,7 @@ pub(crate) use normal_map::triangle_tangent;
 pub use spectrum::SceneSpectrum;
 pub use tex_coords::{TEX_COORD_SETS, TexCoords};
 pub use texture::{Encoding, RgbTexture, SpectralTexture, UvTransform, Wrap};
+pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;
 
@@ -197,6 +199,8 @@ pub struct Scene {
     oriented_materials: bool,
     /// Per light, its emission's linear polarization; empty when no light is polarized.
     light_polarization: Vec<Option<crate::polarization::LinearPolarization>>,
+    /// When its lights shine and how long its phosphors glow (empty: steady light).
+    timeline: Timeline,
 }
 
 impl Scene {
@@ -348,7 +352,43 @@ impl Scene {
             filters_textures,
             oriented_materials,
             light_polarization: Vec::new(),
+            timeline: Timeline::default(),
         })
+    }
+
+    /// Gives the scene its timing: schedules by light index, decay laws by material
+    /// index (a decay on a material that is not fluorescent is an error).
+    pub fn set_timeline(&mut self, timeline: Timeline) -> Result<(), crate::LoadError> {
+        for (m, material) in self.materials.iter().enumerate() {
+            if timeline.decay(m as u32).is_some() && !material.fluorescent() {
+                return Err(crate::LoadError::Scene(format!(
+                    "material {m}: a lifetime needs a fluorescent material (what it absorbs and re-emits)"
+                )));
+            }
+        }
+        self.timeline = timeline;
+        Ok(())
+    }
+
+    /// When the lights shine and how long the phosphors glow.
+    pub fn timeline(&self) -> &Timeline {
+        &self.timeline
+    }
+
+    /// The light a hit emitter is (an emissive triangle's), if any.
+    pub fn light_of(&self, hit: &Hit) -> Option<u32> {
+        self.lights.of_triangle(hit.triangle)
+    }
+
+    /// The light from infinity, if any.
+    pub fn environment_light(&self) -> Option<u32> {
+        self.lights.environment()
+    }
+
+    /// The decay law of the material at `hit`, if it is phosphorescent.
+    pub fn decay_at(&self, hit: &Hit) -> Option<&prism_sampling::decay::Decay> {
+        let m = *self.triangle_material.get(hit.triangle as usize)?;
+        self.timeline.decay(m)
     }
 
     /// Makes light `index`'s emission (a point, spot or directional light's) partly
