@@ -68,10 +68,15 @@ impl Tracer<'_> {
         };
         // At an instant, a light that is off sends nothing (light paths never meet a
         // phosphor: they stop at fluorescent surfaces).
-        if let Some(t) = self.at
-            && !self.scene.timeline().on(emitted.light, t)
-        {
-            return 0;
+        if let Some(clock) = self.clock {
+            let mut time_stream = stream.clone();
+            if !self
+                .scene
+                .timeline()
+                .on(emitted.light, clock.time(&mut time_stream))
+            {
+                return 0;
+            }
         }
         let mut ray = emitted.ray;
         let mut beta = L::start(emitted.beta, ray.direction.normalize(), || {

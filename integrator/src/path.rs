@@ -36,9 +36,9 @@ pub(crate) struct Tracer<'a> {
     pub footprint: Option<Footprint>,
     /// The polarized camera frame (read only by polarized renders).
     pub camera_frame: crate::throughput::CameraFrame,
-    /// The instant rendered on the scene's clock (None: the steady state, every source
-    /// always on).
-    pub at: Option<f64>,
+    /// The instant or exposure rendered on the scene's clock (None: the steady state,
+    /// every source always on).
+    pub clock: Option<Clock>,
 }
 
 /// A pixel's footprint at a point, as pbrt-v4 approximates it for every vertex of a path
@@ -84,6 +84,41 @@ impl Footprint {
 /// block per bounce so that bounce k always draws from the same dimensions.
 pub(crate) const FIRST_BOUNCE_DIMENSION: u64 = 3;
 const DIMENSIONS_PER_BOUNCE: u64 = 8;
+
+/// When a path sees the scene: an instant, or a time drawn uniformly from an exposure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Clock {
+    At(f64),
+    Shutter(f64, f64),
+}
+
+/// The sample-stream dimension an exposure's time is drawn from: far past any bounce's,
+/// so that it changes no other dimension.
+const TIME_DIMENSION: u64 = 1 << 24;
+
+impl Clock {
+    /// The clock of `settings` (None: the steady state).
+    pub(crate) fn of(settings: &crate::RenderSettings) -> Option<Self> {
+        match (settings.at, settings.shutter) {
+            (Some(t), _) => Some(Clock::At(t)),
+            (None, Some((open, close))) => Some(Clock::Shutter(open, close)),
+            (None, None) => None,
+        }
+    }
+
+    /// The time of the path whose stream is `stream` (an instant's is fixed; an
+    /// exposure's uniform in it). Leaves the stream at another dimension.
+    pub(crate) fn time(&self, stream: &mut SobolStream) -> f64 {
+        match *self {
+            Clock::At(t) => t,
+            Clock::Shutter(open, close) => {
+                stream.set_dimension(TIME_DIMENSION);
+                let u = f64::from(stream.next_1d());
+                (open + u * (close - open)).min(close)
+            }
+        }
+    }
+}
 
 /// The first bounce at which Russian roulette may end a path.
 const ROULETTE_DEPTH: u32 = 3;
@@ -214,7 +249,7 @@ impl Tracer<'_> {
         let mut transport = lambdas;
         // The time each lane's light is evaluated at, when rendering an instant: the
         // camera's, until a phosphor sends a lane back to when its light was absorbed.
-        let mut times = self.at.map(|t| [t; N]);
+        let mut times = self.clock.map(|clock| [clock.time(stream); N]);
         let mut emission = EmissionCache::new();
         let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
         let mut radiance = T::black();

@@ -128,7 +128,7 @@ impl<'a> Renderer<'a> {
                 .filters_textures()
                 .then(|| Footprint::new(self.scene.camera(), settings.height)),
             camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
-            at: settings.at,
+            clock: crate::path::Clock::of(settings),
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);

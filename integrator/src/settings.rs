@@ -138,6 +138,10 @@ pub struct RenderSettings {
     /// None: the steady state, every source always on (a scene without schedules or
     /// lifetimes looks the same either way).
     pub at: Option<f64>,
+    /// An exposure instead of an instant: the shutter opens and closes at these times
+    /// (seconds), and each path sees the scene at a time drawn uniformly between them, so
+    /// the image is the mean over the exposure.
+    pub shutter: Option<(f64, f64)>,
 }
 
 impl Default for RenderSettings {
@@ -164,6 +168,7 @@ impl Default for RenderSettings {
             polarized: false,
             camera_polarizer: None,
             at: None,
+            shutter: None,
         }
     }
 }
@@ -190,6 +195,7 @@ setters!(RenderSettings {
     polarized: bool,
     camera_polarizer: Option<f32>,
     at: Option<f64>,
+    shutter: Option<(f64, f64)>,
 });
 
 /// The most worker threads a render may ask for.
@@ -226,6 +232,19 @@ impl RenderSettings {
             && !t.is_finite()
         {
             return bad(format!("time {t} is not a number of seconds"));
+        }
+        match (self.at, self.shutter) {
+            (Some(_), Some(_)) => {
+                return bad("an instant (at) and an exposure (shutter) exclude each other".into());
+            }
+            (_, Some((open, close)))
+                if !(open.is_finite() && close.is_finite() && open < close) =>
+            {
+                return bad(format!(
+                    "shutter {open}:{close} must open before it closes, both finite seconds"
+                ));
+            }
+            _ => {}
         }
         if self.width == 0 || self.height == 0 {
             return bad(format!(

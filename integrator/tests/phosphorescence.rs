@@ -129,3 +129,35 @@ fn a_phosphor_under_an_unscheduled_light_is_steady() {
 fn scene_without_lifetime() -> Scene {
     scene("", r#", "on": [[0, 5]]"#)
 }
+
+/// An exposure averages the glow over the time the shutter is open (the closed form's
+/// mean over [4, 8] s, a light on during [0, 5] s, lifetime 2 s), within the Monte Carlo
+/// error of the times drawn.
+#[test]
+fn an_exposure_is_the_mean_over_the_shutter() {
+    let (tau, off) = (2.0f64, 5.0f64);
+    let scene = scene(r#", "lifetime": 2.0"#, r#", "on": [[0, 5]]"#);
+    let settings = RenderSettings::default()
+        .width(4)
+        .height(4)
+        .samples(0..64)
+        .shutter(Some((4.0, 8.0)));
+    let mean_of = |settings: &RenderSettings| {
+        let (film, _) = render(&scene, settings).unwrap();
+        (0..16).map(|i| film.xyz(i % 4, i / 4).y).sum::<f64>() / 16.0
+    };
+    // The steady state with the same samples, so that only the times differ.
+    let steady = mean_of(&settings.clone().shutter(None));
+    let mean = mean_of(&settings);
+    // (1/4) [ int_4^5 (1 - e^{-t/tau}) dt + (1 - e^{-off/tau}) int_5^8 e^{-(t-off)/tau} dt ]
+    let charging = 1.0 + tau * ((-5.0 / tau).exp() - (-4.0 / tau).exp());
+    let decaying = (1.0 - (-off / tau).exp()) * tau * (1.0 - (-3.0 / tau).exp());
+    let expected = (charging + decaying) / 4.0;
+    let ratio = mean / steady;
+    assert!(
+        (ratio / expected - 1.0).abs() < 0.02,
+        "{ratio} vs {expected}"
+    );
+    // An instant and an exposure at once is an error.
+    assert!(render(&scene, &settings.clone().at(Some(1.0))).is_err());
+}

@@ -101,6 +101,10 @@ pub struct RenderArgs {
     /// before it. Without it every light has always been on (the steady state).
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub at: Option<f64>,
+    /// An exposure instead of an instant: the shutter is open from A to B seconds on the
+    /// scene's clock, and the image is the mean over that time.
+    #[arg(long, value_name = "A:B", allow_negative_numbers = true)]
+    pub shutter: Option<String>,
     /// The wavelengths camera paths sample, nm (default 360:830, or the camera
     /// response's range; wider to include UV or infrared, of which only what the observer
     /// sees shows in RGB).
@@ -354,6 +358,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .polarized(args.polarized)
         .camera_polarizer(args.camera_polarizer)
         .at(args.at)
+        .shutter(args.shutter.as_deref().map(parse_shutter).transpose()?)
         .light_paths(!args.no_light_paths)
         .transparent(args.transparent)
         .range(range)
@@ -484,6 +489,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "polarized": settings.is_polarized(),
             "camera_polarizer": settings.camera_polarizer,
             "at": settings.at,
+            "shutter": settings.shutter,
         });
         println!("{json}");
     }
@@ -508,6 +514,17 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             std::process::exit(130);
         }
     }
+}
+
+/// `A:B` in seconds, A < B (the settings check the order).
+fn parse_shutter(text: &str) -> Result<(f64, f64), String> {
+    let bad = || format!("--shutter '{text}': expected A:B in seconds, A before B");
+    let (a, b) = text.split_once(':').ok_or_else(bad)?;
+    let (a, b): (f64, f64) = (
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    );
+    Ok((a, b))
 }
 
 /// `A:B` in nm, 0 < A < B.
@@ -618,9 +635,10 @@ fn later_settings_fingerprint(args: &RenderArgs) -> String {
         (_, filter) => format!(";polarized=1;camera_polarizer={filter:?}"),
     };
     // The instant, likewise only when one is rendered.
-    match args.at {
-        Some(t) => format!("{polarization};at={t}"),
-        None => polarization,
+    match (args.at, &args.shutter) {
+        (Some(t), _) => format!("{polarization};at={t}"),
+        (None, Some(s)) => format!("{polarization};shutter={s}"),
+        (None, None) => polarization,
     }
 }
 
