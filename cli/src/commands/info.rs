@@ -60,6 +60,17 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             )
         }
     );
+    let (scheduled, phosphors) = s.timed;
+    println!(
+        "time           {}",
+        if scheduled + phosphors == 0 {
+            "no schedules or phosphors (--at renders the same image at any time)".into()
+        } else {
+            format!(
+                "{scheduled} scheduled sources, {phosphors} phosphorescent materials: render an instant with --at SECONDS"
+            )
+        }
+    );
     println!(
         "glTF           {}",
         if s.gltf_features.is_empty() {

@@ -317,11 +317,17 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         Some(c) => Some(c),
         None => scene_camera(&loaded)?,
     };
-    let polarizing = loaded.summary().polarizing;
+    let summary = loaded.summary();
+    let (polarizing, timed) = (summary.polarizing, summary.timed);
     let scene = Scene::from_loaded(loaded, &options).map_err(|e| e.to_string())?;
     if polarizing != (0, 0) && !args.polarized && args.camera_polarizer.is_none() {
         eprintln!(
             "prism: note: the scene has polarizers, retarders or polarized lights, which only a polarized render shows (--polarized); this one sees their intensity only"
+        );
+    }
+    if timed != (0, 0) && args.at.is_none() && args.shutter.is_none() && !args.quiet {
+        eprintln!(
+            "prism: note: the scene has schedules or phosphors; without --at every source has always been on (the steady state)"
         );
     }
     if scene.lit_by_default() {

@@ -34,6 +34,9 @@ pub struct SceneSummary {
     /// Materials that are polarizing elements (polarizers, retarders), and lights whose
     /// emission is polarized: what only a polarized render shows.
     pub polarizing: (usize, usize),
+    /// Sources with schedules (materials' emission, punctual lights, the environment)
+    /// and phosphorescent materials: what `--at` changes.
+    pub timed: (usize, usize),
     /// The glTF features and extensions the file uses that change how it renders.
     pub gltf_features: Vec<String>,
     /// What the lights' spectra are, one line each, distinct.
@@ -126,6 +129,18 @@ impl LoadedGeometry {
                     .filter(|m| surface(m).is_some_and(|s| s.polarizing_element()))
                     .count(),
                 self.light_polarization.len(),
+            ),
+            timed: (
+                self.materials
+                    .iter()
+                    .filter(|m| m.spectral.as_ref().is_some_and(|s| s.on.is_some()))
+                    .count()
+                    + self.light_schedules.len()
+                    + usize::from(self.spectral.environment_on.is_some()),
+                self.materials
+                    .iter()
+                    .filter(|m| m.spectral.as_ref().is_some_and(|s| s.decay.is_some()))
+                    .count(),
             ),
             gltf_features: self.gltf_features.clone(),
             light_spectra,
