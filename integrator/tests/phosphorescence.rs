@@ -14,13 +14,24 @@ use prism_scene::world::{Scene, SceneOptions};
 /// PRISM_spectral entries besides the spectrum) and glowing with `decay` (its material's
 /// entries besides the fluorescence).
 fn scene(decay: &str, light: &str) -> Scene {
+    scene_lit_by(decay, r#""type": "directional""#, light)
+}
+
+/// [`scene`] with the light of kind `kind` (its glTF type and parameters), 2 units above
+/// the square pointing down at it.
+fn scene_lit_by(decay: &str, kind: &str, light: &str) -> Scene {
+    try_scene(decay, kind, light).unwrap()
+}
+
+/// [`scene_lit_by`], or the loader's error.
+fn try_scene(decay: &str, kind: &str, light: &str) -> Result<Scene, prism_scene::LoadError> {
     let doc = format!(
         r#"{{"asset": {{"version": "2.0"}}, "scene": 0,
         "extensionsUsed": ["KHR_lights_punctual", "PRISM_spectral"],
-        "extensions": {{"KHR_lights_punctual": {{"lights": [{{"name": "uv", "type": "directional", "intensity": 1,
+        "extensions": {{"KHR_lights_punctual": {{"lights": [{{"name": "uv", {kind}, "intensity": 1,
             "extensions": {{"PRISM_spectral": {{"spectrum": "gaussian:365:10", "units": "radiometric"{light}}}}}}}]}}}},
         "scenes": [{{"nodes": [0, 1, 2]}}],
-        "nodes": [{{"mesh": 0}}, {{"extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}},
+        "nodes": [{{"mesh": 0}}, {{"translation": [0, 0, 2], "extensions": {{"KHR_lights_punctual": {{"light": 0}}}}}},
             {{"camera": 0, "translation": [0, 0, 1]}}],
         "cameras": [{{"type": "orthographic", "orthographic": {{"xmag": 0.5, "ymag": 0.5, "znear": 0.01, "zfar": 10}}}}],
         "materials": [{{"name": "phosphor", "extensions": {{"PRISM_spectral": {{"type": "fluorescent", "reflectance": 0,
@@ -43,8 +54,8 @@ fn scene(decay: &str, light: &str) -> Scene {
         "square.bin" => Ok(square.clone()),
         _ => Err(std::io::Error::other("no such file")),
     };
-    let loaded = load_scene(doc.as_bytes(), &resolve, &LoadOptions::default()).unwrap();
-    Scene::from_loaded(loaded, &SceneOptions::default()).unwrap()
+    let loaded = load_scene(doc.as_bytes(), &resolve, &LoadOptions::default())?;
+    Scene::from_loaded(loaded, &SceneOptions::default())
 }
 
 fn glow(scene: &Scene, at: Option<f64>) -> f64 {
@@ -160,4 +171,46 @@ fn an_exposure_is_the_mean_over_the_shutter() {
     );
     // An instant and an exposure at once is an error.
     assert!(render(&scene, &settings.clone().at(Some(1.0))).is_err());
+}
+
+/// The independent check's setting: a UV spot light switched on at 0 and off at 5 s.
+#[test]
+fn a_scheduled_spot_light_charges_and_leaves_a_decaying_glow() {
+    let tau = 1.5f64;
+    let scene = scene_lit_by(
+        r#", "lifetime": 1.5"#,
+        r#""type": "spot", "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.9}"#,
+        r#", "on": [[0, 5]]"#,
+    );
+    let steady = glow(&scene, None);
+    assert!(steady > 0.0);
+    assert_eq!(glow(&scene, Some(-0.5)), 0.0);
+    assert_ratio(&scene, steady, 3.0, 1.0 - (-3.0 / tau).exp());
+    for t in [6.0, 9.0] {
+        assert_ratio(
+            &scene,
+            steady,
+            t,
+            (1.0 - (-5.0 / tau).exp()) * (-(t - 5.0) / tau).exp(),
+        );
+    }
+}
+
+/// Bad schedules on a light are one-line errors naming it.
+#[test]
+fn bad_light_schedules_name_the_light() {
+    let directional = r#""type": "directional""#;
+    for (light, needle) in [
+        (r#", "on": [[5, 1]]"#, "reversed"),
+        (r#", "on": [[0, 5], [3, 8]]"#, "overlap"),
+        (r#", "on": [["dawn", 5]]"#, "start"),
+        (r#", "on": 3"#, "schedule"),
+    ] {
+        let error = try_scene("", directional, light)
+            .err()
+            .expect(needle)
+            .to_string();
+        assert!(error.contains("uv") && error.contains(needle), "{error}");
+        assert_eq!(error.lines().count(), 1);
+    }
 }
