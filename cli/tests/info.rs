@@ -71,3 +71,19 @@ fn overlays_are_scenes_and_report_their_spectral_features() {
         (&["info", &missing], "no light named 'sun'"),
     ]);
 }
+
+/// `prism info` says what only a polarized render or an instant shows.
+#[test]
+fn info_names_polarizing_and_timed_features() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
+    let text = |scene: &str| {
+        let out = prism(&["info", &format!("{dir}/{scene}")]);
+        assert_success(&out);
+        String::from_utf8_lossy(&out.stdout).to_string()
+    };
+    let glow = text("glow.gltf");
+    assert!(glow.contains("1 scheduled sources, 1 phosphorescent materials"), "{glow}");
+    let window = text("window.gltf");
+    assert!(window.contains("polarization   no polarizers"), "{window}");
+    assert!(window.contains("time           no schedules"), "{window}");
+}
