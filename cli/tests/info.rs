@@ -82,7 +82,10 @@ fn info_names_polarizing_and_timed_features() {
         String::from_utf8_lossy(&out.stdout).to_string()
     };
     let glow = text("glow.gltf");
-    assert!(glow.contains("1 scheduled sources, 1 phosphorescent materials"), "{glow}");
+    assert!(
+        glow.contains("1 scheduled sources, 1 phosphorescent materials"),
+        "{glow}"
+    );
     let window = text("window.gltf");
     assert!(window.contains("polarization   no polarizers"), "{window}");
     assert!(window.contains("time           no schedules"), "{window}");
