@@ -152,37 +152,7 @@ fn camera_polarizer_follows_malus_and_crossed_is_dark_at_brewster() {
 /// A white emitter filling the view of an orthographic camera, seen through `sheets`
 /// (material, height) stacked between them.
 fn through_sheets(sheets: &[(Material, f32)]) -> Scene {
-    let mut triangles = square_z0(2.0);
-    let mut triangle_material = vec![0, 0];
-    let mut materials = vec![Material::Diffuse {
-        reflectance: SceneSpectrum::Constant(0.0),
-    }];
-    for (k, (material, z)) in sheets.iter().enumerate() {
-        triangles.extend(
-            square_z0(2.0)
-                .into_iter()
-                .map(|t| t.map(|v| v + Vec3::Z * *z)),
-        );
-        triangle_material.extend([k as u32 + 1; 2]);
-        materials.push(material.clone());
-    }
-    Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangles,
-        triangle_material,
-        materials,
-        emission: vec![SceneSpectrum::Constant(1.0)],
-        lights: (0..2)
-            .map(|t| Light::Triangle {
-                triangle: t,
-                emission: 0,
-                two_sided: false,
-            })
-            .collect(),
-        camera: common::ortho_camera(Vec3::new(0.0, 0.0, 1.0), 0.5),
-        quality: BvhQuality::Medium,
-    })
-    .unwrap()
+    common::emitter_behind(SceneSpectrum::Constant(1.0), sheets)
 }
 
 fn polarizer(degrees: f32) -> Material {

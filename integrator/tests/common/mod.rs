@@ -71,14 +71,32 @@ pub fn ortho_camera(eye: glam::Vec3, half: f32) -> prism_scene::camera::Camera {
 /// A black square emitting `emission` from its front (+z), larger than the view of an
 /// orthographic camera one unit in front of it: every pixel sees the emitter.
 pub fn emitter_filling_the_view(emission: prism_scene::world::SceneSpectrum) -> Scene {
+    emitter_behind(emission, &[])
+}
+
+/// [`emitter_filling_the_view`] seen through `layers` (material, height above the
+/// emitter): squares as large as it, between it and the camera.
+pub fn emitter_behind(
+    emission: prism_scene::world::SceneSpectrum,
+    layers: &[(prism_scene::world::Material, f32)],
+) -> Scene {
     use prism_scene::world::{Light, Material, SceneParts, SceneSpectrum};
+    let mut triangles = square_z0(2.0);
+    let mut triangle_material = vec![0, 0];
+    let mut materials = vec![Material::Diffuse {
+        reflectance: SceneSpectrum::Constant(0.0),
+    }];
+    for (k, (material, z)) in layers.iter().enumerate() {
+        let lift = glam::Vec3::Z * *z;
+        triangles.extend(square_z0(2.0).into_iter().map(|t| t.map(|v| v + lift)));
+        triangle_material.extend([k as u32 + 1; 2]);
+        materials.push(material.clone());
+    }
     Scene::new(SceneParts {
         attributes: Default::default(),
-        triangles: square_z0(2.0),
-        triangle_material: vec![0, 0],
-        materials: vec![Material::Diffuse {
-            reflectance: SceneSpectrum::Constant(0.0),
-        }],
+        triangles,
+        triangle_material,
+        materials,
         emission: vec![emission],
         lights: (0..2)
             .map(|t| Light::Triangle {
