@@ -6,6 +6,11 @@
   python3 benches/peer/compare.py box --spp 64 --width 256
   python3 benches/peer/compare.py box --reference ref.exr   # also compare against a reference
   python3 benches/peer/compare.py box --width 128 --reference-spp 4096   # render one first
+  python3 benches/peer/compare.py box --peer-reference ref-box-256.exr   # Mitsuba's, 8192 spp
+
+Issue 30's measure is the last form: the reference is a converged render of the independent
+renderer (Mitsuba 3's llvm_ad_spectral at 8192 spp, benches/peer/mitsuba_reference.py), made
+once per scene and size and reused (the file is rendered when it does not exist yet).
 
 A reference is a converged render of the same scene and size, e.g. prism's own with another
 seed: `prism render scenes/cornell-box.gltf --width 256 --height 256 --spp 4096 --seed 999
@@ -55,6 +60,23 @@ def relmse(img, ref):
     return float(np.mean((img - ref) ** 2 / (ref ** 2 + 0.01)))
 
 
+def cpu():
+    """The host's CPU model and widest vector extension: figures are quoted with them."""
+    model, flags = "unknown", set()
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                key, _, value = line.partition(":")
+                if key.strip() == "model name" and model == "unknown":
+                    model = value.strip()
+                elif key.strip() == "flags" and not flags:
+                    flags = set(value.split())
+    except OSError:
+        pass
+    widest = next((f for f in ("avx512f", "avx2", "avx", "sse4_2") if f in flags), "")
+    return f"{model} ({widest}, {os.cpu_count()} threads)"
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("scene", choices=SCENES)
@@ -67,6 +89,9 @@ def main():
     ap.add_argument("--reference", help="a converged EXR of the same scene and size")
     ap.add_argument("--reference-spp", type=int,
                     help="without --reference: render one with prism at this many spp (seed 999)")
+    ap.add_argument("--peer-reference",
+                    help="a Mitsuba 3 reference EXR, rendered first by mitsuba_reference.py if missing")
+    ap.add_argument("--peer-reference-spp", type=int, default=8192)
     ap.add_argument("--grid", type=int, default=8)
     ap.add_argument("--prism-args", default="", help="extra arguments for prism render")
     a = ap.parse_args()
@@ -84,7 +109,7 @@ def main():
         # this (within noise at 256 spp).
         cmd += ["--max-depth", str(a.depth - 1)]
     prism_stats = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
-    result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth,
+    result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
               "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes")}}
     images = {"prism": read_exr(prism_exr)}
     for variant in a.variants.split(","):
@@ -98,6 +123,12 @@ def main():
         images[variant] = read_exr(exr)
         result[variant]["prism_vs_peer"] = agreement(images["prism"], images[variant], a.grid)
     reference = a.reference
+    if reference is None and a.peer_reference:
+        reference = a.peer_reference
+        if not os.path.exists(reference):
+            subprocess.run([sys.executable, os.path.join(ROOT, "benches", "peer", "mitsuba_reference.py"), a.scene,
+                            "--width", str(a.width), "--spp", str(a.peer_reference_spp), "--depth", str(a.depth),
+                            "--out", reference], check=True, capture_output=True)
     if reference is None and a.reference_spp:
         reference = os.path.join(out, "reference.exr")
         ref_cmd = [c for c in cmd if c != "--stats"]
