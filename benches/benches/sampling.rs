@@ -5,7 +5,7 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prism_sampling::distribution::{AliasTable, PiecewiseConstant1D};
-use prism_sampling::stream::{IndependentStream, SampleStream, SobolStream};
+use prism_sampling::stream::{IndependentStream, SampleStream, SobolLanes, SobolStream};
 use prism_sampling::wavelength::{
     PackageScheme, WavelengthDistribution, WavelengthPackage, WavelengthRange,
 };
@@ -95,6 +95,50 @@ fn streams(c: &mut Criterion) {
         b.iter(|| {
             i += 1;
             black_box(SobolStream::new(7, i >> 6, i & 63).next_2d())
+        })
+    });
+    group.finish();
+    // A bounce's draws (2D, 1D, 2D, 1D: light, lobe, BSDF, roulette) for sixteen
+    // consecutive samples of a pixel: sixteen scalar streams, or lanes of them.
+    let mut group = c.benchmark_group("stream bounce of 16 samples");
+    group.throughput(Throughput::Elements(16));
+    let mut pixel = 0u64;
+    group.bench_function("16 scalar streams", |b| {
+        b.iter(|| {
+            pixel += 1;
+            let mut acc = 0.0f32;
+            for s in 0..16 {
+                let mut stream = SobolStream::new(7, pixel, s);
+                stream.set_dimension(3);
+                acc +=
+                    stream.next_2d().x + stream.next_1d() + stream.next_2d().y + stream.next_1d();
+            }
+            black_box(acc)
+        })
+    });
+    fn lanes<const W: usize>(pixel: u64) -> f32 {
+        let mut acc = 0.0f32;
+        for first in (0..16).step_by(W) {
+            let mut stream = SobolLanes::<W>::new(7, pixel, first);
+            stream.set_dimension(3);
+            let [x, _] = stream.next_2d();
+            let a = stream.next_1d();
+            let [_, y] = stream.next_2d();
+            let b = stream.next_1d();
+            acc += (x + a + y + b).0.iter().sum::<f32>();
+        }
+        acc
+    }
+    group.bench_function("lanes of 8", |b| {
+        b.iter(|| {
+            pixel += 1;
+            black_box(lanes::<8>(pixel))
+        })
+    });
+    group.bench_function("lanes of 16", |b| {
+        b.iter(|| {
+            pixel += 1;
+            black_box(lanes::<16>(pixel))
         })
     });
     group.finish();

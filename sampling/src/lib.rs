@@ -48,6 +48,7 @@
 pub mod decay;
 pub mod distribution;
 mod error;
+pub mod lanes;
 mod lanes_exp;
 pub mod mis;
 pub mod stats;

@@ -6,10 +6,12 @@
 mod hash;
 mod independent;
 mod sobol;
+mod sobol_lanes;
 
 pub use hash::mix64;
 pub use independent::IndependentStream;
 pub use sobol::{SobolStream, sobol_sample};
+pub use sobol_lanes::SobolLanes;
 
 use glam::Vec2;
 

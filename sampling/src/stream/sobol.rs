@@ -2,6 +2,7 @@ use glam::Vec2;
 
 use super::hash::{hash_words, mix64};
 use super::{SampleStream, bits_to_unit_f32};
+use crate::lanes::Word;
 
 /// Generator matrices (as 32 direction numbers each) of the first two Sobol dimensions,
 /// which together form a (0, 2)-sequence in base 2. Derived at compile time from the
@@ -53,7 +54,7 @@ static DIMENSION_1_BYTES: [[u32; 256]; 4] = dimension_1_bytes(false);
 
 /// The same with every entry bit-reversed: dimension 1 in the reversed-bit domain where
 /// the Owen scramble works, which saves two bit reversals per draw.
-static DIMENSION_1_BYTES_REVERSED: [[u32; 256]; 4] = dimension_1_bytes(true);
+pub(super) static DIMENSION_1_BYTES_REVERSED: [[u32; 256]; 4] = dimension_1_bytes(true);
 
 const fn dimension_1_bytes(reversed: bool) -> [[u32; 256]; 4] {
     let v = &DIRECTIONS[1];
@@ -88,7 +89,7 @@ pub fn sobol_sample(index: u32, dimension: usize) -> u32 {
     by_bytes(&DIMENSION_1_BYTES, index)
 }
 
-fn by_bytes(t: &[[u32; 256]; 4], index: u32) -> u32 {
+pub(super) fn by_bytes(t: &[[u32; 256]; 4], index: u32) -> u32 {
     t[0][(index & 0xff) as usize]
         ^ t[1][((index >> 8) & 0xff) as usize]
         ^ t[2][((index >> 16) & 0xff) as usize]
@@ -107,13 +108,22 @@ fn sobol_sample_by_bits(index: u32, dimension: usize) -> u32 {
 /// Laine and Karras's hash-based Owen scramble of the bits above each bit, in Burley's
 /// improved constants ("Practical hash-based Owen scrambling", JCGT 9(4), 2020, §4):
 /// applied to a bit-reversed value it is a nested uniform scramble.
-fn laine_karras_permutation(mut x: u32, seed: u32) -> u32 {
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
+///
+/// Written over [`Word`] so that one word and lanes of words (`SobolLanes`) run the same
+/// code and agree to the bit.
+#[inline]
+pub(super) fn laine_karras_permutation<T: Word>(x: T, seed: T) -> T {
+    let mut x = x.add(seed);
+    for k in [0x6c50_b47c, 0xb82f_1e52, 0xc7af_e638, 0x8d22_f6e6] {
+        x = x.xor(x.mul(T::splat(k)));
+    }
     x
+}
+
+/// The pair hash of `dimension` under stream key `key` (see `SobolStream::scrambled_index`).
+#[inline]
+pub(super) fn pair_hash(key: u64, dimension: u64) -> u64 {
+    mix64(key ^ dimension.wrapping_mul(0x9e37_79b9_7f4a_7c15))
 }
 
 /// Owen-scrambled Sobol points, padded across dimensions (Burley 2020): each pair of
@@ -124,7 +134,7 @@ fn laine_karras_permutation(mut x: u32, seed: u32) -> u32 {
 /// dimension)`.
 #[derive(Debug, Clone)]
 pub struct SobolStream {
-    key: u64,
+    pub(super) key: u64,
     /// The sample index with its bits reversed, as the scramble wants it.
     reversed_index: u32,
     dimension: u64,
@@ -177,7 +187,7 @@ impl SobolStream {
     /// reversed bits); dimension 0 of the Sobol sequence is itself a bit reversal, so the
     /// draws below keep values reversed where they can and reverse only at the end.
     fn scrambled_index(&self, dimension: u64) -> (u64, u32) {
-        let h = mix64(self.key ^ dimension.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        let h = pair_hash(self.key, dimension);
         let index = laine_karras_permutation(self.reversed_index, h as u32).reverse_bits();
         (h, index)
     }
