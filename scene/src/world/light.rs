@@ -389,6 +389,12 @@ impl Lights {
             } => {
                 let shape = &self.shapes[index];
                 let (v, n) = (shape.vertices, shape.normal);
+                // Behind a one-sided light's plane no point of it faces p: the facing
+                // test below would reject any sample, so none is drawn (a Cornell box's
+                // ceiling, above its light, never sees it).
+                if !*two_sided && n.dot(p - v[0]) <= 0.0 {
+                    return None;
+                }
                 // The emission's texture coordinates are found only if it varies.
                 let textured = matches!(emission[*e as usize], SceneSpectrum::Texture(_));
                 let (wi, distance, pdf, uv) = match solid_angle_sampled(p, shape) {
