@@ -384,7 +384,10 @@ impl Tracer<'_> {
                     };
                     Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
                 }
-                _ => self.scene.bsdf(&hit, &transport, TransportMode::Radiance),
+                _ => {
+                    self.scene
+                        .bsdf_cached(&hit, &transport, TransportMode::Radiance, &mut emission)
+                }
             };
             let frame = Frame::from_normal(hit.shading_normal);
             let wo = frame.to_local(wo_world);

@@ -643,6 +643,27 @@ impl Scene {
         material.bsdf_at(&hit.tex, wavelengths, mode, tint)
     }
 
+    /// [`Scene::bsdf`], with a path's cache: a Lambertian material of constant reflectance
+    /// (no texture, no vertex colour) is evaluated once per set of wavelengths. The same
+    /// BSDF, bit for bit.
+    pub fn bsdf_cached<const N: usize>(
+        &self,
+        hit: &Hit,
+        wavelengths: &SampledWavelengths<N>,
+        mode: crate::bsdf::TransportMode,
+        cache: &mut EmissionCache<N>,
+    ) -> Bsdf<'_, N> {
+        let index = self.triangle_material[hit.triangle as usize];
+        if let Material::Diffuse { reflectance } = &self.materials[index as usize]
+            && !matches!(reflectance, SceneSpectrum::Texture(_))
+            && (self.attributes.color_table.is_none() || hit.color.truncate() == Vec3::ONE)
+            && let Some(r) = cache.reflectance(index, reflectance, wavelengths)
+        {
+            return Bsdf::Diffuse(crate::bsdf::Diffuse::new(r));
+        }
+        self.bsdf(hit, wavelengths, mode)
+    }
+
     /// [`Scene::bsdf`] for a material read in the surface's tangent frame. Out of line,
     /// so that scenes without such materials keep their code as it was.
     #[inline(never)]
