@@ -179,6 +179,9 @@ pub const MAX_ALPHA_CROSSINGS: usize = 256;
 pub struct Scene {
     bvh: Bvh,
     triangles: Vec<[Vec3; 3]>,
+    /// Each triangle's unit normal (`triangle_normal`), computed once rather than at
+    /// every hit (a square root and a division in a hit's dependency chain).
+    normals: Vec<Vec3>,
     attributes: VertexAttributes,
     triangle_material: Vec<u32>,
     materials: Vec<Material>,
@@ -337,6 +340,7 @@ impl Scene {
         let lights = Lights::new(lights, &power, &extent, &emission, &triangles, &attributes);
         Ok(Self {
             bvh,
+            normals: triangles.iter().map(|&t| triangle_normal(t)).collect(),
             triangles,
             attributes,
             triangle_material,
@@ -534,7 +538,7 @@ impl Scene {
         let v = hit.vertices;
         let b = hit.hit.barycentric;
         let p = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-        let normal = triangle_normal(v);
+        let normal = self.normals[hit.triangle];
         let shading_normal = match self.attributes.normals.get(hit.triangle) {
             Some(n) => {
                 let s = unit_or_zero(b[0] * n[0] + b[1] * n[1] + b[2] * n[2]);
