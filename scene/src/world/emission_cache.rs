@@ -17,14 +17,12 @@ const SLOTS: usize = 8;
 #[derive(Debug, Clone)]
 pub struct EmissionCache<const N: usize> {
     lambdas: [f32; N],
-    filled: u32,
-    values: [SampledSpectrum<N>; SLOTS],
+    emission: Slots<N>,
     /// Lambertian materials' constant reflectances at these wavelengths, by material
     /// index (the first `SLOTS` materials): a path meets the same few walls again and
     /// again, and each evaluation is a sigmoid per lane (measured: 7% of the Cornell
     /// box's time went to evaluating reflectances).
-    reflectance_filled: u32,
-    reflectances: [SampledSpectrum<N>; SLOTS],
+    reflectances: Slots<N>,
     /// The lights' choice weights at these wavelengths, once computed (scenes whose
     /// lights differ in spectrum; see `light_choice`).
     pub(crate) choice_weights: Option<Weights>,
@@ -34,10 +32,8 @@ impl<const N: usize> Default for EmissionCache<N> {
     fn default() -> Self {
         Self {
             lambdas: [f32::NAN; N],
-            filled: 0,
-            values: [SampledSpectrum::splat(0.0); SLOTS],
-            reflectance_filled: 0,
-            reflectances: [SampledSpectrum::splat(0.0); SLOTS],
+            emission: Slots::default(),
+            reflectances: Slots::default(),
             choice_weights: None,
         }
     }
@@ -54,8 +50,8 @@ impl<const N: usize> EmissionCache<N> {
         // Bitwise: the NaN the cache starts with never equals a wavelength.
         if self.lambdas.map(f32::to_bits) != wavelengths.lambdas().map(f32::to_bits) {
             self.lambdas = *wavelengths.lambdas();
-            self.filled = 0;
-            self.reflectance_filled = 0;
+            self.emission.filled = 0;
+            self.reflectances.filled = 0;
             self.choice_weights = None;
         }
     }
@@ -79,11 +75,7 @@ impl<const N: usize> EmissionCache<N> {
             return spectrum.at(wavelengths);
         }
         self.refresh(wavelengths);
-        if self.filled & (1 << slot) == 0 {
-            self.values[slot] = spectrum.at(wavelengths);
-            self.filled |= 1 << slot;
-        }
-        self.values[slot]
+        self.emission.get(slot, spectrum, wavelengths)
     }
 
     /// Material number `material`'s reflectance `spectrum` (not a texture) at
@@ -100,11 +92,40 @@ impl<const N: usize> EmissionCache<N> {
             return None;
         }
         self.refresh(wavelengths);
-        if self.reflectance_filled & (1 << slot) == 0 {
-            self.reflectances[slot] = spectrum.at(wavelengths);
-            self.reflectance_filled |= 1 << slot;
+        Some(self.reflectances.get(slot, spectrum, wavelengths))
+    }
+}
+
+/// Spectra evaluated at the cache's wavelengths, by slot, each once until the cache
+/// refills (`filled`: a bit per slot holding a value).
+#[derive(Debug, Clone)]
+struct Slots<const N: usize> {
+    filled: u32,
+    values: [SampledSpectrum<N>; SLOTS],
+}
+
+impl<const N: usize> Default for Slots<N> {
+    fn default() -> Self {
+        Self {
+            filled: 0,
+            values: [SampledSpectrum::splat(0.0); SLOTS],
         }
-        Some(self.reflectances[slot])
+    }
+}
+
+impl<const N: usize> Slots<N> {
+    /// Slot `slot` (below `SLOTS`): `spectrum` at `wavelengths`, evaluated the first time.
+    fn get(
+        &mut self,
+        slot: usize,
+        spectrum: &SceneSpectrum,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        if self.filled & (1 << slot) == 0 {
+            self.values[slot] = spectrum.at(wavelengths);
+            self.filled |= 1 << slot;
+        }
+        self.values[slot]
     }
 }
 
@@ -112,16 +133,21 @@ impl<const N: usize> EmissionCache<N> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn answers_what_evaluating_would_and_refills_when_wavelengths_change() {
-        let spectra: Vec<SceneSpectrum> = (0..SLOTS + 2)
+    /// `count` Gaussian spectra centred from `first` nm on, `step` apart.
+    fn gaussians(count: usize, first: f64, step: f64, width: f64, peak: f64) -> Vec<SceneSpectrum> {
+        (0..count)
             .map(|k| {
                 SceneSpectrum::Gaussian(
-                    prism_spectrum::spectra::Gaussian::new(400.0 + 30.0 * k as f64, 20.0, 1.0)
+                    prism_spectrum::spectra::Gaussian::new(first + step * k as f64, width, peak)
                         .unwrap(),
                 )
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn answers_what_evaluating_would_and_refills_when_wavelengths_change() {
+        let spectra = gaussians(SLOTS + 2, 400.0, 30.0, 20.0, 1.0);
         let a = SampledWavelengths::new([450.0, 550.0, 650.0, 700.0], [0.01; 4]).unwrap();
         let b = SampledWavelengths::new([451.0, 550.0, 650.0, 700.0], [0.01; 4]).unwrap();
         let mut cache = EmissionCache::new();
@@ -137,14 +163,7 @@ mod tests {
 
     #[test]
     fn reflectances_are_what_evaluating_gives_at_the_current_wavelengths() {
-        let spectra: Vec<SceneSpectrum> = (0..SLOTS + 1)
-            .map(|k| {
-                SceneSpectrum::Gaussian(
-                    prism_spectrum::spectra::Gaussian::new(420.0 + 25.0 * k as f64, 30.0, 0.8)
-                        .unwrap(),
-                )
-            })
-            .collect();
+        let spectra = gaussians(SLOTS + 1, 420.0, 25.0, 30.0, 0.8);
         let a = SampledWavelengths::new([450.0, 550.0, 650.0, 700.0], [0.01; 4]).unwrap();
         let b = SampledWavelengths::new([450.0, 551.0, 650.0, 700.0], [0.01; 4]).unwrap();
         let mut cache = EmissionCache::new();

@@ -633,18 +633,23 @@ impl Scene {
         wavelengths: &SampledWavelengths<N>,
         mode: crate::bsdf::TransportMode,
     ) -> Bsdf<'_, N> {
-        let tint =
-            match &self.attributes.color_table {
-                Some(table) if hit.color.truncate() != Vec3::ONE => Some(
-                    texture::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths),
-                ),
-                _ => None,
-            };
+        let tint = self.tint_table(hit).map(|table| {
+            texture::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths)
+        });
         let material = self.material(hit);
         if self.oriented_materials && material.oriented() {
             return self.bsdf_in_tangent_frame(hit, material, wavelengths, mode, tint);
         }
         material.bsdf_at(&hit.tex, wavelengths, mode, tint)
+    }
+
+    /// The table that upsamples `hit`'s vertex colour, where it tints the base colour (a
+    /// scene with vertex colours, a colour other than white).
+    fn tint_table(&self, hit: &Hit) -> Option<&prism_upsample::CoefficientTable> {
+        self.attributes
+            .color_table
+            .as_deref()
+            .filter(|_| hit.color.truncate() != Vec3::ONE)
     }
 
     /// [`Scene::bsdf`], with a path's cache: a Lambertian material of constant reflectance
@@ -660,7 +665,7 @@ impl Scene {
         let index = self.triangle_material[hit.triangle as usize];
         if let Material::Diffuse { reflectance } = &self.materials[index as usize]
             && !matches!(reflectance, SceneSpectrum::Texture(_))
-            && (self.attributes.color_table.is_none() || hit.color.truncate() == Vec3::ONE)
+            && self.tint_table(hit).is_none()
             && let Some(r) = cache.reflectance(index, reflectance, wavelengths)
         {
             return Bsdf::Diffuse(crate::bsdf::Diffuse::new(r));
