@@ -39,6 +39,8 @@ pub(crate) struct Tracer<'a> {
     /// The instant or exposure rendered on the scene's clock (None: the steady state,
     /// every source always on).
     pub clock: Option<Clock>,
+    /// Continuations per camera sample from its first non-delta vertex (1: none split).
+    pub splits: u32,
 }
 
 /// A pixel's footprint at a point, as pbrt-v4 approximates it for every vertex of a path
@@ -233,261 +235,317 @@ impl Tracer<'_> {
         aspect: f32,
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
     ) -> PathResult {
-        let mut package =
+        let first_package =
             WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
-        let Some(mut lambdas) = wavelengths(&package) else {
+        let Some(first_lambdas) = wavelengths(&first_package) else {
             return PathResult {
                 valid: false,
                 rays: 0,
                 covered: false,
             };
         };
-        // The wavelengths light is evaluated at. They are the film's (`lambdas`, whose
-        // densities weigh the estimate) until a fluorescent vertex changes them: past it,
-        // each lane carries the incident wavelength it sampled, while its radiance still
-        // counts at the film wavelength it started with.
-        let mut transport = lambdas;
-        // The time each lane's light is evaluated at, when rendering an instant: the
-        // camera's, until a phosphor sends a lane back to when its light was absorbed.
-        let mut times = self.clock.map(|clock| [clock.time(stream); N]);
+        let first_times = self.clock.map(|clock| [clock.time(stream); N]);
+        let camera_ray: Ray = self.scene.camera().generate_ray(film, aspect);
         let mut emission = EmissionCache::new();
-        let mut ray: Ray = self.scene.camera().generate_ray(film, aspect);
-        let mut radiance = T::black();
-        let mut beta = T::start(ray.direction.normalize(), &self.camera_frame);
-        // The BSDF density and origin of the last bounce, for MIS on emitters it hits;
-        // None after the camera or a delta bounce (no light sampling competed).
-        let mut previous: Option<(f32, Vec3)> = None;
         let mut rays = 0u64;
-        let mut depth = 0u32;
-        // The product of eta^2 over the refractions so far: beta carries 1 / eta^2 from
-        // each, which Russian roulette must not read as lost energy.
-        let mut eta_scale = 1.0f32;
-        // Whether the path so far is one that light paths carry: a first vertex that is
-        // neither a delta nor fluorescent, then only delta bounces (at least one).
-        let mut caustic_prefix = false;
-        let mut light_caustic = false;
         let mut covered = false;
-        loop {
-            rays += 1;
-            let hit = self.scene.intersect(&ray);
-            covered |= depth == 0 && hit.is_some();
-            let Some(mut hit) = hit else {
-                if depth == 0 && self.transparent {
-                    break;
-                }
-                if let Some((mut le, light_pdf)) =
-                    self.scene
-                        .escaped(ray.direction.normalize(), &transport, &mut emission)
-                {
-                    if let Some(times) = &times {
-                        self.gate(self.scene.environment_light(), times, &mut le);
+        // Splitting (Arvo and Kirk's, as production renderers' "diffuse samples"): the
+        // camera ray, the emission it meets and the first vertex's light sample are traced
+        // once, and `splits` continuations from that vertex each carry 1 / splits of its
+        // throughput. Split k draws its bounces from sample `s * splits + k` of the pixel's
+        // stream (`SobolStream::split`), so a pixel's continuations together are the first
+        // `spp * splits` points of every pair of dimensions. Decided at the first vertex
+        // (1: the camera ray left the scene, the path ended there, or the vertex is a delta).
+        let mut splits = 1u32;
+        // The camera ray's hit, once traced: the later splits start from it.
+        let mut first_hit: Option<Option<prism_scene::world::Hit>> = None;
+        let mut split = 0u32;
+        while split < splits {
+            let mut package = first_package;
+            let mut lambdas = first_lambdas;
+            // The wavelengths light is evaluated at. They are the film's (`lambdas`, whose
+            // densities weigh the estimate) until a fluorescent vertex changes them: past it,
+            // each lane carries the incident wavelength it sampled, while its radiance still
+            // counts at the film wavelength it started with.
+            let mut transport = lambdas;
+            // The time each lane's light is evaluated at, when rendering an instant: the
+            // camera's, until a phosphor sends a lane back to when its light was absorbed.
+            let mut times = first_times;
+            let mut ray = camera_ray;
+            let mut radiance = T::black();
+            let mut beta = T::start(ray.direction.normalize(), &self.camera_frame);
+            // The BSDF density and origin of the last bounce, for MIS on emitters it hits;
+            // None after the camera or a delta bounce (no light sampling competed).
+            let mut previous: Option<(f32, Vec3)> = None;
+            let mut depth = 0u32;
+            // The product of eta^2 over the refractions so far, and the split count: beta
+            // carries 1 / eta^2 from each refraction and 1 / splits from the split, neither of
+            // which Russian roulette may read as lost energy.
+            let mut eta_scale = 1.0f32;
+            // Whether the path so far is one that light paths carry: a first vertex that is
+            // neither a delta nor fluorescent, then only delta bounces (at least one).
+            let mut caustic_prefix = false;
+            let mut light_caustic = false;
+            // The stream of this split's bounces (set at the first vertex).
+            let mut bounces = stream.clone();
+            loop {
+                // A later split's first vertex repeats the first one's without its light: the
+                // emission the camera sees and the light sample there were counted once.
+                let replay = depth == 0 && split > 0;
+                let hit = match first_hit.filter(|_| depth == 0) {
+                    Some(hit) => hit,
+                    None => {
+                        rays += 1;
+                        let hit = self.scene.intersect(&ray);
+                        if depth == 0 {
+                            first_hit = Some(hit);
+                            covered = hit.is_some();
+                        }
+                        hit
                     }
-                    let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
+                };
+                let Some(mut hit) = hit else {
+                    if depth == 0 && self.transparent {
+                        break;
+                    }
+                    if let Some((mut le, light_pdf)) =
+                        self.scene
+                            .escaped(ray.direction.normalize(), &transport, &mut emission)
+                    {
+                        if let Some(times) = &times {
+                            self.gate(self.scene.environment_light(), times, &mut le);
+                        }
+                        let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
+                            power_heuristic(1, bsdf_pdf, 1, light_pdf)
+                        });
+                        beta.add_emitted(&mut radiance, &le, w);
+                    }
+                    break;
+                };
+                let wo_world = -ray.direction.normalize();
+                if let Some(footprint) = &self.footprint {
+                    let width = footprint.at(hit.p);
+                    self.scene.set_footprint(&mut hit, wo_world, width);
+                }
+                absorb(self.scene, &ray, &hit, &transport, &mut beta);
+                let mut le = self
+                    .scene
+                    .emitted(&hit, wo_world, &transport, &mut emission);
+                if let Some(times) = &times
+                    && !le.is_black()
+                {
+                    self.gate(self.scene.light_of(&hit), times, &mut le);
+                }
+                if !le.is_black() && !light_caustic && !replay {
+                    let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
+                        let light_pdf = self.scene.light_pdf(from, &hit, &transport, &mut emission);
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
                     beta.add_emitted(&mut radiance, &le, w);
                 }
-                break;
-            };
-            let wo_world = -ray.direction.normalize();
-            if let Some(footprint) = &self.footprint {
-                let width = footprint.at(hit.p);
-                self.scene.set_footprint(&mut hit, wo_world, width);
-            }
-            absorb(self.scene, &ray, &hit, &transport, &mut beta);
-            let mut le = self
-                .scene
-                .emitted(&hit, wo_world, &transport, &mut emission);
-            if let Some(times) = &times
-                && !le.is_black()
-            {
-                self.gate(self.scene.light_of(&hit), times, &mut le);
-            }
-            if !le.is_black() && !light_caustic {
-                let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
-                    let light_pdf = self.scene.light_pdf(from, &hit, &transport, &mut emission);
-                    power_heuristic(1, bsdf_pdf, 1, light_pdf)
-                });
-                beta.add_emitted(&mut radiance, &le, w);
-            }
-            if depth >= self.max_depth {
-                break;
-            }
-            stream.set_dimension(sample_base + u64::from(depth) * DIMENSIONS_PER_BOUNCE);
-            let u_light = stream.next_2d();
-            let u_lobe = stream.next_1d();
-            let u_bsdf = stream.next_2d();
-            let u_roulette = stream.next_1d();
-
-            let material = self.scene.material(&hit);
-            let bsdf = match material {
-                Material::Fluorescent {
-                    reflectance,
-                    reradiation,
-                } if FLUORESCENCE => {
-                    // Each lane picks the wavelength its light arrived at: unchanged with
-                    // probability R / (R + F) (weight R + F), else from the re-radiation
-                    // column F or the lights' spectra, one-sample MIS with the balance
-                    // heuristic (weight (R + F) / F * M / p_mix). The surface is
-                    // Lambertian either way.
-                    let u_wavelength = stream.next_1d();
-                    let guide = self.scene.light_wavelengths(&hit);
-                    let r = reflectance.at_uv(hit.tex, &transport);
-                    let mut incident = *transport.lambdas();
-                    let mut weights = SampledSpectrum::splat(1.0);
-                    let mut reemitted = [false; N];
-                    for j in 0..N {
-                        let out = transport.lambda(j);
-                        let f = reradiation.incident_integral(out) as f32;
-                        let total = r[j] + f;
-                        let mut weight = total;
-                        if total > 0.0 && f > 0.0 && u_wavelength * total >= r[j] {
-                            let u = ((u_wavelength * total - r[j]) / f).min(0.999_999_9);
-                            let lambda = match guide {
-                                None => reradiation
-                                    .sample_incident(out, f64::from(u))
-                                    .map(|s| s.lambda),
-                                Some(_) if u < 0.5 => reradiation
-                                    .sample_incident(out, f64::from(2.0 * u))
-                                    .map(|s| s.lambda),
-                                Some(g) => Some(g.sample(f64::from(2.0 * u - 1.0)).value as f32),
-                            };
-                            weight = match lambda {
-                                Some(l) => {
-                                    let p_column = reradiation.pdf_incident(l, out);
-                                    let p = match guide {
-                                        None => p_column,
-                                        Some(g) => {
-                                            0.5 * p_column + 0.5 * g.pdf(f64::from(l)) as f32
-                                        }
-                                    };
-                                    incident[j] = l;
-                                    reemitted[j] = true;
-                                    if p > 0.0 {
-                                        total / f * reradiation.value(l, out) as f32 / p
-                                    } else {
-                                        0.0
-                                    }
-                                }
-                                None => 0.0,
-                            };
-                        }
-                        weights[j] = weight;
-                    }
-                    if let (Some(times), Some(decay)) = (&mut times, self.scene.decay_at(&hit)) {
-                        self.delay(decay, stream.next_1d(), &reemitted, times, &mut weights);
-                    }
-                    beta.scale(weights);
-                    transport = match SampledWavelengths::new(incident, *transport.pdfs()) {
-                        Ok(t) => t,
-                        Err(_) => break,
-                    };
-                    Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
-                }
-                _ => {
-                    self.scene
-                        .bsdf_cached(&hit, &transport, TransportMode::Radiance, &mut emission)
-                }
-            };
-            let frame = Frame::from_normal(hit.shading_normal);
-            let wo = frame.to_local(wo_world);
-            let vertex = Vertex {
-                bsdf: &bsdf,
-                frame: &frame,
-                wo,
-            };
-
-            // Next-event estimation.
-            if !bsdf.is_delta()
-                && let Some(mut light) =
-                    self.scene
-                        .sample_light(&hit, u_light, &transport, &mut emission)
-            {
-                if let Some(times) = &times {
-                    self.gate(Some(light.light), times, &mut light.radiance);
-                }
-                let wi = frame.to_local(light.wi);
-                let f = bsdf.f(wo, wi) * wi.z.abs();
-                // A light dark at every wavelength of the path (chosen by the defensive
-                // share of a spectral choice, or by power) needs no shadow ray.
-                if !f.is_black() && !light.radiance.is_black() {
-                    rays += 1;
-                    if !self.scene.occluded(&hit.spawn_to(light.wi, light.distance)) {
-                        let w = if light.delta {
-                            1.0
-                        } else {
-                            power_heuristic(1, light.pdf, 1, bsdf.pdf(wo, wi))
-                        };
-                        let arrival = Arrival {
-                            wi,
-                            f: &f,
-                            radiance: &light.radiance,
-                            weight: w / light.pdf,
-                        };
-                        beta.add_scattered(&mut radiance, &vertex, arrival, || {
-                            let p = self.scene.light_polarization(light.light)?;
-                            Some(p.stokes(-light.wi))
-                        });
-                    }
-                }
-            }
-
-            // BSDF sampling.
-            let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {
-                break;
-            };
-            let pdf = sample.pdf[0];
-            if !positive_finite(pdf) {
-                break;
-            }
-            beta.scatter(
-                &vertex,
-                sample.wi,
-                &sample.f,
-                sample.delta,
-                sample.wi.z.abs() / pdf,
-            );
-            eta_scale *= sample.eta * sample.eta;
-            if sample.wavelength_dependent && !package.secondary_terminated() {
-                // The secondaries' light so far was estimated with the whole package; it
-                // goes to the film with the package's densities before they change.
-                sink(&radiance, &lambdas);
-                radiance = T::black();
-                package.terminate_secondary();
-                lambdas = match wavelengths(&package) {
-                    Some(l) => l,
-                    None => break,
-                };
-                if !FLUORESCENCE {
-                    transport = lambdas;
-                }
-            }
-            if depth == 0 {
-                caustic_prefix = self.light_caustics && !sample.delta && !material.fluorescent();
-            } else {
-                caustic_prefix &= sample.delta;
-                light_caustic = caustic_prefix;
-            }
-            previous = (!sample.delta).then_some((pdf, hit.p));
-            let wi_world = frame.to_world(sample.wi);
-            ray = hit.spawn(wi_world);
-            depth += 1;
-
-            // Russian roulette on the throughput, from the third bounce: survivors are
-            // divided by their survival probability, so it is unbiased. Survival is capped
-            // at 0.95 so that a path in a closed scene of albedo 1 (throughput never below
-            // 1) still ends. The throughput is read without the refractions' 1 / eta^2
-            // (what a path inside glass regains on leaving it): with it, paths inside
-            // glass died at every bounce with probability 1 - 1/eta^2 (56% at 1.5).
-            if depth >= ROULETTE_DEPTH {
-                let q = (beta.max_value() * eta_scale / ROULETTE_THROUGHPUT).min(0.95);
-                if q.is_nan() || q <= 0.0 || u_roulette >= q {
+                if depth >= self.max_depth {
                     break;
                 }
-                beta.scale_uniform(1.0 / q);
+                let dimension = sample_base + u64::from(depth) * DIMENSIONS_PER_BOUNCE;
+                // The first vertex's own draws are the camera sample's; the rest the split's.
+                let here: &mut SobolStream = if depth == 0 { stream } else { &mut bounces };
+                here.set_dimension(dimension);
+                let u_light = here.next_2d();
+
+                let material = self.scene.material(&hit);
+                let bsdf = match material {
+                    Material::Fluorescent {
+                        reflectance,
+                        reradiation,
+                    } if FLUORESCENCE => {
+                        // Each lane picks the wavelength its light arrived at: unchanged with
+                        // probability R / (R + F) (weight R + F), else from the re-radiation
+                        // column F or the lights' spectra, one-sample MIS with the balance
+                        // heuristic (weight (R + F) / F * M / p_mix). The surface is
+                        // Lambertian either way.
+                        here.set_dimension(dimension + 6);
+                        let u_wavelength = here.next_1d();
+                        let guide = self.scene.light_wavelengths(&hit);
+                        let r = reflectance.at_uv(hit.tex, &transport);
+                        let mut incident = *transport.lambdas();
+                        let mut weights = SampledSpectrum::splat(1.0);
+                        let mut reemitted = [false; N];
+                        for j in 0..N {
+                            let out = transport.lambda(j);
+                            let f = reradiation.incident_integral(out) as f32;
+                            let total = r[j] + f;
+                            let mut weight = total;
+                            if total > 0.0 && f > 0.0 && u_wavelength * total >= r[j] {
+                                let u = ((u_wavelength * total - r[j]) / f).min(0.999_999_9);
+                                let lambda = match guide {
+                                    None => reradiation
+                                        .sample_incident(out, f64::from(u))
+                                        .map(|s| s.lambda),
+                                    Some(_) if u < 0.5 => reradiation
+                                        .sample_incident(out, f64::from(2.0 * u))
+                                        .map(|s| s.lambda),
+                                    Some(g) => {
+                                        Some(g.sample(f64::from(2.0 * u - 1.0)).value as f32)
+                                    }
+                                };
+                                weight = match lambda {
+                                    Some(l) => {
+                                        let p_column = reradiation.pdf_incident(l, out);
+                                        let p = match guide {
+                                            None => p_column,
+                                            Some(g) => {
+                                                0.5 * p_column + 0.5 * g.pdf(f64::from(l)) as f32
+                                            }
+                                        };
+                                        incident[j] = l;
+                                        reemitted[j] = true;
+                                        if p > 0.0 {
+                                            total / f * reradiation.value(l, out) as f32 / p
+                                        } else {
+                                            0.0
+                                        }
+                                    }
+                                    None => 0.0,
+                                };
+                            }
+                            weights[j] = weight;
+                        }
+                        if let (Some(times), Some(decay)) = (&mut times, self.scene.decay_at(&hit))
+                        {
+                            self.delay(decay, here.next_1d(), &reemitted, times, &mut weights);
+                        }
+                        beta.scale(weights);
+                        transport = match SampledWavelengths::new(incident, *transport.pdfs()) {
+                            Ok(t) => t,
+                            Err(_) => break,
+                        };
+                        Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
+                    }
+                    _ => self.scene.bsdf_cached(
+                        &hit,
+                        &transport,
+                        TransportMode::Radiance,
+                        &mut emission,
+                    ),
+                };
+                let frame = Frame::from_normal(hit.shading_normal);
+                let wo = frame.to_local(wo_world);
+                let vertex = Vertex {
+                    bsdf: &bsdf,
+                    frame: &frame,
+                    wo,
+                };
+
+                // Next-event estimation.
+                if !bsdf.is_delta()
+                    && !replay
+                    && let Some(mut light) =
+                        self.scene
+                            .sample_light(&hit, u_light, &transport, &mut emission)
+                {
+                    if let Some(times) = &times {
+                        self.gate(Some(light.light), times, &mut light.radiance);
+                    }
+                    let wi = frame.to_local(light.wi);
+                    let f = bsdf.f(wo, wi) * wi.z.abs();
+                    // A light dark at every wavelength of the path (chosen by the defensive
+                    // share of a spectral choice, or by power) needs no shadow ray.
+                    if !f.is_black() && !light.radiance.is_black() {
+                        rays += 1;
+                        if !self.scene.occluded(&hit.spawn_to(light.wi, light.distance)) {
+                            let w = if light.delta {
+                                1.0
+                            } else {
+                                power_heuristic(1, light.pdf, 1, bsdf.pdf(wo, wi))
+                            };
+                            let arrival = Arrival {
+                                wi,
+                                f: &f,
+                                radiance: &light.radiance,
+                                weight: w / light.pdf,
+                            };
+                            beta.add_scattered(&mut radiance, &vertex, arrival, || {
+                                let p = self.scene.light_polarization(light.light)?;
+                                Some(p.stokes(-light.wi))
+                            });
+                        }
+                    }
+                }
+
+                if depth == 0 {
+                    if split == 0 && !bsdf.is_delta() {
+                        splits = self.splits.max(1);
+                    }
+                    bounces = stream.split(split, splits);
+                    if splits > 1 {
+                        beta.scale_uniform(1.0 / splits as f32);
+                        eta_scale *= splits as f32;
+                    }
+                }
+                bounces.set_dimension(dimension + 2);
+                let u_lobe = bounces.next_1d();
+                let u_bsdf = bounces.next_2d();
+                let u_roulette = bounces.next_1d();
+
+                // BSDF sampling.
+                let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {
+                    break;
+                };
+                let pdf = sample.pdf[0];
+                if !positive_finite(pdf) {
+                    break;
+                }
+                beta.scatter(
+                    &vertex,
+                    sample.wi,
+                    &sample.f,
+                    sample.delta,
+                    sample.wi.z.abs() / pdf,
+                );
+                eta_scale *= sample.eta * sample.eta;
+                if sample.wavelength_dependent && !package.secondary_terminated() {
+                    // The secondaries' light so far was estimated with the whole package; it
+                    // goes to the film with the package's densities before they change.
+                    sink(&radiance, &lambdas);
+                    radiance = T::black();
+                    package.terminate_secondary();
+                    lambdas = match wavelengths(&package) {
+                        Some(l) => l,
+                        None => break,
+                    };
+                    if !FLUORESCENCE {
+                        transport = lambdas;
+                    }
+                }
+                if depth == 0 {
+                    caustic_prefix =
+                        self.light_caustics && !sample.delta && !material.fluorescent();
+                } else {
+                    caustic_prefix &= sample.delta;
+                    light_caustic = caustic_prefix;
+                }
+                previous = (!sample.delta).then_some((pdf, hit.p));
+                let wi_world = frame.to_world(sample.wi);
+                ray = hit.spawn(wi_world);
+                depth += 1;
+
+                // Russian roulette on the throughput, from the third bounce: survivors are
+                // divided by their survival probability, so it is unbiased. Survival is capped
+                // at 0.95 so that a path in a closed scene of albedo 1 (throughput never below
+                // 1) still ends. The throughput is read without the refractions' 1 / eta^2
+                // (what a path inside glass regains on leaving it): with it, paths inside
+                // glass died at every bounce with probability 1 - 1/eta^2 (56% at 1.5).
+                if depth >= ROULETTE_DEPTH {
+                    let q = (beta.max_value() * eta_scale / ROULETTE_THROUGHPUT).min(0.95);
+                    if q.is_nan() || q <= 0.0 || u_roulette >= q {
+                        break;
+                    }
+                    beta.scale_uniform(1.0 / q);
+                }
             }
+            sink(&radiance, &lambdas);
+            split += 1;
         }
-        sink(&radiance, &lambdas);
         PathResult {
             valid: true,
             rays,

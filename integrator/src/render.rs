@@ -129,6 +129,7 @@ impl<'a> Renderer<'a> {
                 .then(|| Footprint::new(self.scene.camera(), settings.height)),
             camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
             clock: crate::path::Clock::of(settings),
+            splits: settings.splits,
         };
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);

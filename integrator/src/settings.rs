@@ -92,6 +92,10 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Longest path in bounces (None: unbounded, ended by Russian roulette).
     pub max_depth: Option<u32>,
+    /// Continuations per camera sample from its first vertex (splitting): the camera ray
+    /// and the first vertex's light sample are shared, each continuation carries 1 /
+    /// splits of the throughput. 1 to [`MAX_SPLITS`].
+    pub splits: u32,
     /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
     /// measured scenes, the repository's docs/trade-offs.md).
     pub wavelengths: usize,
@@ -152,6 +156,7 @@ impl Default for RenderSettings {
             samples: 0..64,
             seed: 0,
             max_depth: None,
+            splits: 1,
             wavelengths: 8,
             lambda_sampler: LambdaSampler::default(),
             scheme: PackageScheme::HeroRotation,
@@ -179,6 +184,7 @@ setters!(RenderSettings {
     samples: Range<u64>,
     seed: u64,
     max_depth: Option<u32>,
+    splits: u32,
     wavelengths: usize,
     lambda_sampler: LambdaSampler,
     scheme: PackageScheme,
@@ -200,6 +206,9 @@ setters!(RenderSettings {
 
 /// The most worker threads a render may ask for.
 pub const MAX_THREADS: usize = 1024;
+
+/// The most continuations a camera sample may split into.
+pub const MAX_SPLITS: u32 = 64;
 
 impl RenderSettings {
     /// Whether paths carry polarization (asked for, or implied by a camera polarizer).
@@ -272,6 +281,12 @@ impl RenderSettings {
             return bad(format!(
                 "sample range {}..{} is empty",
                 self.samples.start, self.samples.end
+            ));
+        }
+        if !(1..=MAX_SPLITS).contains(&self.splits) {
+            return bad(format!(
+                "{} splits per camera sample: expected 1 to {MAX_SPLITS}",
+                self.splits
             ));
         }
         if ![1, 2, 4, 8, 16].contains(&self.wavelengths) {

@@ -7,7 +7,10 @@
 
 mod common;
 
-use common::{cornell, emitter_filling_the_view, ortho_camera};
+use common::{
+    cornell, emitter_filling_the_view, furnace, furnace_scene, icosphere, mean_and_error,
+    ortho_camera,
+};
 use glam::Vec3;
 use prism_integrator::{ExrMetadata, Film, LambdaSampler, RenderSettings, encode_exr, render};
 use prism_sampling::wavelength::PackageScheme;
@@ -17,78 +20,6 @@ use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::{Constant, Gaussian};
 use std::sync::Arc;
-
-/// A unit icosphere subdivided `levels` times, outward winding.
-fn icosphere(levels: u32) -> Vec<[Vec3; 3]> {
-    let t = (1.0 + 5f32.sqrt()) / 2.0;
-    let v: Vec<Vec3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
-    .collect();
-    let faces = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    let mut tris: Vec<[Vec3; 3]> = faces.iter().map(|f| f.map(|i| v[i])).collect();
-    for _ in 0..levels {
-        tris = tris
-            .iter()
-            .flat_map(|&[a, b, c]| {
-                let (ab, bc, ca) = (
-                    (a + b).normalize(),
-                    (b + c).normalize(),
-                    (c + a).normalize(),
-                );
-                [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]
-            })
-            .collect();
-    }
-    tris
-}
-
-/// The mean over all pixels of a film, and its standard error from the pixel-to-pixel
-/// spread (valid where every pixel has the same expectation).
-fn mean_and_error(film: &Film, channel: usize) -> (f64, f64) {
-    let n = f64::from(film.width() * film.height());
-    let values: Vec<f64> = (0..film.height())
-        .flat_map(|y| (0..film.width()).map(move |x| (x, y)))
-        .map(|(x, y)| film.xyz(x, y).to_array()[channel])
-        .collect();
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
-}
 
 fn constant_xyz(value: f64) -> [f64; 3] {
     emission_xyz(&Constant::new(value).unwrap(), Observer::Cie1931).to_array()
@@ -109,38 +40,6 @@ const SAMPLERS: [LambdaSampler; 4] = [
     LambdaSampler::Response,
     LambdaSampler::Spd,
 ];
-
-/// A furnace: `triangles` (material `triangle_material[i]` of `materials`) in a uniform
-/// environment of radiance 1, seen from +z by an orthographic camera of half-size `half`.
-fn furnace(
-    triangles: Vec<[Vec3; 3]>,
-    triangle_material: Vec<u32>,
-    materials: Vec<Material>,
-    half: f32,
-) -> Scene {
-    Scene::new(SceneParts {
-        attributes: Default::default(),
-        triangle_material,
-        triangles,
-        materials,
-        emission: vec![],
-        lights: vec![Light::Environment {
-            radiance: SceneSpectrum::Constant(1.0),
-        }],
-        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), half),
-        quality: BvhQuality::Medium,
-    })
-    .unwrap()
-}
-
-fn furnace_scene() -> Scene {
-    let triangles = icosphere(2);
-    let white = Material::Diffuse {
-        reflectance: SceneSpectrum::Constant(1.0),
-    };
-    let triangle_material = vec![0; triangles.len()];
-    furnace(triangles, triangle_material, vec![white], 0.6)
-}
 
 /// A white (albedo 1) sphere in a uniform environment of radiance 1 is invisible: every
 /// pixel sees radiance 1 at every wavelength, for every sampler and package size.

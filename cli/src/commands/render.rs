@@ -59,6 +59,11 @@ pub struct RenderArgs {
     /// Longest path in bounces (default: unbounded, ended by Russian roulette).
     #[arg(long)]
     pub max_depth: Option<u32>,
+    /// Continuations per camera sample from its first vertex (1 to 64): the camera ray
+    /// and the first light sample are traced once for all of them, so each costs less
+    /// than a sample; the error falls as if the samples were that many times more.
+    #[arg(long, default_value_t = 1)]
+    pub splits: u32,
     /// Wavelengths per path: 1, 2, 4, 8 or 16.
     #[arg(long, default_value_t = 8)]
     pub wavelengths: usize,
@@ -354,6 +359,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .samples(samples_only.clone().unwrap_or(0..args.spp))
         .seed(args.seed)
         .max_depth(args.max_depth)
+        .splits(args.splits)
         .wavelengths(args.wavelengths)
         .lambda_sampler(lambda_sampler)
         .threads(args.threads)
@@ -457,6 +463,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         }
         if let Some(t) = settings.at {
             facts.push(("at".into(), t.to_string()));
+        }
+        if settings.splits > 1 {
+            facts.push(("splits".into(), settings.splits.to_string()));
         }
         let shown = match &white_balance {
             Some(m) => film.adapted(m),
@@ -633,7 +642,7 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
     ) + &later_settings_fingerprint(args)
 }
 
-/// The polarization and time settings' part of the fingerprint: empty for a render without,
+/// The polarization, time and splitting settings' part of the fingerprint: empty for a render without,
 /// so that checkpoints written before polarization existed still resume.
 fn later_settings_fingerprint(args: &RenderArgs) -> String {
     let polarization = match (args.polarized, args.camera_polarizer) {
@@ -641,11 +650,17 @@ fn later_settings_fingerprint(args: &RenderArgs) -> String {
         (_, filter) => format!(";polarized=1;camera_polarizer={filter:?}"),
     };
     // The instant, likewise only when one is rendered.
-    match (args.at, &args.shutter) {
-        (Some(t), _) => format!("{polarization};at={t}"),
-        (None, Some(s)) => format!("{polarization};shutter={s}"),
-        (None, None) => polarization,
-    }
+    let time = match (args.at, &args.shutter) {
+        (Some(t), _) => format!(";at={t}"),
+        (None, Some(s)) => format!(";shutter={s}"),
+        (None, None) => String::new(),
+    };
+    // Splitting, likewise only when a sample splits.
+    let splits = match args.splits {
+        1 => String::new(),
+        k => format!(";splits={k}"),
+    };
+    format!("{polarization}{time}{splits}")
 }
 
 /// The film of a checkpoint, checked against this render's settings and range.

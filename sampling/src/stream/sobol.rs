@@ -156,6 +156,28 @@ impl SobolStream {
         self.dimension = dimension;
     }
 
+    /// Part `part` of `parts` of this sample (splitting one sample's later dimensions into
+    /// several continuations): the stream of sample `index * parts + part` of the same
+    /// pixel, at the same dimension. The parts of samples 0..n are samples 0..n * parts, so
+    /// together they stay a stratified prefix in every pair of dimensions; one part of one
+    /// is the stream itself.
+    ///
+    /// ```
+    /// use prism_sampling::stream::{SampleStream, SobolStream};
+    ///
+    /// let stream = SobolStream::new(7, 42, 3);
+    /// assert_eq!(stream.split(0, 1).next_2d(), stream.clone().next_2d());
+    /// assert_eq!(stream.split(1, 4).next_2d(), SobolStream::new(7, 42, 13).next_2d());
+    /// ```
+    pub fn split(&self, part: u32, parts: u32) -> SobolStream {
+        let index = self.reversed_index.reverse_bits();
+        Self {
+            key: self.key,
+            reversed_index: index.wrapping_mul(parts).wrapping_add(part).reverse_bits(),
+            dimension: self.dimension,
+        }
+    }
+
     /// The streams of a pixel's samples 0, 1, 2, ... in order: take as many as the
     /// pixel gets. Any power-of-two prefix is stratified in every pair of dimensions.
     ///
