@@ -63,6 +63,7 @@ pub fn run(
     let terminal = std::io::stderr().is_terminal();
     let first = range.start + film.samples();
     let renderer = Renderer::new(scene, settings).map_err(|e| e.to_string())?;
+    stats.splits = renderer.splits();
     let mut ending = Ending::Complete;
     for s in first..range.end {
         if cancel.load(Ordering::Relaxed) {

@@ -62,6 +62,7 @@ mod png;
 mod render;
 mod sample_value;
 mod settings;
+mod splits;
 mod throughput;
 
 /// glam, whose types appear in this crate's and prism-scene's public APIs.
@@ -87,4 +88,4 @@ pub use image::{DisplaySettings, encode_png, encode_polarization_png};
 #[cfg(feature = "exr")]
 pub use image::{ExrMetadata, encode_exr};
 pub use render::{RenderStats, Renderer, render, render_into};
-pub use settings::{LambdaSampler, MAX_THREADS, RenderSettings};
+pub use settings::{LambdaSampler, MAX_SPLITS, MAX_THREADS, RenderSettings, Splits};

@@ -17,8 +17,10 @@ use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
 use crate::light_throughput::{LightThroughput, PolarizedLight};
 use crate::path::Footprint;
-use crate::path::{FIRST_BOUNCE_DIMENSION, Tracer};
+use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
 use crate::sample_value::{Outputs, SampleValue};
+use crate::settings::Splits;
+use crate::splits::pilot;
 use crate::throughput::{CameraFrame, Polarized, Throughput};
 use crate::{Film, RenderError, RenderSettings};
 use prism_spectrum::SampledSpectrum;
@@ -32,6 +34,8 @@ pub struct RenderStats {
     pub rays: u64,
     /// Samples rejected as non-finite.
     pub nonfinite: u64,
+    /// Continuations per camera sample (see [`crate::Splits`]).
+    pub splits: u32,
 }
 
 /// Everything a render sets up once (the wavelength distribution, the filter table, the
@@ -42,6 +46,32 @@ pub struct Renderer<'a> {
     distribution: WavelengthDistribution,
     filter: FilterSampler,
     pool: rayon::ThreadPool,
+    /// Continuations per camera sample (the settings', or the pilot's choice).
+    splits: u32,
+}
+
+/// The row tracer (or another function generic like it) specialized for a renderer's
+/// package size, fluorescence and polarization, so that a scene pays only for what it has.
+macro_rules! specialized {
+    ($renderer:expr, $function:ident) => {{
+        macro_rules! by_width {
+            ($fluorescence:literal, $carrier:ident) => {
+                match $renderer.settings.wavelengths {
+                    1 => $function::<1, $fluorescence, $carrier<1>>,
+                    2 => $function::<2, $fluorescence, $carrier<2>>,
+                    4 => $function::<4, $fluorescence, $carrier<4>>,
+                    8 => $function::<8, $fluorescence, $carrier<8>>,
+                    _ => $function::<16, $fluorescence, $carrier<16>>,
+                }
+            };
+        }
+        match ($renderer.fluorescence(), $renderer.settings.is_polarized()) {
+            (false, false) => by_width!(false, SampledSpectrum),
+            (true, false) => by_width!(true, SampledSpectrum),
+            (false, true) => by_width!(false, Polarized),
+            (true, true) => by_width!(true, Polarized),
+        }
+    }};
 }
 
 impl<'a> Renderer<'a> {
@@ -67,13 +97,76 @@ impl<'a> Renderer<'a> {
             .num_threads(settings.threads)
             .build()
             .map_err(|e| RenderError::Setting(format!("thread pool: {e}")))?;
-        Ok(Self {
+        let mut renderer = Self {
             scene,
             settings: settings.clone(),
             distribution,
             filter,
             pool,
-        })
+            splits: 1,
+        };
+        renderer.splits = match settings.splits {
+            Splits::Fixed(k) => k,
+            Splits::Auto => {
+                let pilot = specialized!(renderer, pilot);
+                renderer.pool.install(|| pilot(&renderer)).choice()
+            }
+        };
+        Ok(renderer)
+    }
+
+    /// The settings this renderer renders with.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// Continuations per camera sample: the settings' number, or the pilot's choice.
+    pub fn splits(&self) -> u32 {
+        self.splits
+    }
+
+    /// What every path of this render shares, with `splits` continuations per sample.
+    pub(crate) fn tracer(&self, splits: u32) -> Tracer<'_> {
+        let settings = &self.settings;
+        Tracer {
+            scene: self.scene,
+            distribution: &self.distribution,
+            scheme: settings.scheme,
+            observer: settings.observer,
+            camera: settings.camera.as_deref(),
+            max_depth: settings.max_depth.unwrap_or(u32::MAX),
+            light_caustics: self.light_caustics(),
+            transparent: settings.transparent,
+            footprint: self
+                .scene
+                .filters_textures()
+                .then(|| Footprint::new(self.scene.camera(), settings.height)),
+            camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
+            clock: crate::path::Clock::of(settings),
+            splits,
+        }
+    }
+
+    /// The sample rows' settings for `samples` under `seed`.
+    pub(crate) fn rows(&self, seed: u64, samples: Range<u64>) -> Rows {
+        let settings = &self.settings;
+        Rows {
+            width: settings.width,
+            height: settings.height,
+            seed,
+            clamp: settings.clamp,
+            samples,
+            outputs: Outputs {
+                bands: settings.bands,
+                energy: settings.energy,
+                polarized: settings.is_polarized(),
+            },
+        }
+    }
+
+    /// The filter sampler.
+    pub(crate) fn filter(&self) -> &FilterSampler {
+        &self.filter
     }
 
     /// Whether paths handle re-radiation (the scene has fluorescent materials). Scenes
@@ -114,56 +207,11 @@ impl<'a> Renderer<'a> {
                 settings.height
             )));
         }
-        let tracer = Tracer {
-            scene: self.scene,
-            distribution: &self.distribution,
-            scheme: settings.scheme,
-            observer: settings.observer,
-            camera: settings.camera.as_deref(),
-            max_depth: settings.max_depth.unwrap_or(u32::MAX),
-            light_caustics: self.light_caustics(),
-            transparent: settings.transparent,
-            footprint: self
-                .scene
-                .filters_textures()
-                .then(|| Footprint::new(self.scene.camera(), settings.height)),
-            camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
-            clock: crate::path::Clock::of(settings),
-            splits: settings.splits,
-        };
+        let tracer = self.tracer(self.splits);
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
-        // One specialization per package size, fluorescence and polarization, so that
-        // a scene pays only for what it has.
-        macro_rules! by_width {
-            ($fluorescence:literal, $carrier:ident) => {
-                match settings.wavelengths {
-                    1 => trace_row::<1, $fluorescence, $carrier<1>>,
-                    2 => trace_row::<2, $fluorescence, $carrier<2>>,
-                    4 => trace_row::<4, $fluorescence, $carrier<4>>,
-                    8 => trace_row::<8, $fluorescence, $carrier<8>>,
-                    _ => trace_row::<16, $fluorescence, $carrier<16>>,
-                }
-            };
-        }
-        let trace = match (self.fluorescence(), settings.is_polarized()) {
-            (false, false) => by_width!(false, SampledSpectrum),
-            (true, false) => by_width!(true, SampledSpectrum),
-            (false, true) => by_width!(false, Polarized),
-            (true, true) => by_width!(true, Polarized),
-        };
-        let rows = Rows {
-            width: settings.width,
-            height: settings.height,
-            seed: settings.seed,
-            clamp: settings.clamp,
-            samples: samples.clone(),
-            outputs: Outputs {
-                bands: settings.bands,
-                energy: settings.energy,
-                polarized: settings.is_polarized(),
-            },
-        };
+        let trace = specialized!(self, trace_row);
+        let rows = self.rows(settings.seed, samples.clone());
         self.pool.install(|| {
             let width = settings.width as usize;
             let spectral_width = width * pass.spectral_width();
@@ -273,18 +321,19 @@ impl<'a> Renderer<'a> {
             paths: count * u64::from(settings.width) * u64::from(settings.height),
             rays: rays.into_inner(),
             nonfinite,
+            splits: self.splits,
         }))
     }
 }
 
 /// What a row's samples depend on besides the tracer.
-struct Rows {
-    width: u32,
-    height: u32,
-    seed: u64,
-    clamp: Option<f64>,
-    samples: Range<u64>,
-    outputs: Outputs,
+pub(crate) struct Rows {
+    pub width: u32,
+    pub height: u32,
+    pub seed: u64,
+    pub clamp: Option<f64>,
+    pub samples: Range<u64>,
+    pub outputs: Outputs,
 }
 
 /// Renders `settings.samples` of every pixel into `film`: a [`Renderer`] for one pass.
@@ -333,29 +382,13 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
         stokes: stokes_row,
         coverage,
     } = out;
-    let (w, h) = (settings.width, settings.height);
-    let aspect = w as f32 / h as f32;
     let (mut rays, mut rejected) = (0u64, 0u64);
     let band_count = settings.outputs.spectral_width();
     let mut value = SampleValue::default();
     for (x, sum) in row.iter_mut().enumerate() {
-        let pixel = u64::from(y) * u64::from(w) + x as u64;
         for s in settings.samples.clone() {
-            let mut stream = SobolStream::new(settings.seed, pixel, s);
-            let u_lambda = stream.next_1d();
-            let offset = filter.offset(stream.next_2d());
-            let film = Vec2::new(
-                (x as f32 + 0.5 + offset.x) / w as f32,
-                (y as f32 + 0.5 + offset.y) / h as f32,
-            );
-            value.clear();
-            let result = tracer.trace::<N, FLUORESCENCE, T>(
-                &mut stream,
-                FIRST_BOUNCE_DIMENSION,
-                u_lambda,
-                film,
-                aspect,
-                &mut |radiance, lambdas| value.add(tracer, settings.outputs, radiance, lambdas),
+            let result = trace_sample::<N, FLUORESCENCE, T>(
+                tracer, filter, settings, x as u32, y, s, &mut value,
             );
             rays += result.rays;
             coverage[x] += f64::from(u8::from(result.covered));
@@ -376,6 +409,36 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
         }
     }
     (rays, rejected)
+}
+
+/// Traces sample `s` of pixel (`x`, `y`) into `value` (cleared first).
+pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    tracer: &Tracer,
+    filter: &FilterSampler,
+    settings: &Rows,
+    x: u32,
+    y: u32,
+    s: u64,
+    value: &mut SampleValue,
+) -> PathResult {
+    let (w, h) = (settings.width, settings.height);
+    let pixel = u64::from(y) * u64::from(w) + u64::from(x);
+    let mut stream = SobolStream::new(settings.seed, pixel, s);
+    let u_lambda = stream.next_1d();
+    let offset = filter.offset(stream.next_2d());
+    let film = Vec2::new(
+        (x as f32 + 0.5 + offset.x) / w as f32,
+        (y as f32 + 0.5 + offset.y) / h as f32,
+    );
+    value.clear();
+    tracer.trace::<N, FLUORESCENCE, T>(
+        &mut stream,
+        FIRST_BOUNCE_DIMENSION,
+        u_lambda,
+        film,
+        w as f32 / h as f32,
+        &mut |radiance, lambdas| value.add(tracer, settings.outputs, radiance, lambdas),
+    )
 }
 
 /// A light path's contribution to the film, at a film position.

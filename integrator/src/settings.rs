@@ -94,8 +94,8 @@ pub struct RenderSettings {
     pub max_depth: Option<u32>,
     /// Continuations per camera sample from its first vertex (splitting): the camera ray
     /// and the first vertex's light sample are shared, each continuation carries 1 /
-    /// splits of the throughput. 1 to [`MAX_SPLITS`].
-    pub splits: u32,
+    /// splits of the throughput. Chosen per render by default ([`Splits::Auto`]).
+    pub splits: Splits,
     /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
     /// measured scenes, the repository's docs/trade-offs.md).
     pub wavelengths: usize,
@@ -156,7 +156,7 @@ impl Default for RenderSettings {
             samples: 0..64,
             seed: 0,
             max_depth: None,
-            splits: 1,
+            splits: Splits::Auto,
             wavelengths: 8,
             lambda_sampler: LambdaSampler::default(),
             scheme: PackageScheme::HeroRotation,
@@ -184,7 +184,7 @@ setters!(RenderSettings {
     samples: Range<u64>,
     seed: u64,
     max_depth: Option<u32>,
-    splits: u32,
+    splits: Splits,
     wavelengths: usize,
     lambda_sampler: LambdaSampler,
     scheme: PackageScheme,
@@ -209,6 +209,56 @@ pub const MAX_THREADS: usize = 1024;
 
 /// The most continuations a camera sample may split into.
 pub const MAX_SPLITS: u32 = 64;
+
+/// How many continuations each camera sample splits into at its first vertex.
+///
+/// Splitting pays where the error is in indirect light (a Cornell box's ceiling, lit only
+/// by bounces) and costs where it is in what the camera ray and the first light sample
+/// find (direct light, textures, edges); `Auto` tells them apart per render with a pilot
+/// (see the integrator's `splits` module and docs/trade-offs.md).
+///
+/// ```
+/// use prism_integrator::Splits;
+///
+/// assert_eq!("auto".parse::<Splits>(), Ok(Splits::Auto));
+/// assert_eq!("4".parse::<Splits>(), Ok(Splits::Fixed(4)));
+/// assert!("0".parse::<Splits>().is_err() && "many".parse::<Splits>().is_err());
+/// assert_eq!(Splits::Fixed(2).to_string(), "2");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Splits {
+    /// 1 or 2, whichever a pilot of the render predicts reaches a given error sooner; the
+    /// choice depends only on the scene, the image size, the settings and the seed.
+    #[default]
+    Auto,
+    /// This many, 1 to [`MAX_SPLITS`] (1: no splitting).
+    Fixed(u32),
+}
+
+impl std::str::FromStr for Splits {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s == "auto" {
+            return Ok(Splits::Auto);
+        }
+        match s.parse::<u32>() {
+            Ok(k) if (1..=MAX_SPLITS).contains(&k) => Ok(Splits::Fixed(k)),
+            _ => Err(format!(
+                "splits '{s}': expected auto or a whole number 1 to {MAX_SPLITS}"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for Splits {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Splits::Auto => f.write_str("auto"),
+            Splits::Fixed(k) => write!(f, "{k}"),
+        }
+    }
+}
 
 impl RenderSettings {
     /// Whether paths carry polarization (asked for, or implied by a camera polarizer).
@@ -283,10 +333,11 @@ impl RenderSettings {
                 self.samples.start, self.samples.end
             ));
         }
-        if !(1..=MAX_SPLITS).contains(&self.splits) {
+        if let Splits::Fixed(k) = self.splits
+            && !(1..=MAX_SPLITS).contains(&k)
+        {
             return bad(format!(
-                "{} splits per camera sample: expected 1 to {MAX_SPLITS}",
-                self.splits
+                "{k} splits per camera sample: expected 1 to {MAX_SPLITS}"
             ));
         }
         if ![1, 2, 4, 8, 16].contains(&self.wavelengths) {

@@ -8,8 +8,8 @@
 
 mod common;
 
-use common::{cornell, furnace_scene, mean_and_error};
-use prism_integrator::{Film, RenderSettings, render};
+use common::{cornell, furnace_scene, mean_and_error, repository_scene};
+use prism_integrator::{Film, RenderSettings, Renderer, Splits, render};
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::Constant;
 
@@ -18,7 +18,7 @@ fn settings(size: u32, spp: u64, splits: u32) -> RenderSettings {
         .width(size)
         .height(size)
         .samples(0..spp)
-        .splits(splits)
+        .splits(Splits::Fixed(splits))
 }
 
 /// Every path in a white furnace carries exactly the environment's radiance, whatever
@@ -155,6 +155,28 @@ fn split_renders_are_deterministic_and_merge() {
             assert!((x[k] - y[k]).abs() <= 1e-12 * y[k].abs().max(1.0));
         }
     }
+}
+
+/// The automatic choice splits where the error follows the first vertex (the Cornell
+/// box's ceiling sees light only through bounces) and not where it is in what the camera
+/// ray finds (the textured scene: textures and direct light), and renders report it.
+#[test]
+fn auto_splits_where_indirect_light_dominates() {
+    let auto = |scene: &prism_scene::world::Scene| {
+        let s = settings(64, 4, 1).splits(Splits::Auto);
+        Renderer::new(scene, &s).unwrap().splits()
+    };
+    let box_ = cornell();
+    assert_eq!(auto(&box_), 2);
+    assert_eq!(auto(&repository_scene("textured.gltf", |_| {})), 1);
+    let (_, stats) = render(&box_, &settings(64, 1, 1).splits(Splits::Auto)).unwrap();
+    assert_eq!(stats.splits, 2);
+    // The choice is the pilot's, the same on any number of threads.
+    let mut one = settings(16, 2, 1).splits(Splits::Auto);
+    one.threads = 1;
+    let (a, _) = render(&box_, &one).unwrap();
+    let (b, _) = render(&box_, &one.clone().threads(2)).unwrap();
+    assert_eq!(a.sums(), b.sums());
 }
 
 /// Splits outside 1..=64 are refused with a message naming them.

@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use clap::Args;
 use prism_integrator::{
     CameraResponse, DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings,
-    ResponseCurve, SpectralBands, decode_accumulation, encode_accumulation, encode_exr, encode_png,
-    encode_polarization_png,
+    ResponseCurve, SpectralBands, Splits, decode_accumulation, encode_accumulation, encode_exr,
+    encode_png, encode_polarization_png,
 };
 use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
@@ -59,11 +59,12 @@ pub struct RenderArgs {
     /// Longest path in bounces (default: unbounded, ended by Russian roulette).
     #[arg(long)]
     pub max_depth: Option<u32>,
-    /// Continuations per camera sample from its first vertex (1 to 64): the camera ray
-    /// and the first light sample are traced once for all of them, so each costs less
-    /// than a sample; the error falls as if the samples were that many times more.
-    #[arg(long, default_value_t = 1)]
-    pub splits: u32,
+    /// Continuations per camera sample from its first vertex: auto (chosen per render by a
+    /// short pilot: 1 or 2) or 1 to 64. The camera ray and the first light sample are
+    /// traced once for all of them, so each costs less than a sample; where the noise is
+    /// in indirect light, it falls nearly as if there were that many more samples.
+    #[arg(long, default_value = "auto")]
+    pub splits: String,
     /// Wavelengths per path: 1, 2, 4, 8 or 16.
     #[arg(long, default_value_t = 8)]
     pub wavelengths: usize,
@@ -359,7 +360,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .samples(samples_only.clone().unwrap_or(0..args.spp))
         .seed(args.seed)
         .max_depth(args.max_depth)
-        .splits(args.splits)
+        .splits(args.splits.parse::<Splits>()?)
         .wavelengths(args.wavelengths)
         .lambda_sampler(lambda_sampler)
         .threads(args.threads)
@@ -464,8 +465,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         if let Some(t) = settings.at {
             facts.push(("at".into(), t.to_string()));
         }
-        if settings.splits > 1 {
-            facts.push(("splits".into(), settings.splits.to_string()));
+        if stats.splits > 1 {
+            facts.push(("splits".into(), stats.splits.to_string()));
         }
         let shown = match &white_balance {
             Some(m) => film.adapted(m),
@@ -499,6 +500,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "ending": format!("{ending:?}"),
             "peak_memory_bytes": crate::memory::peak_bytes(),
             "wavelengths": args.wavelengths,
+            "splits": stats.splits,
             "lambda_sampler": args.lambda_sampler,
             "energy": energy_stats(&film, settings.range),
             "polarized": settings.is_polarized(),
@@ -612,7 +614,9 @@ fn spectral_bands(args: &RenderArgs) -> Result<Option<SpectralBands>, String> {
 }
 
 /// What must match for a checkpoint to be resumed or parts merged: everything that changes
-/// the estimate or what the film accumulates (bands, energy, a camera's channels).
+/// the estimate or what the film accumulates (bands, energy, a camera's channels). Not
+/// `--splits`: every choice estimates the same image, only with more or less noise per
+/// sample, so parts split differently merge into an unbiased whole.
 fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
     let bands = args
         .spectral_bands
@@ -642,7 +646,7 @@ fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
     ) + &later_settings_fingerprint(args)
 }
 
-/// The polarization, time and splitting settings' part of the fingerprint: empty for a render without,
+/// The polarization and time settings' part of the fingerprint: empty for a render without,
 /// so that checkpoints written before polarization existed still resume.
 fn later_settings_fingerprint(args: &RenderArgs) -> String {
     let polarization = match (args.polarized, args.camera_polarizer) {
@@ -650,17 +654,11 @@ fn later_settings_fingerprint(args: &RenderArgs) -> String {
         (_, filter) => format!(";polarized=1;camera_polarizer={filter:?}"),
     };
     // The instant, likewise only when one is rendered.
-    let time = match (args.at, &args.shutter) {
-        (Some(t), _) => format!(";at={t}"),
-        (None, Some(s)) => format!(";shutter={s}"),
-        (None, None) => String::new(),
-    };
-    // Splitting, likewise only when a sample splits.
-    let splits = match args.splits {
-        1 => String::new(),
-        k => format!(";splits={k}"),
-    };
-    format!("{polarization}{time}{splits}")
+    match (args.at, &args.shutter) {
+        (Some(t), _) => format!("{polarization};at={t}"),
+        (None, Some(s)) => format!("{polarization};shutter={s}"),
+        (None, None) => polarization,
+    }
 }
 
 /// The film of a checkpoint, checked against this render's settings and range.

@@ -1,0 +1,206 @@
+//! The choice of [`Splits::Auto`](crate::Splits): how many continuations a camera sample
+//! splits into at its first vertex, from a pilot of the render.
+//!
+//! Splitting (Arvo and Kirk, "Particle transport and image synthesis", SIGGRAPH 1990, §4)
+//! trades the variance of what follows the first vertex against the cost of tracing it
+//! more than once. With a sample's variance V(K) = V_b + V_c / K (V_b: what the camera ray
+//! and the first light sample leave, the variance of the continuations' mean; V_c: a
+//! continuation's variance given that prefix) and its cost C(K) = C_p + K C_c, efficiency
+//! 1 / (V(K) C(K)) is greatest at K* = sqrt(V_c C_p / (V_b C_c)). The pilot traces the
+//! same samples of a grid of pixels unsplit and split in two: V(1) - V(2) = V_c / 2, and
+//! the rays they trace give C_p and C_c. Variances are weighted as the relative MSE weighs
+//! errors (by 1 / (mean^2 + 0.01)), costs counted in rays (measured on the Cornell box and
+//! the effects stage, a render's time is within 5% of proportional to its rays), so the
+//! choice is a pure function of the scene, the image size, the settings and the seed:
+//! every thread count and every machine of a farm makes the same one.
+
+use crate::render::{Renderer, trace_sample};
+use crate::sample_value::SampleValue;
+use crate::throughput::Throughput;
+
+/// The choices. Against Mitsuba's references (docs/trade-offs.md) four continuations beat
+/// two by 5% on the Cornell box and lost by 4% on the bunny box, a difference the pilot
+/// cannot resolve (its estimates of the prefix's small variance are mostly its own
+/// noise), while between one and two it is clear on every scene measured; and a render
+/// asked for N samples should not take three times as long as N unsplit samples do
+/// (two continuations take 1.7x). `--splits 4` remains for those who know their scene.
+const CHOICES: [u32; 2] = [1, 2];
+
+/// Pilot pixels per image side (at most), and samples per pilot pixel.
+const GRID: u32 = 32;
+const SAMPLES: u64 = 8;
+
+/// The pilot's two seeds (each combined with the render's), other than the render's own so
+/// that the pilot's samples are not the render's first ones.
+const PILOT_SEEDS: [u64; 2] = [0x5b11_7e5a_a1e5_0001, 0x5b11_7e5a_a1e5_0002];
+
+/// What a pilot measured: the relative-MSE-weighted squared error of a pixel's mean,
+/// unsplit and split in two (the variance of a sample, as Sobol samples realize it), and
+/// rays per sample for each.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Pilot {
+    pub variance: [f64; 2],
+    pub rays: [f64; 2],
+}
+
+impl Pilot {
+    /// The number of continuations the pilot predicts reaches a given error soonest (1
+    /// when the pilot saw nothing to split: no variance, or no continuation traced).
+    pub(crate) fn choice(&self) -> u32 {
+        let [v1, v2] = self.variance;
+        let [r1, r2] = self.rays;
+        let continuation_variance = 2.0 * (v1 - v2);
+        let continuation_rays = r2 - r1;
+        if !(continuation_variance > 0.0 && continuation_rays > 0.0) {
+            return 1;
+        }
+        // The prefix's variance can come out negative from the pilot's own noise; it is at
+        // least what a twentieth of the unsplit variance would be, which keeps K bounded
+        // by the cost ratio rather than by that noise. The prefix costs at least its
+        // camera ray.
+        let prefix_variance = (v1 - continuation_variance).max(0.05 * v1);
+        let prefix_rays = (r1 - continuation_rays).max(1.0);
+        let inverse_efficiency = |k: f64| {
+            (prefix_variance + continuation_variance / k) * (prefix_rays + k * continuation_rays)
+        };
+        // The first of the best: ties keep the cheaper render.
+        let mut best = CHOICES[0];
+        for &k in &CHOICES[1..] {
+            if inverse_efficiency(f64::from(k)) < inverse_efficiency(f64::from(best)) {
+                best = k;
+            }
+        }
+        best
+    }
+}
+
+/// Traces the pilot for `renderer`: up to `GRID` x `GRID` pixels spread over the image,
+/// each estimated twice (two seeds, `SAMPLES` samples each) unsplit and twice split in
+/// two with the same streams. The two estimates' difference measures the error of a
+/// pixel's mean as the render's Sobol samples make it (lower than independent samples'
+/// variance says, and most for what the camera ray and the first light sample find, which
+/// lie in a few well-stratified dimensions); the same streams for both modes make the
+/// difference between the modes mostly the split's.
+pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    renderer: &Renderer,
+) -> Pilot {
+    use rayon::prelude::*;
+    let settings = renderer.settings();
+    let (width, height) = (settings.width, settings.height);
+    let (columns, rows) = (width.min(GRID), height.min(GRID));
+    let tracers = [renderer.tracer(1), renderer.tracer(2)];
+    let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
+    let per_pixel: Vec<Pilot> = (0..columns * rows)
+        .into_par_iter()
+        .map(|i| {
+            // The centres of a columns x rows grid of equal cells.
+            let x = ((2 * (i % columns) + 1) * width / (2 * columns)).min(width - 1);
+            let y = ((2 * (i / columns) + 1) * height / (2 * rows)).min(height - 1);
+            // Per mode and seed, the mean colour of the pixel's samples.
+            let mut means = [[[0.0f64; 3]; 2]; 2];
+            let mut rays = [0.0; 2];
+            let mut value = SampleValue::default();
+            for (mode, tracer) in tracers.iter().enumerate() {
+                for (seed, rows) in seeds.iter().enumerate() {
+                    for s in 0..SAMPLES {
+                        let result = trace_sample::<N, FLUORESCENCE, T>(
+                            tracer,
+                            renderer.filter(),
+                            rows,
+                            x,
+                            y,
+                            s,
+                            &mut value,
+                        );
+                        rays[mode] += result.rays as f64;
+                        if result.valid && value.finite() {
+                            for (mean, v) in means[mode][seed].iter_mut().zip(value.xyz) {
+                                *mean += v / SAMPLES as f64;
+                            }
+                        }
+                    }
+                }
+            }
+            weighted_errors(&means, rays)
+        })
+        .collect();
+    // Summed in pixel order: the same sum on any number of threads.
+    let n = per_pixel.len() as f64;
+    let mut total = Pilot::default();
+    for p in &per_pixel {
+        for mode in 0..2 {
+            total.variance[mode] += p.variance[mode] / n;
+            total.rays[mode] += p.rays[mode] / (n * (2 * SAMPLES) as f64);
+        }
+    }
+    total
+}
+
+/// One pixel's squared error of a mean per mode, (a - b)^2 / 2 for the two seeds' means a
+/// and b, each channel's weighted by 1 / (mean^2 + 0.01) with the mean of all four
+/// estimates (as the relative MSE weighs errors), summed over the channels.
+fn weighted_errors(means: &[[[f64; 3]; 2]; 2], rays: [f64; 2]) -> Pilot {
+    let mut pilot = Pilot {
+        variance: [0.0; 2],
+        rays,
+    };
+    for k in 0..3 {
+        let mean = means.iter().flatten().map(|m| m[k]).sum::<f64>() / 4.0;
+        let weight = 1.0 / (mean * mean + 0.01);
+        for (mode, [a, b]) in means.iter().enumerate() {
+            pilot.variance[mode] += 0.5 * (a[k] - b[k]).powi(2) * weight;
+        }
+    }
+    pilot
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Pilot;
+
+    fn pilot(v1: f64, v2: f64, r1: f64, r2: f64) -> Pilot {
+        Pilot {
+            variance: [v1, v2],
+            rays: [r1, r2],
+        }
+    }
+
+    /// The Cornell box's measured figures (relative MSE 2.02e-3 unsplit, 0.98e-3 split in
+    /// two; 6.50 and 11.34 rays per sample): nearly all its variance follows the first
+    /// vertex, so continuations pay.
+    #[test]
+    fn indirect_light_splits() {
+        assert_eq!(pilot(2.02e-3, 0.98e-3, 6.50, 11.34).choice(), 2);
+    }
+
+    /// The effects stage's (8.56e-3, 7.23e-3; 4.94 and 6.93 rays): most of its error is in
+    /// what the camera ray and the first light sample find, so splitting does not pay.
+    #[test]
+    fn direct_light_does_not_split() {
+        assert_eq!(pilot(8.56e-3, 7.23e-3, 4.94, 6.93).choice(), 1);
+    }
+
+    /// V_b = V_c: splitting pays only where continuations are cheap.
+    #[test]
+    fn balanced_cases_follow_the_costs() {
+        // V(1) = 2, V(2) = 1.5 (V_b = V_c = 1); C_p = 1, C_c = 1: inverse efficiencies
+        // 2 * 2 = 4 against 1.5 * 3 = 4.5, one. With C_c = 0.25: 2 * 1.25 against 1.5 * 1.5.
+        assert_eq!(pilot(2.0, 1.5, 2.0, 3.0).choice(), 1);
+        assert_eq!(pilot(2.0, 1.5, 1.25, 1.5).choice(), 2);
+    }
+
+    /// Nothing measured, or nothing gained, splits nothing; no input gives a NaN choice.
+    #[test]
+    fn degenerate_pilots_do_not_split() {
+        for p in [
+            pilot(0.0, 0.0, 0.0, 0.0),
+            pilot(1.0, 1.0, 5.0, 8.0),
+            pilot(1.0, 2.0, 5.0, 8.0),
+            pilot(2.0, 1.0, 5.0, 5.0),
+            pilot(f64::NAN, 1.0, 5.0, 8.0),
+            pilot(2.0, 1.0, f64::NAN, 8.0),
+        ] {
+            assert_eq!(p.choice(), 1, "{p:?}");
+        }
+    }
+}
