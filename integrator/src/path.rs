@@ -226,7 +226,13 @@ impl Tracer<'_> {
     /// wavelengths light is evaluated at are always the film's, and no vertex pays for
     /// the check (the renderer picks the specialization from the scene's features). `T`
     /// is what the path carries: a spectrum, or Mueller matrices for polarized renders.
-    pub(crate) fn trace<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    #[inline(never)]
+    pub(crate) fn trace<
+        const N: usize,
+        const FLUORESCENCE: bool,
+        const SPLIT: bool,
+        T: Throughput<N>,
+    >(
         &self,
         stream: &mut SobolStream,
         sample_base: u64,
@@ -291,14 +297,16 @@ impl Tracer<'_> {
             loop {
                 // A later split's first vertex repeats the first one's without its light: the
                 // emission the camera sees and the light sample there were counted once.
-                let replay = depth == 0 && split > 0;
-                let hit = match first_hit.filter(|_| depth == 0) {
-                    Some(hit) => hit,
-                    None => {
+                let replay = SPLIT && depth == 0 && split > 0;
+                let hit = match &first_hit {
+                    Some(hit) if replay => *hit,
+                    _ => {
                         rays += 1;
                         let hit = self.scene.intersect(&ray);
-                        if depth == 0 {
+                        if SPLIT && depth == 0 {
                             first_hit = Some(hit);
+                        }
+                        if depth == 0 {
                             covered = hit.is_some();
                         }
                         hit
@@ -348,9 +356,17 @@ impl Tracer<'_> {
                 }
                 let dimension = sample_base + u64::from(depth) * DIMENSIONS_PER_BOUNCE;
                 // The first vertex's own draws are the camera sample's; the rest the split's.
-                let here: &mut SobolStream = if depth == 0 { stream } else { &mut bounces };
+                let here: &mut SobolStream = if SPLIT && depth > 0 {
+                    &mut bounces
+                } else {
+                    stream
+                };
                 here.set_dimension(dimension);
                 let u_light = here.next_2d();
+                // A split first vertex draws these again below, from its continuation.
+                let mut u_lobe = here.next_1d();
+                let mut u_bsdf = here.next_2d();
+                let mut u_roulette = here.next_1d();
 
                 let material = self.scene.material(&hit);
                 let bsdf = match material {
@@ -363,7 +379,6 @@ impl Tracer<'_> {
                         // column F or the lights' spectra, one-sample MIS with the balance
                         // heuristic (weight (R + F) / F * M / p_mix). The surface is
                         // Lambertian either way.
-                        here.set_dimension(dimension + 6);
                         let u_wavelength = here.next_1d();
                         let guide = self.scene.light_wavelengths(&hit);
                         let r = reflectance.at_uv(hit.tex, &transport);
@@ -472,7 +487,7 @@ impl Tracer<'_> {
                     }
                 }
 
-                if depth == 0 {
+                if SPLIT && depth == 0 {
                     if split == 0 && !bsdf.is_delta() {
                         splits = self.splits.max(1);
                     }
@@ -481,11 +496,11 @@ impl Tracer<'_> {
                         beta.scale_uniform(1.0 / splits as f32);
                         eta_scale *= splits as f32;
                     }
+                    bounces.set_dimension(dimension + 2);
+                    u_lobe = bounces.next_1d();
+                    u_bsdf = bounces.next_2d();
+                    u_roulette = bounces.next_1d();
                 }
-                bounces.set_dimension(dimension + 2);
-                let u_lobe = bounces.next_1d();
-                let u_bsdf = bounces.next_2d();
-                let u_roulette = bounces.next_1d();
 
                 // BSDF sampling.
                 let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {

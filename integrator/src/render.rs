@@ -431,14 +431,30 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
         (y as f32 + 0.5 + offset.y) / h as f32,
     );
     value.clear();
-    tracer.trace::<N, FLUORESCENCE, T>(
-        &mut stream,
-        FIRST_BOUNCE_DIMENSION,
-        u_lambda,
-        film,
-        w as f32 / h as f32,
-        &mut |radiance, lambdas| value.add(tracer, settings.outputs, radiance, lambdas),
-    )
+    let aspect = w as f32 / h as f32;
+    let mut sink = |radiance: &T::Radiance, lambdas: &_| {
+        value.add(tracer, settings.outputs, radiance, lambdas)
+    };
+    // Unsplit renders run a path tracer compiled without the splitting code.
+    if tracer.splits > 1 {
+        tracer.trace::<N, FLUORESCENCE, true, T>(
+            &mut stream,
+            FIRST_BOUNCE_DIMENSION,
+            u_lambda,
+            film,
+            aspect,
+            &mut sink,
+        )
+    } else {
+        tracer.trace::<N, FLUORESCENCE, false, T>(
+            &mut stream,
+            FIRST_BOUNCE_DIMENSION,
+            u_lambda,
+            film,
+            aspect,
+            &mut sink,
+        )
+    }
 }
 
 /// A light path's contribution to the film, at a film position.

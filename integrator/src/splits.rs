@@ -30,6 +30,9 @@ const CHOICES: [u32; 2] = [1, 2];
 const GRID: u32 = 32;
 const SAMPLES: u64 = 8;
 
+/// The share of pilot pixels with the largest errors left out of the estimate.
+const TRIMMED: f64 = 0.02;
+
 /// The pilot's two seeds (each combined with the render's), other than the render's own so
 /// that the pilot's samples are not the render's first ones.
 const PILOT_SEEDS: [u64; 2] = [0x5b11_7e5a_a1e5_0001, 0x5b11_7e5a_a1e5_0002];
@@ -124,10 +127,28 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             weighted_errors(&means, rays)
         })
         .collect();
-    // Summed in pixel order: the same sum on any number of threads.
-    let n = per_pixel.len() as f64;
+    summarize(&per_pixel)
+}
+
+/// The pilot's pixels' mean error and rays, without the pixels of the largest errors
+/// (`TRIMMED` of them): a squared difference of two estimates is heavy-tailed where
+/// rare paths carry much light (caustics, small bright sources), and one such pixel
+/// decided the choice on the effects stage, differently at each image size. Sorted by
+/// value, ties by position, and summed in order: the same result on any thread count.
+fn summarize(per_pixel: &[Pilot]) -> Pilot {
+    let error = |p: &Pilot| p.variance[0] + p.variance[1];
+    let mut order: Vec<usize> = (0..per_pixel.len()).collect();
+    order.sort_by(|&a, &b| {
+        error(&per_pixel[a])
+            .total_cmp(&error(&per_pixel[b]))
+            .then(a.cmp(&b))
+    });
+    let kept = per_pixel.len() - (per_pixel.len() as f64 * TRIMMED).ceil() as usize;
+    let kept = kept.max(1).min(per_pixel.len());
+    let n = kept as f64;
     let mut total = Pilot::default();
-    for p in &per_pixel {
+    for &i in &order[..kept] {
+        let p = &per_pixel[i];
         for mode in 0..2 {
             total.variance[mode] += p.variance[mode] / n;
             total.rays[mode] += p.rays[mode] / (n * (2 * SAMPLES) as f64);
@@ -187,6 +208,25 @@ mod tests {
         // 2 * 2 = 4 against 1.5 * 3 = 4.5, one. With C_c = 0.25: 2 * 1.25 against 1.5 * 1.5.
         assert_eq!(pilot(2.0, 1.5, 2.0, 3.0).choice(), 1);
         assert_eq!(pilot(2.0, 1.5, 1.25, 1.5).choice(), 2);
+    }
+
+    /// One pixel whose estimates disagree wildly (a rare bright path in one of them) does
+    /// not decide: without it splitting gains nothing here, and it is left out.
+    #[test]
+    fn an_outlier_pixel_does_not_decide() {
+        let mut pixels = vec![pilot(1.0, 0.9, 80.0, 128.0); 99];
+        pixels.push(pilot(1000.0, 1.0, 80.0, 128.0));
+        let summary = super::summarize(&pixels);
+        assert!(
+            (summary.variance[0] - 1.0).abs() < 1e-12 && (summary.variance[1] - 0.9).abs() < 1e-12
+        );
+        assert!((summary.rays[0] - 5.0).abs() < 1e-12 && (summary.rays[1] - 8.0).abs() < 1e-12);
+        assert_eq!(summary.choice(), 1);
+        // Counted in, it would have split.
+        let all = pixels.iter().fold([0.0; 2], |s, p| {
+            [s[0] + p.variance[0], s[1] + p.variance[1]]
+        });
+        assert_eq!(pilot(all[0], all[1], 5.0, 8.0).choice(), 2);
     }
 
     /// Nothing measured, or nothing gained, splits nothing; no input gives a NaN choice.

@@ -170,6 +170,9 @@ impl SobolStream {
     /// assert_eq!(stream.split(1, 4).next_2d(), SobolStream::new(7, 42, 13).next_2d());
     /// ```
     pub fn split(&self, part: u32, parts: u32) -> SobolStream {
+        if parts == 1 && part == 0 {
+            return self.clone();
+        }
         let index = self.reversed_index.reverse_bits();
         Self {
             key: self.key,

@@ -153,6 +153,7 @@ pub struct Hit {
 
 impl Hit {
     /// A ray leaving the hit along `direction`, offset so it cannot hit its own surface.
+    #[inline]
     pub fn spawn(&self, direction: Vec3) -> Ray {
         let origin = offset_ray_origin(self.p, self.error, self.normal, direction);
         Ray::new(origin, direction, f32::INFINITY)
@@ -160,6 +161,7 @@ impl Hit {
 
     /// A shadow ray towards a point `distance` away along the unit `direction` (infinity
     /// for distant lights), stopping just short of it.
+    #[inline]
     pub fn spawn_to(&self, direction: Vec3, distance: f32) -> Ray {
         let origin = offset_ray_origin(self.p, self.error, self.normal, direction);
         let t_max = if distance.is_finite() {
