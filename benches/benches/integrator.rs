@@ -1,12 +1,12 @@
 //! prism-integrator: whole-render throughput in paths per second on the Cornell box and the
-//! bunny box at a small size (64 x 64, 4 spp, unbounded depth, C = 4, visible sampler), on
-//! one thread so that the number is per core. The Mitsuba comparison is
+//! bunny box at a small size (64 x 64, 4 spp, unbounded depth, C = 8, visible sampler), on
+//! one thread so that the number is per core, unsplit. The Mitsuba comparison is
 //! `benches/peer/compare.py` (whole renders, both renderers in one run).
 
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use prism_integrator::{RenderSettings, render};
+use prism_integrator::{RenderSettings, Splits, render};
 use prism_scene::load::load_geometry;
 use prism_scene::world::Scene;
 
@@ -23,7 +23,10 @@ fn integrator(c: &mut Criterion) {
         .width(64)
         .height(64)
         .samples(0..4)
-        .threads(1);
+        .threads(1)
+        // Paths per second of the tracer itself: the automatic choice's pilot would be
+        // most of a render this small.
+        .splits(Splits::Fixed(1));
     let paths = u64::from(settings.width * settings.height) * 4;
     let mut group = c.benchmark_group("render 64x64x4 one thread");
     group.throughput(Throughput::Elements(paths));

@@ -3,7 +3,7 @@
 //! every matrix at the extremes.
 
 use num_complex::Complex64;
-use prism_scene::glam::{Vec3, Vec4};
+use prism_scene::glam::{Vec3, Vec4, Vec4Swizzles};
 use prism_scene::polarization::{Mueller, Stokes, fresnel_amplitudes, rotate_frame};
 use proptest::prelude::*;
 
@@ -283,7 +283,14 @@ proptest! {
         ] {
             let out = m.apply(s);
             if theta.is_finite() {
-                prop_assert!(out.is_physical(1e-4), "{out:?} from {s:?}");
+                // f32 rounding leaves an error of a few ulps of the input's intensity, which
+                // near extinction (a polarizer crossed with fully polarized light: 6.5e-5 out
+                // of 3.77) is a percent of what comes out: the bound allows for it.
+                let slack = 1e-6 * s.intensity();
+                prop_assert!(
+                    out.0.is_finite() && out.0.yzw().length() <= out.0.x * (1.0 + 1e-4) + slack,
+                    "{out:?} from {s:?}"
+                );
             }
         }
     }

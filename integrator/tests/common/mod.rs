@@ -217,3 +217,17 @@ pub fn furnace_scene() -> Scene {
     let triangle_material = vec![0; triangles.len()];
     furnace(triangles, triangle_material, vec![white], 0.6)
 }
+
+/// Asserts that each channel's image mean of `film` is `expected` within five standard
+/// errors and 0.1% (a scene whose every pixel has the same expectation); `what` names the
+/// configuration in the message.
+pub fn assert_image_mean(film: &Film, expected: [f64; 3], what: &str) {
+    for (k, expected) in expected.into_iter().enumerate() {
+        let (mean, error) = mean_and_error(film, k);
+        let tolerance = 5.0 * error + 1e-3 * expected;
+        assert!(
+            (mean - expected).abs() < tolerance,
+            "{what} channel {k}: {mean} vs {expected} (+-{tolerance})"
+        );
+    }
+}
