@@ -110,7 +110,7 @@ def main():
         cmd += ["--max-depth", str(a.depth - 1)]
     prism_stats = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
     result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
-              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes")}}
+              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits")}}
     images = {"prism": read_exr(prism_exr)}
     for variant in a.variants.split(","):
         exr = os.path.join(out, f"{variant}.exr")
