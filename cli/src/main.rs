@@ -9,6 +9,7 @@
 #![allow(rustdoc::broken_intra_doc_links)]
 
 mod commands;
+mod cpu;
 mod memory;
 mod output;
 mod scene_file;
@@ -52,6 +53,11 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    let missing = cpu::missing_features();
+    if !missing.is_empty() {
+        eprintln!("prism: error: {}", cpu::unsupported(&missing));
+        return ExitCode::from(1);
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(error) => return usage_error(error),
