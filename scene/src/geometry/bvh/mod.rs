@@ -1,5 +1,5 @@
-//! The BVH: obvhs builds a binary tree (PLOC with reinsertion), prism collapses it into a
-//! four-wide tree with triangle packets for leaves and traverses it with SSE.
+//! The BVH: obvhs builds a binary tree (PLOC with reinsertion), prism collapses it into an
+//! eight-wide tree with runs of triangle packets for leaves and traverses it with SSE.
 
 mod packet;
 mod traverse;
@@ -51,7 +51,7 @@ pub struct SurfaceHit {
     pub vertices: [Vec3; 3],
 }
 
-/// A four-wide BVH over triangles with packets of four triangles for leaves, traversed
+/// An eight-wide BVH over triangles with packets of four triangles for leaves, traversed
 /// one ray at a time with SSE (Wald, Benthin and Boulos, "Getting rid of packets", RT
 /// 2008), every hit decided by prism's watertight triangle test.
 pub struct Bvh {

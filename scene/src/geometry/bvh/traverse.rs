@@ -1,11 +1,11 @@
-//! Single-ray traversal of the four-wide BVH: one SSE slab test per node for all four
+//! Single-ray traversal of the eight-wide BVH: one SSE slab test per group of four
 //! children, children visited nearest first for closest hits (Wald, Benthin and Boulos,
 //! RT 2008, §4), and leaves tested four triangles at a time.
 
 use glam::{Vec3, Vec4};
 
 use super::packet::{Packet, RayLanes};
-use super::wide::{ChildRef, LEAF, Node, WideBvh};
+use super::wide::{ChildRef, LEAF, Node, WIDTH, WideBvh, leaf_packets};
 use crate::geometry::Ray;
 use crate::geometry::offset::gamma;
 use crate::geometry::triangle::{TriangleHit, WatertightRay};
@@ -18,9 +18,9 @@ pub(super) struct Pending {
 }
 
 /// Entries a traversal of a tree `depth` nodes deep can hold at once: each level leaves at
-/// most three siblings behind.
+/// most all but one of a node's children behind.
 pub(super) fn stack_size(depth: usize) -> usize {
-    3 * depth + 1
+    (WIDTH - 1) * depth + 1
 }
 
 /// The ray's slab-test set-up.
@@ -55,13 +55,27 @@ impl BoxRay {
     }
 
     /// Which children the ray enters before `t_max`, as a bit mask, and where it enters
-    /// each. The exit distance is widened by 1 + 2 gamma(3), the bound on the slab test's
-    /// rounding (*PBR* 4th ed. §6.8.2), so rounding never culls a box the ray touches.
+    /// each: every group of four children in turn (the groups' tests are independent, so
+    /// they overlap in the pipeline).
     #[inline(always)]
-    fn enter(&self, node: &Node, t_max: f32) -> (u32, Vec4) {
-        let slab = |plane: usize, axis: usize| {
-            (node.bounds[plane] - self.origin[axis]) * self.inverse[axis]
-        };
+    fn enter(&self, node: &Node, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let mut mask = 0;
+        let mut t_enter = [0.0; WIDTH];
+        for (group, bounds) in node.bounds.iter().enumerate() {
+            let (m, t) = self.enter_group(bounds, t_max);
+            mask |= m << (4 * group);
+            t_enter[4 * group..4 * group + 4].copy_from_slice(&t.to_array());
+        }
+        (mask, t_enter)
+    }
+
+    /// [`BoxRay::enter`] for four children. The exit distance is widened by 1 + 2
+    /// gamma(3), the bound on the slab test's rounding (*PBR* 4th ed. §6.8.2), so rounding
+    /// never culls a box the ray touches.
+    #[inline(always)]
+    fn enter_group(&self, bounds: &[Vec4; 6], t_max: f32) -> (u32, Vec4) {
+        let slab =
+            |plane: usize, axis: usize| (bounds[plane] - self.origin[axis]) * self.inverse[axis];
         let t_enter = slab(self.near[0], 0)
             .max(slab(self.near[1], 1))
             .max(slab(self.near[2], 2).max(Vec4::ZERO));
@@ -93,20 +107,21 @@ impl WideBvh {
         let mut current: ChildRef = 0;
         loop {
             if current & LEAF != 0 {
-                let packet = &self.packets[(current & !LEAF) as usize];
-                let lanes = lanes.test(packet, t_max);
-                if let Some(lane) = lanes.nearest() {
-                    let hit = lanes.hit(lane);
-                    t_max = hit.t;
-                    best = Some((packet, lane, hit));
-                }
-                let mut exact = lanes.exact;
-                while exact != 0 {
-                    let lane = exact.trailing_zeros() as usize;
-                    exact &= exact - 1;
-                    if let Some(hit) = watertight.intersect(packet.triangle(lane), t_max) {
+                for packet in &self.packets[leaf_packets(current)] {
+                    let lanes = lanes.test(packet, t_max);
+                    if let Some(lane) = lanes.nearest() {
+                        let hit = lanes.hit(lane);
                         t_max = hit.t;
                         best = Some((packet, lane, hit));
+                    }
+                    let mut exact = lanes.exact;
+                    while exact != 0 {
+                        let lane = exact.trailing_zeros() as usize;
+                        exact &= exact - 1;
+                        if let Some(hit) = watertight.intersect(packet.triangle(lane), t_max) {
+                            t_max = hit.t;
+                            best = Some((packet, lane, hit));
+                        }
                     }
                 }
             } else {
@@ -118,7 +133,6 @@ impl WideBvh {
                         continue;
                     }
                     // Push the children hit, keeping the pushed run sorted nearest on top.
-                    let t_enter = t_enter.to_array();
                     let base = top;
                     while mask != 0 {
                         let lane = mask.trailing_zeros() as usize;
@@ -167,17 +181,18 @@ impl WideBvh {
             top -= 1;
             let current = stack[top].child;
             if current & LEAF != 0 {
-                let packet = &self.packets[(current & !LEAF) as usize];
-                let lanes = lanes.test(packet, t_max);
-                if lanes.hits != 0 {
-                    return true;
-                }
-                let mut exact = lanes.exact;
-                while exact != 0 {
-                    let lane = exact.trailing_zeros() as usize;
-                    exact &= exact - 1;
-                    if watertight.intersect(packet.triangle(lane), t_max).is_some() {
+                for packet in &self.packets[leaf_packets(current)] {
+                    let lanes = lanes.test(packet, t_max);
+                    if lanes.hits != 0 {
                         return true;
+                    }
+                    let mut exact = lanes.exact;
+                    while exact != 0 {
+                        let lane = exact.trailing_zeros() as usize;
+                        exact &= exact - 1;
+                        if watertight.intersect(packet.triangle(lane), t_max).is_some() {
+                            return true;
+                        }
                     }
                 }
             } else {
