@@ -42,13 +42,20 @@ pub(super) type ChildRef = u32;
 pub(super) const LEAF: ChildRef = 1 << 31;
 /// An unused child slot (its bounds are empty, so no ray reaches it).
 pub(super) const EMPTY: ChildRef = u32::MAX;
-/// Where a leaf reference keeps its number of packets, less one.
-const RUN_SHIFT: u32 = 29;
+/// Where a leaf reference keeps its number of packets, less one: one bit, below [`LEAF`],
+/// which leaves 2^30 packets (at least 2^30 triangles) addressable.
+const RUN_SHIFT: u32 = 30;
 const FIRST_MASK: ChildRef = (1 << RUN_SHIFT) - 1;
+const _: () = assert!(LEAF_PACKETS <= 2, "a leaf's run length has one bit");
 
 /// The leaf of packets `first..first + count`.
 fn leaf(first: usize, count: usize) -> ChildRef {
-    debug_assert!((1..=LEAF_PACKETS).contains(&count) && first <= FIRST_MASK as usize);
+    debug_assert!((1..=LEAF_PACKETS).contains(&count));
+    // A scene of over 2^30 triangles needs nearly 40 GB for its vertices alone.
+    assert!(
+        first <= FIRST_MASK as usize,
+        "a BVH of more than 2^30 leaf packets cannot be addressed"
+    );
     LEAF | ((count as ChildRef - 1) << RUN_SHIFT) | first as ChildRef
 }
 
