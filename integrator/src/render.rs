@@ -436,25 +436,20 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
         value.add(tracer, settings.outputs, radiance, lambdas)
     };
     // Unsplit renders run a path tracer compiled without the splitting code.
-    if tracer.splits > 1 {
-        tracer.trace::<N, FLUORESCENCE, true, T>(
-            &mut stream,
-            FIRST_BOUNCE_DIMENSION,
-            u_lambda,
-            film,
-            aspect,
-            &mut sink,
-        )
+    let trace = if tracer.splits > 1 {
+        Tracer::trace::<N, FLUORESCENCE, true, T>
     } else {
-        tracer.trace::<N, FLUORESCENCE, false, T>(
-            &mut stream,
-            FIRST_BOUNCE_DIMENSION,
-            u_lambda,
-            film,
-            aspect,
-            &mut sink,
-        )
-    }
+        Tracer::trace::<N, FLUORESCENCE, false, T>
+    };
+    trace(
+        tracer,
+        &mut stream,
+        FIRST_BOUNCE_DIMENSION,
+        u_lambda,
+        film,
+        aspect,
+        &mut sink,
+    )
 }
 
 /// A light path's contribution to the film, at a film position.
