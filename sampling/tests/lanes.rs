@@ -93,6 +93,31 @@ proptest! {
     }
 
     #[test]
+    fn split_lanes_are_the_split_streams(
+        seed in any::<u64>(),
+        pixel in any::<u64>(),
+        first in any::<u64>(),
+        dimension in 0u64..(1 << 30),
+        parts in 1u32..9,
+        part_seed in any::<u32>(),
+    ) {
+        let part = part_seed % parts;
+        let mut lanes = SobolLanes::<8>::new(seed, pixel, first);
+        lanes.set_dimension(dimension);
+        let mut split = lanes.split(part, parts);
+        let [x, y] = split.next_2d();
+        let z = split.next_1d();
+        for i in 0..8u64 {
+            let mut stream = SobolStream::new(seed, pixel, first.wrapping_add(i));
+            stream.set_dimension(dimension);
+            let mut s = stream.split(part, parts);
+            let p = s.next_2d();
+            prop_assert_eq!((x.0[i as usize].to_bits(), y.0[i as usize].to_bits()), (p.x.to_bits(), p.y.to_bits()));
+            prop_assert_eq!(z.0[i as usize].to_bits(), s.next_1d().to_bits());
+        }
+    }
+
+    #[test]
     fn draws_stay_in_the_unit_interval(seed in any::<u64>(), pixel in any::<u64>(), first in any::<u64>()) {
         let mut lanes = SobolLanes::<16>::new(seed, pixel, first);
         for _ in 0..8 {

@@ -32,6 +32,21 @@ impl<const W: usize> SobolLanes<W> {
         }
     }
 
+    /// Part `part` of `parts` of each lane's sample, as [`SobolStream::split`] gives it:
+    /// lane `i` becomes sample `(first + i) * parts + part`, at the same dimension.
+    pub fn split(&self, part: u32, parts: u32) -> Self {
+        Self {
+            key: self.key,
+            reversed_index: self.reversed_index.map(|r| {
+                r.reverse_bits()
+                    .wrapping_mul(parts)
+                    .wrapping_add(part)
+                    .reverse_bits()
+            }),
+            dimension: self.dimension,
+        }
+    }
+
     /// Jumps to `dimension`.
     pub fn set_dimension(&mut self, dimension: u64) {
         self.dimension = dimension;
