@@ -126,6 +126,17 @@ pub(super) fn pair_hash(key: u64, dimension: u64) -> u64 {
     mix64(key ^ dimension.wrapping_mul(0x9e37_79b9_7f4a_7c15))
 }
 
+/// The bit-reversed index of part `part` of `parts` of the sample whose bit-reversed
+/// index is `reversed`: sample `index * parts + part` (see `SobolStream::split`).
+#[inline]
+pub(super) fn split_reversed_index(reversed: u32, part: u32, parts: u32) -> u32 {
+    reversed
+        .reverse_bits()
+        .wrapping_mul(parts)
+        .wrapping_add(part)
+        .reverse_bits()
+}
+
 /// Owen-scrambled Sobol points, padded across dimensions (Burley 2020): each pair of
 /// dimensions takes the first two Sobol dimensions at an index shuffled by its own hash,
 /// each coordinate Owen-scrambled by its own hash. Every pair is therefore a (0, 2)-sequence
@@ -173,10 +184,9 @@ impl SobolStream {
         if parts == 1 && part == 0 {
             return self.clone();
         }
-        let index = self.reversed_index.reverse_bits();
         Self {
             key: self.key,
-            reversed_index: index.wrapping_mul(parts).wrapping_add(part).reverse_bits(),
+            reversed_index: split_reversed_index(self.reversed_index, part, parts),
             dimension: self.dimension,
         }
     }

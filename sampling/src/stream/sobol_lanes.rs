@@ -5,7 +5,9 @@
 //! the dimension's hash) is computed once for all of them.
 
 use super::hash::{hash_words, mix64};
-use super::sobol::{DIMENSION_1_BYTES_REVERSED, by_bytes, laine_karras_permutation, pair_hash};
+use super::sobol::{
+    DIMENSION_1_BYTES_REVERSED, by_bytes, laine_karras_permutation, pair_hash, split_reversed_index,
+};
 use crate::lanes::{Lanes, Word};
 
 #[cfg(doc)]
@@ -37,12 +39,9 @@ impl<const W: usize> SobolLanes<W> {
     pub fn split(&self, part: u32, parts: u32) -> Self {
         Self {
             key: self.key,
-            reversed_index: self.reversed_index.map(|r| {
-                r.reverse_bits()
-                    .wrapping_mul(parts)
-                    .wrapping_add(part)
-                    .reverse_bits()
-            }),
+            reversed_index: self
+                .reversed_index
+                .map(|r| split_reversed_index(r, part, parts)),
             dimension: self.dimension,
         }
     }
