@@ -9,6 +9,8 @@
 //! [`Word`] (or, later, a float trait) computes bit-identical values for `u32` and for
 //! lanes of it. [`native_width`] is the width the running CPU handles in one register.
 
+pub mod real;
+pub mod trig;
 mod word;
 
 pub use word::Word;

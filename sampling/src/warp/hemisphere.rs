@@ -2,22 +2,15 @@ use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use glam::{Vec2, Vec3};
 
-use super::clamp_unit2;
+use super::{clamp_unit, clamp_unit2};
+use crate::lanes::real::{Real, V3};
 
 /// A point on the unit disk with uniform density 1/pi, by Shirley and Chiu's concentric
 /// mapping ("A low distortion map between disk and square", JGT 2(3), 1997), which keeps
 /// strata compact.
 pub fn uniform_disk_concentric(u: Vec2) -> Vec2 {
-    let offset = 2.0 * clamp_unit2(u) - Vec2::ONE;
-    if offset == Vec2::ZERO {
-        return Vec2::ZERO;
-    }
-    let (r, theta) = if offset.x.abs() > offset.y.abs() {
-        (offset.x, FRAC_PI_4 * (offset.y / offset.x))
-    } else {
-        (offset.y, FRAC_PI_2 - FRAC_PI_4 * (offset.x / offset.y))
-    };
-    r * Vec2::new(theta.cos(), theta.sin())
+    let [x, y] = disk_concentric([u.x, u.y]);
+    Vec2::new(x, y)
 }
 
 /// A direction on the +z hemisphere with density cos(theta) / pi (Malley's method: a
@@ -32,9 +25,38 @@ pub fn uniform_disk_concentric(u: Vec2) -> Vec2 {
 /// assert!((cosine_hemisphere_pdf(w) - w.z / std::f32::consts::PI).abs() < 1e-7);
 /// ```
 pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
-    let d = uniform_disk_concentric(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    Vec3::new(d.x, d.y, z)
+    cosine_direction([u.x, u.y]).into()
+}
+
+/// [`uniform_disk_concentric`] of one sample or of lanes of them.
+#[inline(always)]
+pub fn disk_concentric<R: Real>(u: [R; 2]) -> [R; 2] {
+    let [zero, one] = [R::splat(0.0), R::splat(1.0)];
+    let [x, y] = clamp_unit(u).map(|v| R::splat(2.0) * v - one);
+    let centre = !(x.ne(zero) | y.ne(zero));
+    // The square's concentric rings to the disk's circles: the larger coordinate is the
+    // radius, the other's ratio to it the angle within that quarter.
+    let x_major = x.abs().gt(y.abs());
+    let r = R::select(x_major, x, y);
+    let ratio = R::select(x_major, y, x) / R::select(x_major, x, y);
+    let theta = R::select(
+        x_major,
+        R::splat(FRAC_PI_4) * ratio,
+        R::splat(FRAC_PI_2) - R::splat(FRAC_PI_4) * ratio,
+    );
+    let (sin, cos) = theta.sin_cos();
+    [
+        R::select(centre, zero, r * cos),
+        R::select(centre, zero, r * sin),
+    ]
+}
+
+/// [`cosine_hemisphere`] of one sample or of lanes of them.
+#[inline(always)]
+pub fn cosine_direction<R: Real>(u: [R; 2]) -> V3<R> {
+    let [x, y] = disk_concentric(u);
+    let z = (R::splat(1.0) - (x * x + y * y)).max(R::splat(0.0)).sqrt();
+    V3::new(x, y, z)
 }
 
 /// The density of [`cosine_hemisphere`] for direction `w` (0 below the horizon).

@@ -8,15 +8,18 @@ mod spherical_triangle;
 mod triangle;
 
 pub use hemisphere::{
-    cosine_hemisphere, cosine_hemisphere_pdf, uniform_cone, uniform_cone_pdf,
-    uniform_disk_concentric, uniform_sphere, uniform_sphere_pdf,
+    cosine_direction, cosine_hemisphere, cosine_hemisphere_pdf, disk_concentric, uniform_cone,
+    uniform_cone_pdf, uniform_disk_concentric, uniform_sphere, uniform_sphere_pdf,
 };
 pub use spherical_triangle::{
-    SphericalTriangleSample, spherical_triangle, spherical_triangle_solid_angle,
+    SphericalTriangleSample, solid_angle, spherical_triangle, spherical_triangle_sample,
+    spherical_triangle_solid_angle,
 };
 pub use triangle::{uniform_triangle, uniform_triangle_pdf};
 
 use glam::Vec2;
+
+use crate::lanes::real::Real;
 
 /// Both components of `u` clamped into [0, 1) (NaN to 0).
 pub(crate) fn clamp_unit2(u: Vec2) -> Vec2 {
@@ -28,4 +31,11 @@ pub(crate) fn clamp_unit2(u: Vec2) -> Vec2 {
         }
     };
     Vec2::new(c(u.x), c(u.y))
+}
+
+/// [`clamp_unit2`] of one sample or of lanes of them: each number into [0, 1), NaN to 0.
+#[inline(always)]
+pub(crate) fn clamp_unit<R: Real>(u: [R; 2]) -> [R; 2] {
+    let zero = R::splat(0.0);
+    u.map(|x| R::select(zero.le(x), x.min(R::splat(1.0 - f32::EPSILON / 2.0)), zero))
 }

@@ -2,7 +2,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::clamp_unit2;
+use crate::lanes::real::{Real, V3};
 
 /// A direction sampled uniformly in the solid angle a triangle subtends.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -17,15 +17,17 @@ pub struct SphericalTriangleSample {
 /// Trans. Biomed. Eng. 30(2), 1983): 2 atan(|a . (b x c)| / (1 + a.b + b.c + c.a)) with
 /// a, b, c the unit directions to the vertices. 0 for degenerate input.
 pub fn spherical_triangle_solid_angle(p: Vec3, v: [Vec3; 3]) -> f32 {
+    solid_angle(p.into(), v.map(V3::from))
+}
+
+/// [`spherical_triangle_solid_angle`] of one point or of lanes of them.
+#[inline(always)]
+pub fn solid_angle<R: Real>(p: V3<R>, v: [V3<R>; 3]) -> R {
     let [a, b, c] = v.map(|q| (q - p).normalize_or_zero());
     let numerator = a.dot(b.cross(c)).abs();
-    let denominator = 1.0 + a.dot(b) + b.dot(c) + c.dot(a);
-    let omega = 2.0 * numerator.atan2(denominator);
-    if omega.is_finite() {
-        omega.max(0.0)
-    } else {
-        0.0
-    }
+    let denominator = R::splat(1.0) + a.dot(b) + b.dot(c) + c.dot(a);
+    let omega = R::splat(2.0) * numerator.atan2(denominator);
+    R::select(omega.is_finite(), omega.max(R::splat(0.0)), R::splat(0.0))
 }
 
 /// Uniform sampling of the solid angle subtended by triangle `v` as seen from `p`, by
@@ -38,25 +40,38 @@ pub fn spherical_triangle_solid_angle(p: Vec3, v: [Vec3; 3]) -> f32 {
 /// caller should sample by area. In `f32` the method loses accuracy for solid angles
 /// below about 1e-4 sr; callers switch to area sampling there (as pbrt does).
 pub fn spherical_triangle(p: Vec3, v: [Vec3; 3], u: Vec2) -> Option<SphericalTriangleSample> {
-    let u = clamp_unit2(u);
+    let (direction, pdf, valid) = spherical_triangle_sample(p.into(), v.map(V3::from), [u.x, u.y]);
+    valid.then(|| SphericalTriangleSample {
+        direction: direction.into(),
+        pdf,
+    })
+}
+
+/// [`spherical_triangle`] of one point or of lanes of them: the direction, its density
+/// and where it is valid (elsewhere both are meaningless).
+#[inline(always)]
+pub fn spherical_triangle_sample<R: Real>(
+    p: V3<R>,
+    v: [V3<R>; 3],
+    u: [R; 2],
+) -> (V3<R>, R, R::Mask) {
+    let [zero, one] = [R::splat(0.0), R::splat(1.0)];
+    let [ux, uy] = super::clamp_unit(u);
     let [a, b, c] = v.map(|q| (q - p).normalize_or_zero());
-    if a == Vec3::ZERO || b == Vec3::ZERO || c == Vec3::ZERO {
-        return None;
-    }
+    let mut valid = !(a.is_zero() | b.is_zero() | c.is_zero());
     // Normals of the great circles through the edges.
-    let n_ab = a.cross(b).try_normalize()?;
-    let n_bc = b.cross(c).try_normalize()?;
-    let n_ca = c.cross(a).try_normalize()?;
+    let (n_ab, ok_ab) = a.cross(b).try_normalize();
+    let (n_bc, ok_bc) = b.cross(c).try_normalize();
+    let (n_ca, ok_ca) = c.cross(a).try_normalize();
+    valid = valid & ok_ab & ok_bc & ok_ca;
     // Interior angles at the vertices.
     let alpha = angle_between(n_ab, -n_ca);
     let beta = angle_between(n_bc, -n_ab);
     let gamma = angle_between(n_ca, -n_bc);
-    let area = alpha + beta + gamma - PI;
-    if !(area > 0.0 && area.is_finite()) {
-        return None;
-    }
+    let area = alpha + beta + gamma - R::splat(PI);
+    valid = valid & area.gt(zero) & area.is_finite();
     // The sub-triangle of area u.x * area, expressed through its angle at `a`.
-    let area_pi = PI + u.x * area;
+    let area_pi = R::splat(PI) + ux * area;
     let (sin_ap, cos_ap) = area_pi.sin_cos();
     let (sin_alpha, cos_alpha) = alpha.sin_cos();
     let sin_phi = sin_ap * cos_alpha - cos_ap * sin_alpha;
@@ -64,34 +79,35 @@ pub fn spherical_triangle(p: Vec3, v: [Vec3; 3], u: Vec2) -> Option<SphericalTri
     let k1 = cos_phi + cos_alpha;
     let k2 = sin_phi - sin_alpha * a.dot(b);
     let denominator = (k2 * sin_phi + k1 * cos_phi) * sin_alpha;
-    let cos_b = if denominator != 0.0 {
-        ((k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha) / denominator).clamp(-1.0, 1.0)
-    } else {
-        1.0
-    };
-    let sin_b = (1.0 - cos_b * cos_b).max(0.0).sqrt();
+    let ratio = (k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha) / denominator;
+    let cos_b = R::select(denominator.ne(zero), clamp_signed_unit(ratio), one);
+    let sin_b = (one - cos_b * cos_b).max(zero).sqrt();
     // The sub-triangle's third vertex c' on the arc from a to c.
-    let c_perp = (c - c.dot(a) * a).try_normalize()?;
-    let c_prime = cos_b * a + sin_b * c_perp;
+    let (c_perp, ok_perp) = (c - a.scale(c.dot(a))).try_normalize();
+    valid = valid & ok_perp;
+    let c_prime = a.scale(cos_b) + c_perp.scale(sin_b);
     // A point on the arc from b to c'.
-    let cos_theta = 1.0 - u.y * (1.0 - c_prime.dot(b));
-    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    let perp = (c_prime - c_prime.dot(b) * b)
-        .try_normalize()
-        .unwrap_or(Vec3::ZERO);
-    let direction = (cos_theta * b + sin_theta * perp).try_normalize()?;
-    Some(SphericalTriangleSample {
-        direction,
-        pdf: 1.0 / area,
-    })
+    let cos_theta = one - uy * (one - c_prime.dot(b));
+    let sin_theta = (one - cos_theta * cos_theta).max(zero).sqrt();
+    let (perp, ok_arc) = (c_prime - b.scale(c_prime.dot(b))).try_normalize();
+    let perp = V3::select(ok_arc, perp, V3::zero());
+    let (direction, ok_direction) = (b.scale(cos_theta) + perp.scale(sin_theta)).try_normalize();
+    (direction, one / area, valid & ok_direction)
+}
+
+/// `x` clamped to [-1, 1] as `f32::clamp` clamps (NaN stays NaN).
+#[inline(always)]
+fn clamp_signed_unit<R: Real>(x: R) -> R {
+    let (low, high) = (R::splat(-1.0), R::splat(1.0));
+    R::select(x.lt(low), low, R::select(x.gt(high), high, x))
 }
 
 /// The angle between unit vectors, accurate for nearly parallel and nearly opposite
 /// vectors (asin of half the chord instead of acos of the dot product).
-fn angle_between(a: Vec3, b: Vec3) -> f32 {
-    if a.dot(b) < 0.0 {
-        PI - 2.0 * ((a + b).length() / 2.0).min(1.0).asin()
-    } else {
-        2.0 * ((b - a).length() / 2.0).min(1.0).asin()
-    }
+#[inline(always)]
+fn angle_between<R: Real>(a: V3<R>, b: V3<R>) -> R {
+    let opposite = a.dot(b).lt(R::splat(0.0));
+    let chord = V3::select(opposite, a + b, b - a);
+    let half = R::splat(2.0) * (chord.length() / R::splat(2.0)).asin_min1();
+    R::select(opposite, R::splat(PI) - half, half)
 }

@@ -1,0 +1,124 @@
+//! The warps written over `Real` give, lane by lane, what the scalar warps give: to the bit
+//! where no transcendental function is involved, and within the error of the lanes' sine,
+//! arcsine and arctangent (a few f32 epsilons, see `lanes::trig`) elsewhere. A direction
+//! or a density that differed by more would be a different estimator, not a rounding.
+
+use glam::{Vec2, Vec3};
+use prism_sampling::lanes::Lanes;
+use prism_sampling::lanes::real::V3;
+use prism_sampling::warp::{
+    cosine_direction, cosine_hemisphere, solid_angle, spherical_triangle,
+    spherical_triangle_sample, spherical_triangle_solid_angle,
+};
+use proptest::prelude::*;
+
+const W: usize = 8;
+
+fn lanes(values: [f32; W]) -> Lanes<f32, W> {
+    Lanes(values)
+}
+
+fn coordinate() -> impl Strategy<Value = f32> {
+    prop_oneof![-10.0f32..10.0, Just(0.0f32), -1e-3f32..1e-3]
+}
+
+fn point() -> impl Strategy<Value = Vec3> {
+    (coordinate(), coordinate(), coordinate()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+fn unit() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        0.0f32..1.0,
+        Just(0.0f32),
+        Just(1.0f32),
+        Just(f32::NAN),
+        Just(-0.5f32)
+    ]
+}
+
+proptest! {
+    #[test]
+    fn cosine_lanes_are_the_scalar_warp(u in prop::array::uniform8((unit(), unit()))) {
+        let dirs = cosine_direction([lanes(u.map(|p| p.0)), lanes(u.map(|p| p.1))]);
+        for (i, &(x, y)) in u.iter().enumerate() {
+            let scalar = cosine_hemisphere(Vec2::new(x, y));
+            let lane = dirs.lane(i);
+            // z = sqrt(1 - x^2 - y^2) magnifies the disk's rounding at the rim: compared
+            // squared.
+            prop_assert!((lane.truncate() - scalar.truncate()).abs().max_element() <= 4e-7, "{:?} vs {:?}", lane, scalar);
+            prop_assert!((lane.z * lane.z - scalar.z * scalar.z).abs() <= 1e-6, "{:?} vs {:?}", lane, scalar);
+            prop_assert!(lane.z >= 0.0 && lane.is_finite());
+        }
+    }
+
+    #[test]
+    fn spherical_triangle_lanes_are_the_scalar_warp(
+        p in prop::array::uniform8(point()),
+        v in prop::array::uniform3(point()),
+        u in prop::array::uniform8((unit(), unit())),
+    ) {
+        let vertices = v.map(|q| V3::from_fn(|_| q));
+        let (dirs, pdfs, valid) = spherical_triangle_sample::<Lanes<f32, W>>(
+            V3::from_fn(|i| p[i]),
+            vertices,
+            [lanes(u.map(|q| q.0)), lanes(u.map(|q| q.1))],
+        );
+        let omegas = solid_angle::<Lanes<f32, W>>(V3::from_fn(|i| p[i]), vertices);
+        for i in 0..W {
+            let omega = spherical_triangle_solid_angle(p[i], v);
+            prop_assert!((omegas.0[i] - omega).abs() <= 1e-6 * omega.max(1.0), "{} vs {}", omegas.0[i], omega);
+            let scalar = spherical_triangle(p[i], v, Vec2::new(u[i].0, u[i].1));
+            // Only well-conditioned triangles are compared: every two vertices at least
+            // 3 degrees from the same or the opposite direction as seen from p (near
+            // degenerate ones, p on an edge or a vertex, the scalar warp itself loses its
+            // digits; callers sample tiny ones by area).
+            let d = v.map(|q| (q - p[i]).normalize_or_zero());
+            let separated = [(0, 1), (1, 2), (2, 0)]
+                .iter()
+                .all(|&(a, b)| d[a].cross(d[b]).length() >= 0.05);
+            if !separated || !(1e-3..=6.0).contains(&omega) {
+                continue;
+            }
+            match scalar {
+                Some(s) => {
+                    prop_assert!(valid.get(i), "lane {} invalid, scalar {:?}", i, s);
+                    let d = dirs.lane(i);
+                    prop_assert!((d - s.direction).length() <= 2e-3, "{:?} vs {:?}", d, s.direction);
+                    prop_assert!((pdfs.0[i] - s.pdf).abs() <= 1e-4 * s.pdf, "{} vs {}", pdfs.0[i], s.pdf);
+                }
+                None => prop_assert!(!valid.get(i), "lane {} valid, scalar not", i),
+            }
+        }
+    }
+}
+
+/// Well inside the range where Arvo's construction is exact in f32, lanes and scalar
+/// agree far more closely than the bound above allows for the general case.
+#[test]
+fn a_light_overhead_samples_alike() {
+    let v = [
+        Vec3::new(-1.0, 2.0, -1.0),
+        Vec3::new(1.0, 2.0, -1.0),
+        Vec3::new(0.0, 2.0, 1.0),
+    ];
+    let p: [Vec3; W] =
+        std::array::from_fn(|i| Vec3::new(i as f32 * 0.3 - 1.0, 0.0, 0.1 * i as f32));
+    let u: [[f32; 2]; W] =
+        std::array::from_fn(|i| [(i as f32 + 0.5) / W as f32, ((i * 5) % W) as f32 / W as f32]);
+    let (dirs, pdfs, valid) = spherical_triangle_sample::<Lanes<f32, W>>(
+        V3::from_fn(|i| p[i]),
+        v.map(|q| V3::from_fn(|_| q)),
+        [lanes(u.map(|q| q[0])), lanes(u.map(|q| q[1]))],
+    );
+    for i in 0..W {
+        let s = spherical_triangle(p[i], v, Vec2::from(u[i])).expect("a valid sample");
+        assert!(valid.get(i));
+        assert!(
+            (dirs.lane(i) - s.direction).length() < 1e-5,
+            "{:?} vs {:?}",
+            dirs.lane(i),
+            s.direction
+        );
+        assert!((pdfs.0[i] - s.pdf).abs() < 1e-5 * s.pdf);
+    }
+}
