@@ -144,5 +144,79 @@ fn streams(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, packages, tables, streams);
+/// Sixteen light samples from sixteen points (a quad light's triangle overhead, as the
+/// Cornell box's): sixteen scalar spherical-triangle warps, or the same warp over lanes of
+/// 8 or 16, compiled for the build's baseline and, where the CPU has them, for AVX2 and
+/// AVX-512 (what a batch tracer dispatching by `native_width` would run).
+fn light_warps(c: &mut Criterion) {
+    use prism_sampling::glam::{Vec2, Vec3};
+    use prism_sampling::lanes::Lanes;
+    use prism_sampling::lanes::real::V3;
+    use prism_sampling::warp::{spherical_triangle, spherical_triangle_sample};
+
+    let v = [Vec3::new(-0.3, 1.0, -0.2), Vec3::new(0.3, 1.0, -0.2), Vec3::new(0.3, 1.0, 0.3)];
+    let points: Vec<Vec3> = (0..16)
+        .map(|i| Vec3::new(i as f32 * 0.1 - 0.8, -0.9 + 0.05 * i as f32, 0.3 - 0.04 * i as f32))
+        .collect();
+    let us: Vec<Vec2> = (0..16)
+        .map(|i| Vec2::new((i as f32 + 0.5) / 16.0, ((i * 7) % 16) as f32 / 16.0))
+        .collect();
+    #[inline(always)]
+    fn lanes<const W: usize>(points: &[Vec3], us: &[Vec2], v: &[Vec3; 3]) -> f32 {
+        let mut acc = 0.0;
+        for first in (0..16).step_by(W) {
+            let p = V3::<Lanes<f32, W>>::from_fn(|i| points[first + i]);
+            let u = [
+                Lanes::from_fn(|i| us[first + i].x),
+                Lanes::from_fn(|i| us[first + i].y),
+            ];
+            let (d, pdf, _) = spherical_triangle_sample(p, v.map(|q| V3::from_fn(|_| q)), u);
+            acc += (d.x + d.y + d.z + pdf).0.iter().sum::<f32>();
+        }
+        acc
+    }
+    let mut group = c.benchmark_group("spherical triangle for 16 points");
+    group.throughput(Throughput::Elements(16));
+    group.bench_function("16 scalar warps", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for (p, u) in points.iter().zip(&us) {
+                if let Some(s) = spherical_triangle(black_box(*p), v, *u) {
+                    acc += s.direction.x + s.direction.y + s.direction.z + s.pdf;
+                }
+            }
+            black_box(acc)
+        })
+    });
+    group.bench_function("lanes of 8", |b| b.iter(|| black_box(lanes::<8>(black_box(&points), &us, &v))));
+    group.bench_function("lanes of 16", |b| b.iter(|| black_box(lanes::<16>(black_box(&points), &us, &v))));
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        fn avx2(points: &[Vec3], us: &[Vec2], v: &[Vec3; 3]) -> f32 {
+            lanes::<8>(points, us, v)
+        }
+        #[target_feature(enable = "avx512f")]
+        fn avx512(points: &[Vec3], us: &[Vec2], v: &[Vec3; 3]) -> f32 {
+            lanes::<16>(points, us, v)
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked above).
+            #[allow(unsafe_code)]
+            group.bench_function("lanes of 8, AVX2", |b| {
+                b.iter(|| black_box(unsafe { avx2(black_box(&points), &us, &v) }))
+            });
+        }
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F (checked above).
+            #[allow(unsafe_code)]
+            group.bench_function("lanes of 16, AVX-512", |b| {
+                b.iter(|| black_box(unsafe { avx512(black_box(&points), &us, &v) }))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, packages, tables, streams, light_warps);
 criterion_main!(benches);
