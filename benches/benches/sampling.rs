@@ -150,13 +150,22 @@ fn streams(c: &mut Criterion) {
 /// AVX-512 (what a batch tracer dispatching by `native_width` would run).
 fn light_warps(c: &mut Criterion) {
     use prism_sampling::glam::{Vec2, Vec3};
-    use prism_sampling::lanes::Lanes;
-    use prism_sampling::lanes::real::V3;
+    use prism_sampling::lanes::real::{Reals, V3};
     use prism_sampling::warp::{spherical_triangle, spherical_triangle_sample};
 
-    let v = [Vec3::new(-0.3, 1.0, -0.2), Vec3::new(0.3, 1.0, -0.2), Vec3::new(0.3, 1.0, 0.3)];
+    let v = [
+        Vec3::new(-0.3, 1.0, -0.2),
+        Vec3::new(0.3, 1.0, -0.2),
+        Vec3::new(0.3, 1.0, 0.3),
+    ];
     let points: Vec<Vec3> = (0..16)
-        .map(|i| Vec3::new(i as f32 * 0.1 - 0.8, -0.9 + 0.05 * i as f32, 0.3 - 0.04 * i as f32))
+        .map(|i| {
+            Vec3::new(
+                i as f32 * 0.1 - 0.8,
+                -0.9 + 0.05 * i as f32,
+                0.3 - 0.04 * i as f32,
+            )
+        })
         .collect();
     let us: Vec<Vec2> = (0..16)
         .map(|i| Vec2::new((i as f32 + 0.5) / 16.0, ((i * 7) % 16) as f32 / 16.0))
@@ -165,13 +174,13 @@ fn light_warps(c: &mut Criterion) {
     fn lanes<const W: usize>(points: &[Vec3], us: &[Vec2], v: &[Vec3; 3]) -> f32 {
         let mut acc = 0.0;
         for first in (0..16).step_by(W) {
-            let p = V3::<Lanes<f32, W>>::from_fn(|i| points[first + i]);
+            let p = V3::<Reals<W>>::from_fn(|i| points[first + i]);
             let u = [
-                Lanes::from_fn(|i| us[first + i].x),
-                Lanes::from_fn(|i| us[first + i].y),
+                Reals::from_fn(|i| us[first + i].x),
+                Reals::from_fn(|i| us[first + i].y),
             ];
             let (d, pdf, _) = spherical_triangle_sample(p, v.map(|q| V3::from_fn(|_| q)), u);
-            acc += (d.x + d.y + d.z + pdf).0.iter().sum::<f32>();
+            acc += (d.x + d.y + d.z + pdf).0.0.iter().sum::<f32>();
         }
         acc
     }
@@ -188,8 +197,12 @@ fn light_warps(c: &mut Criterion) {
             black_box(acc)
         })
     });
-    group.bench_function("lanes of 8", |b| b.iter(|| black_box(lanes::<8>(black_box(&points), &us, &v))));
-    group.bench_function("lanes of 16", |b| b.iter(|| black_box(lanes::<16>(black_box(&points), &us, &v))));
+    group.bench_function("lanes of 8", |b| {
+        b.iter(|| black_box(lanes::<8>(black_box(&points), &us, &v)))
+    });
+    group.bench_function("lanes of 16", |b| {
+        b.iter(|| black_box(lanes::<16>(black_box(&points), &us, &v)))
+    });
     #[cfg(target_arch = "x86_64")]
     {
         #[target_feature(enable = "avx2")]

@@ -5,7 +5,7 @@
 
 use glam::{Vec2, Vec3};
 use prism_sampling::lanes::Lanes;
-use prism_sampling::lanes::real::V3;
+use prism_sampling::lanes::real::{Reals, V3};
 use prism_sampling::warp::{
     cosine_direction, cosine_hemisphere, solid_angle, spherical_triangle,
     spherical_triangle_sample, spherical_triangle_solid_angle,
@@ -14,8 +14,8 @@ use proptest::prelude::*;
 
 const W: usize = 8;
 
-fn lanes(values: [f32; W]) -> Lanes<f32, W> {
-    Lanes(values)
+fn lanes(values: [f32; W]) -> Reals<W> {
+    Reals(Lanes(values))
 }
 
 fn coordinate() -> impl Strategy<Value = f32> {
@@ -58,15 +58,15 @@ proptest! {
         u in prop::array::uniform8((unit(), unit())),
     ) {
         let vertices = v.map(|q| V3::from_fn(|_| q));
-        let (dirs, pdfs, valid) = spherical_triangle_sample::<Lanes<f32, W>>(
+        let (dirs, pdfs, valid) = spherical_triangle_sample::<Reals<W>>(
             V3::from_fn(|i| p[i]),
             vertices,
             [lanes(u.map(|q| q.0)), lanes(u.map(|q| q.1))],
         );
-        let omegas = solid_angle::<Lanes<f32, W>>(V3::from_fn(|i| p[i]), vertices);
+        let omegas = solid_angle::<Reals<W>>(V3::from_fn(|i| p[i]), vertices);
         for i in 0..W {
             let omega = spherical_triangle_solid_angle(p[i], v);
-            prop_assert!((omegas.0[i] - omega).abs() <= 1e-6 * omega.max(1.0), "{} vs {}", omegas.0[i], omega);
+            prop_assert!((omegas.lane(i) - omega).abs() <= 1e-6 * omega.max(1.0), "{} vs {}", omegas.lane(i), omega);
             let scalar = spherical_triangle(p[i], v, Vec2::new(u[i].0, u[i].1));
             // Only well-conditioned triangles are compared: every two vertices at least
             // 3 degrees from the same or the opposite direction as seen from p (near
@@ -84,9 +84,41 @@ proptest! {
                     prop_assert!(valid.get(i), "lane {} invalid, scalar {:?}", i, s);
                     let d = dirs.lane(i);
                     prop_assert!((d - s.direction).length() <= 2e-3, "{:?} vs {:?}", d, s.direction);
-                    prop_assert!((pdfs.0[i] - s.pdf).abs() <= 1e-4 * s.pdf, "{} vs {}", pdfs.0[i], s.pdf);
+                    prop_assert!((pdfs.lane(i) - s.pdf).abs() <= 1e-4 * s.pdf, "{} vs {}", pdfs.lane(i), s.pdf);
                 }
                 None => prop_assert!(!valid.get(i), "lane {} valid, scalar not", i),
+            }
+        }
+    }
+}
+
+proptest! {
+    /// With libm's functions in every lane, the lanes are the scalar warps to the bit,
+    /// degenerate triangles included: the generic code is the scalar code.
+    #[test]
+    fn exact_lanes_are_the_scalar_warps_to_the_bit(
+        p in prop::array::uniform8(point()),
+        v in prop::array::uniform3(point()),
+        u in prop::array::uniform8((unit(), unit())),
+    ) {
+        type Exact = Reals<W, true>;
+        let vertices = v.map(|q| V3::<Exact>::from_fn(|_| q));
+        let points = V3::<Exact>::from_fn(|i| p[i]);
+        let (us, vs) = (Reals(Lanes(u.map(|q| q.0))), Reals(Lanes(u.map(|q| q.1))));
+        let (dirs, pdfs, valid) = spherical_triangle_sample::<Exact>(points, vertices, [us, vs]);
+        let omegas = solid_angle::<Exact>(points, vertices);
+        let cosines = cosine_direction::<Exact>([us, vs]);
+        for i in 0..W {
+            let uv = Vec2::new(u[i].0, u[i].1);
+            prop_assert_eq!(omegas.lane(i).to_bits(), spherical_triangle_solid_angle(p[i], v).to_bits());
+            prop_assert_eq!(cosines.lane(i).to_array().map(f32::to_bits), cosine_hemisphere(uv).to_array().map(f32::to_bits));
+            match spherical_triangle(p[i], v, uv) {
+                Some(s) => {
+                    prop_assert!(valid.get(i));
+                    prop_assert_eq!(dirs.lane(i).to_array().map(f32::to_bits), s.direction.to_array().map(f32::to_bits));
+                    prop_assert_eq!(pdfs.lane(i).to_bits(), s.pdf.to_bits());
+                }
+                None => prop_assert!(!valid.get(i)),
             }
         }
     }
@@ -105,7 +137,7 @@ fn a_light_overhead_samples_alike() {
         std::array::from_fn(|i| Vec3::new(i as f32 * 0.3 - 1.0, 0.0, 0.1 * i as f32));
     let u: [[f32; 2]; W] =
         std::array::from_fn(|i| [(i as f32 + 0.5) / W as f32, ((i * 5) % W) as f32 / W as f32]);
-    let (dirs, pdfs, valid) = spherical_triangle_sample::<Lanes<f32, W>>(
+    let (dirs, pdfs, valid) = spherical_triangle_sample::<Reals<W>>(
         V3::from_fn(|i| p[i]),
         v.map(|q| V3::from_fn(|_| q)),
         [lanes(u.map(|q| q[0])), lanes(u.map(|q| q[1]))],
@@ -119,6 +151,6 @@ fn a_light_overhead_samples_alike() {
             dirs.lane(i),
             s.direction
         );
-        assert!((pdfs.0[i] - s.pdf).abs() < 1e-5 * s.pdf);
+        assert!((pdfs.lane(i) - s.pdf).abs() < 1e-5 * s.pdf);
     }
 }

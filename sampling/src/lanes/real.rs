@@ -50,6 +50,8 @@ pub trait Real:
     fn is_finite(self) -> Self::Mask;
     /// `a` where `mask` holds, else `b`.
     fn select(mask: Self::Mask, a: Self, b: Self) -> Self;
+    /// As `f32::signum`.
+    fn signum(self) -> Self;
     /// (sin, cos).
     fn sin_cos(self) -> (Self, Self);
     /// asin of the argument clamped to at most 1 (the callers' arguments are >= 0).
@@ -105,6 +107,10 @@ impl Real for f32 {
     #[inline(always)]
     fn select(mask: bool, a: Self, b: Self) -> Self {
         if mask { a } else { b }
+    }
+    #[inline(always)]
+    fn signum(self) -> Self {
+        f32::signum(self)
     }
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
@@ -165,15 +171,55 @@ impl<const W: usize> Not for LaneMask<W> {
     }
 }
 
-impl<const W: usize> Div for Lanes<f32, W> {
-    type Output = Self;
+/// W reals in lanes. `EXACT` chooses libm's sine, arcsine and arctangent lane by lane (the
+/// scalar path's values to the bit, for tests that a batch of paths is the scalar paths)
+/// instead of the vectorizable ones of [`super::trig`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reals<const W: usize, const EXACT: bool = false>(pub Lanes<f32, W>);
+
+impl<const W: usize, const EXACT: bool> Reals<W, EXACT> {
+    /// Lane `i` is `f(i)`.
     #[inline(always)]
-    fn div(self, rhs: Self) -> Self {
-        self.zip(rhs, |a, b| a / b)
+    pub fn from_fn(f: impl FnMut(usize) -> f32) -> Self {
+        Self(Lanes::from_fn(f))
+    }
+
+    /// Lane by lane `f`.
+    #[inline(always)]
+    pub fn map(self, f: impl FnMut(f32) -> f32) -> Self {
+        Self(self.0.map(f))
+    }
+
+    #[inline(always)]
+    fn zip(self, other: Self, f: impl FnMut(f32, f32) -> f32) -> Self {
+        Self(self.0.zip(other.0, f))
+    }
+
+    /// Lane `i`.
+    #[inline(always)]
+    pub fn lane(&self, i: usize) -> f32 {
+        self.0.0[i]
     }
 }
 
-impl<const W: usize> Neg for Lanes<f32, W> {
+macro_rules! reals_op {
+    ($trait:ident, $method:ident, $op:expr) => {
+        impl<const W: usize, const EXACT: bool> $trait for Reals<W, EXACT> {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(self, rhs: Self) -> Self {
+                self.zip(rhs, $op)
+            }
+        }
+    };
+}
+
+reals_op!(Add, add, |a, b| a + b);
+reals_op!(Sub, sub, |a, b| a - b);
+reals_op!(Mul, mul, |a, b| a * b);
+reals_op!(Div, div, |a, b| a / b);
+
+impl<const W: usize, const EXACT: bool> Neg for Reals<W, EXACT> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
@@ -181,11 +227,11 @@ impl<const W: usize> Neg for Lanes<f32, W> {
     }
 }
 
-impl<const W: usize> Real for Lanes<f32, W> {
+impl<const W: usize, const EXACT: bool> Real for Reals<W, EXACT> {
     type Mask = LaneMask<W>;
     #[inline(always)]
     fn splat(x: f32) -> Self {
-        Lanes::splat(x)
+        Self(Lanes::splat(x))
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
@@ -205,44 +251,52 @@ impl<const W: usize> Real for Lanes<f32, W> {
     }
     #[inline(always)]
     fn lt(self, other: Self) -> LaneMask<W> {
-        LaneMask::from_fn(|i| self.0[i] < other.0[i])
+        LaneMask::from_fn(|i| self.lane(i) < other.lane(i))
     }
     #[inline(always)]
     fn le(self, other: Self) -> LaneMask<W> {
-        LaneMask::from_fn(|i| self.0[i] <= other.0[i])
+        LaneMask::from_fn(|i| self.lane(i) <= other.lane(i))
     }
     #[inline(always)]
     fn gt(self, other: Self) -> LaneMask<W> {
-        LaneMask::from_fn(|i| self.0[i] > other.0[i])
+        LaneMask::from_fn(|i| self.lane(i) > other.lane(i))
     }
     #[inline(always)]
     fn ne(self, other: Self) -> LaneMask<W> {
-        LaneMask::from_fn(|i| self.0[i] != other.0[i])
+        LaneMask::from_fn(|i| self.lane(i) != other.lane(i))
     }
     #[inline(always)]
     fn is_finite(self) -> LaneMask<W> {
         // |x| < inf is false for infinities and NaN alike, and is one comparison.
-        LaneMask::from_fn(|i| self.0[i].abs() < f32::INFINITY)
+        LaneMask::from_fn(|i| self.lane(i).abs() < f32::INFINITY)
     }
     #[inline(always)]
     fn select(mask: LaneMask<W>, a: Self, b: Self) -> Self {
-        Lanes::from_fn(|i| {
+        Self::from_fn(|i| {
             let m = mask.0.0[i];
-            f32::from_bits((a.0[i].to_bits() & m) | (b.0[i].to_bits() & !m))
+            f32::from_bits((a.lane(i).to_bits() & m) | (b.lane(i).to_bits() & !m))
         })
     }
     #[inline(always)]
+    fn signum(self) -> Self {
+        self.map(f32::signum)
+    }
+    #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {
-        let both = self.map(trig::sin_cos);
-        (both.map(|p| p.0), both.map(|p| p.1))
+        let both = self.0.map(if EXACT { f32::sin_cos } else { trig::sin_cos });
+        (Self(both.map(|p| p.0)), Self(both.map(|p| p.1)))
     }
     #[inline(always)]
     fn asin_min1(self) -> Self {
-        self.map(trig::asin)
+        if EXACT {
+            self.map(|x| x.min(1.0).asin())
+        } else {
+            self.map(trig::asin)
+        }
     }
     #[inline(always)]
     fn atan2(self, x: Self) -> Self {
-        self.zip(x, trig::atan2)
+        self.zip(x, if EXACT { f32::atan2 } else { trig::atan2 })
     }
     #[inline(always)]
     fn none(mask: LaneMask<W>) -> bool {
@@ -382,11 +436,11 @@ impl From<V3<f32>> for glam::Vec3 {
     }
 }
 
-impl<const W: usize> V3<Lanes<f32, W>> {
+impl<const W: usize, const EXACT: bool> V3<Reals<W, EXACT>> {
     /// Lane `i` as a glam vector.
     #[inline(always)]
     pub fn lane(&self, i: usize) -> glam::Vec3 {
-        glam::Vec3::new(self.x.0[i], self.y.0[i], self.z.0[i])
+        glam::Vec3::new(self.x.lane(i), self.y.lane(i), self.z.lane(i))
     }
 
     /// Lanes of `f(i)`.
@@ -394,9 +448,9 @@ impl<const W: usize> V3<Lanes<f32, W>> {
     pub fn from_fn(mut f: impl FnMut(usize) -> glam::Vec3) -> Self {
         let v: [glam::Vec3; W] = std::array::from_fn(&mut f);
         Self::new(
-            Lanes::from_fn(|i| v[i].x),
-            Lanes::from_fn(|i| v[i].y),
-            Lanes::from_fn(|i| v[i].z),
+            Reals::from_fn(|i| v[i].x),
+            Reals::from_fn(|i| v[i].y),
+            Reals::from_fn(|i| v[i].z),
         )
     }
 }
