@@ -128,8 +128,27 @@ impl WideBvh {
                 let node = &self.nodes[current as usize];
                 let (mut mask, t_enter) = boxes.enter(node, t_max);
                 if mask != 0 {
-                    if mask & (mask - 1) == 0 {
-                        current = node.children[mask.trailing_zeros() as usize];
+                    let first = mask.trailing_zeros() as usize;
+                    let rest = mask & (mask - 1);
+                    if rest == 0 {
+                        current = node.children[first];
+                        continue;
+                    }
+                    // Two children: the nearer next and the other pushed, as the sorted
+                    // push below would order them (ties to the second), without its loop.
+                    if rest & (rest - 1) == 0 {
+                        let second = rest.trailing_zeros() as usize;
+                        let (near, far) = if t_enter[first] < t_enter[second] {
+                            (first, second)
+                        } else {
+                            (second, first)
+                        };
+                        stack[top] = Pending {
+                            child: node.children[far],
+                            t_enter: t_enter[far],
+                        };
+                        top += 1;
+                        current = node.children[near];
                         continue;
                     }
                     // Push the children hit, keeping the pushed run sorted nearest on top.
