@@ -7,6 +7,7 @@
   python3 benches/peer/compare.py box --reference ref.exr   # also compare against a reference
   python3 benches/peer/compare.py box --width 128 --reference-spp 4096   # render one first
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr   # Mitsuba's, 8192 spp
+  python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --repeats 3   # median times
 
 Issue 30's measure is the last form: the reference is a converged render of the independent
 renderer (Mitsuba 3's llvm_ad_spectral at 8192 spp, benches/peer/mitsuba_reference.py), made
@@ -94,6 +95,10 @@ def main():
     ap.add_argument("--peer-reference-spp", type=int, default=8192)
     ap.add_argument("--grid", type=int, default=8)
     ap.add_argument("--prism-args", default="", help="extra arguments for prism render")
+    ap.add_argument("--repeats", type=int, default=1,
+                    help="time every renderer this many times, in turns, and report the median (a shared "
+                         "host's speed drifts by 20-30%% within minutes; images and errors are the first run's, "
+                         "every run's being the same)")
     a = ap.parse_args()
     out = tempfile.mkdtemp(prefix="prism-peer-")
     prism = os.path.join(ROOT, "target", "release", "prism")
@@ -108,19 +113,39 @@ def main():
         # bounce more: measured 5.9% region differences at depth 8 on the box, 0.96% with
         # this (within noise at 256 spp).
         cmd += ["--max-depth", str(a.depth - 1)]
-    prism_stats = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
-    result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
-              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits")}}
-    images = {"prism": read_exr(prism_exr)}
-    for variant in a.variants.split(","):
-        exr = os.path.join(out, f"{variant}.exr")
+    if a.repeats < 1:
+        ap.error("--repeats is at least 1")
+    variants = a.variants.split(",")
+
+    def run_peer(variant, exr):
         peer = subprocess.run([sys.executable, os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"), variant,
                                a.scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
                               check=True, capture_output=True, text=True)
-        stats = json.loads(peer.stdout.strip().splitlines()[-1])
-        result[variant] = {"seconds": stats["seconds"], "paths_per_second": stats["paths_per_second"],
-                           "prism_speed_ratio": prism_stats["paths_per_second"] / stats["paths_per_second"]}
-        images[variant] = read_exr(exr)
+        return json.loads(peer.stdout.strip().splitlines()[-1])
+
+    # Every renderer once per turn, so that a drift of the host's speed reaches all alike.
+    prism_runs, peer_runs = [], {v: [] for v in variants}
+    for turn in range(a.repeats):
+        prism_runs.append(json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout))
+        for variant in variants:
+            peer_runs[variant].append(run_peer(variant, os.path.join(out, f"{variant}.exr")))
+    median = lambda runs: float(np.median([r["seconds"] for r in runs]))
+    prism_stats = dict(prism_runs[0])
+    prism_stats["seconds"] = median(prism_runs)
+    prism_stats["paths_per_second"] = a.width * a.width * a.spp / prism_stats["seconds"]
+    result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
+              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits")}}
+    if a.repeats > 1:
+        result["prism"]["seconds_each"] = [r["seconds"] for r in prism_runs]
+    images = {"prism": read_exr(prism_exr)}
+    for variant in variants:
+        seconds = median(peer_runs[variant])
+        pps = a.width * a.width * a.spp / seconds
+        result[variant] = {"seconds": seconds, "paths_per_second": pps,
+                           "prism_speed_ratio": prism_stats["paths_per_second"] / pps}
+        if a.repeats > 1:
+            result[variant]["seconds_each"] = [r["seconds"] for r in peer_runs[variant]]
+        images[variant] = read_exr(os.path.join(out, f"{variant}.exr"))
         result[variant]["prism_vs_peer"] = agreement(images["prism"], images[variant], a.grid)
     reference = a.reference
     if reference is None and a.peer_reference:
@@ -144,7 +169,7 @@ def main():
         result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
         errors = {name: relmse(img, ref) for name, img in images.items()}
         result["prism"]["relmse"] = errors["prism"]
-        for variant in a.variants.split(","):
+        for variant in variants:
             peer = result[variant]
             peer["relmse"] = errors[variant]
             peer["prism_error_ratio"] = errors["prism"] / errors[variant]
