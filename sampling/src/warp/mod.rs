@@ -23,17 +23,11 @@ use crate::lanes::real::Real;
 
 /// Both components of `u` clamped into [0, 1) (NaN to 0).
 pub(crate) fn clamp_unit2(u: Vec2) -> Vec2 {
-    let c = |v: f32| {
-        if v.is_nan() || v < 0.0 {
-            0.0
-        } else {
-            v.min(1.0 - f32::EPSILON / 2.0)
-        }
-    };
-    Vec2::new(c(u.x), c(u.y))
+    let [x, y] = clamp_unit([u.x, u.y]);
+    Vec2::new(x, y)
 }
 
-/// [`clamp_unit2`] of one sample or of lanes of them: each number into [0, 1), NaN to 0.
+/// Each number of one sample or of lanes of them into [0, 1), NaN to 0.
 #[inline(always)]
 pub(crate) fn clamp_unit<R: Real>(u: [R; 2]) -> [R; 2] {
     let zero = R::splat(0.0);
