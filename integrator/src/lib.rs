@@ -60,6 +60,7 @@ mod light_throughput;
 mod path;
 mod png;
 mod render;
+mod reuse;
 mod sample_value;
 mod settings;
 mod splits;

@@ -212,6 +212,27 @@ impl<'a> Renderer<'a> {
         let mut pass = Film::for_settings(settings);
         let trace = specialized!(self, trace_row);
         let rows = self.rows(settings.seed, samples.clone());
+        if settings.reuse > 1 {
+            let size = settings.reuse;
+            let band = crate::reuse::trace_band::<8>;
+            self.pool.install(|| {
+                let width = settings.width as usize;
+                let FilmSums {
+                    xyz: sums,
+                    coverage,
+                    ..
+                } = pass.sums_mut();
+                sums.par_chunks_mut(width * size as usize)
+                    .zip(coverage.par_chunks_mut(width * size as usize))
+                    .enumerate()
+                    .for_each(|(b, (xyz, cov))| {
+                        let (r, n) =
+                            band(&tracer, &self.filter, &rows, size, b as u32 * size, xyz, cov);
+                        rays.fetch_add(r, Ordering::Relaxed);
+                        nonfinite.fetch_add(n, Ordering::Relaxed);
+                    });
+            });
+        } else {
         self.pool.install(|| {
             let width = settings.width as usize;
             let spectral_width = width * pass.spectral_width();
@@ -268,6 +289,7 @@ impl<'a> Renderer<'a> {
                     },
                 );
         });
+        }
         if self.light_caustics() {
             macro_rules! light_by_width {
                 ($carrier:ident) => {

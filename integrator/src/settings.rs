@@ -96,6 +96,9 @@ pub struct RenderSettings {
     /// and the first vertex's light sample are shared, each continuation carries 1 /
     /// splits of the throughput. Chosen per render by default ([`Splits::Auto`]).
     pub splits: Splits,
+    /// Path reuse: the side of the square tiles of pixels whose paths share their second
+    /// vertices (1: none).
+    pub reuse: u32,
     /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
     /// measured scenes, the repository's docs/trade-offs.md).
     pub wavelengths: usize,
@@ -157,6 +160,7 @@ impl Default for RenderSettings {
             seed: 0,
             max_depth: None,
             splits: Splits::Auto,
+            reuse: 1,
             wavelengths: 8,
             lambda_sampler: LambdaSampler::default(),
             scheme: PackageScheme::HeroRotation,
@@ -185,6 +189,7 @@ setters!(RenderSettings {
     seed: u64,
     max_depth: Option<u32>,
     splits: Splits,
+    reuse: u32,
     wavelengths: usize,
     lambda_sampler: LambdaSampler,
     scheme: PackageScheme,

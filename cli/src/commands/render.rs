@@ -65,6 +65,9 @@ pub struct RenderArgs {
     /// in indirect light, it falls nearly as if there were that many more samples.
     #[arg(long, default_value = "auto")]
     pub splits: String,
+    /// Path reuse across square tiles of this many pixels a side (1: none).
+    #[arg(long, default_value_t = 1)]
+    pub reuse: u32,
     /// Wavelengths per path: 1, 2, 4, 8 or 16.
     #[arg(long, default_value_t = 8)]
     pub wavelengths: usize,
@@ -361,6 +364,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .seed(args.seed)
         .max_depth(args.max_depth)
         .splits(args.splits.parse::<Splits>()?)
+        .reuse(args.reuse)
         .wavelengths(args.wavelengths)
         .lambda_sampler(lambda_sampler)
         .threads(args.threads)
