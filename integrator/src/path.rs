@@ -13,6 +13,7 @@ use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
+use crate::reuse::{First, Record, Second};
 use crate::throughput::{Arrival, Carried, Throughput, Vertex};
 
 /// What every path of a render shares.
@@ -170,7 +171,7 @@ pub(crate) fn wavelengths<const N: usize>(
     SampledWavelengths::new(package.lambda, package.pdf).ok()
 }
 
-impl Tracer<'_> {
+impl<'a> Tracer<'a> {
     /// Darkens the lanes of `le`, light `light`'s, whose time finds it off.
     fn gate<const N: usize>(
         &self,
@@ -226,11 +227,19 @@ impl Tracer<'_> {
     /// wavelengths light is evaluated at are always the film's, and no vertex pays for
     /// the check (the renderer picks the specialization from the scene's features). `T`
     /// is what the path carries: a spectrum, or Mueller matrices for polarized renders.
+    ///
+    /// `REUSE` is whether the path shares its second vertex with its tile's other pixels
+    /// (`crate::reuse`; never with `SPLIT`): where its first vertex is Lambertian and its
+    /// second reflects alike in every direction, what the path gathers from the second
+    /// vertex on goes to `record` instead of `sink`, and the first vertex and the bounce
+    /// to the second are recorded with it.
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn trace<
         const N: usize,
         const FLUORESCENCE: bool,
         const SPLIT: bool,
+        const REUSE: bool,
         T: Throughput<N>,
     >(
         &self,
@@ -240,6 +249,7 @@ impl Tracer<'_> {
         film: Vec2,
         aspect: f32,
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
+        record: &mut Record<'a, N, T::Radiance>,
     ) -> PathResult {
         let first_package =
             WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
@@ -350,6 +360,22 @@ impl Tracer<'_> {
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
                     beta.add_emitted(&mut radiance, &le, w);
+                }
+                if REUSE && depth == 1 && record.first.is_some() && self.scene.reflects_alike(&hit)
+                {
+                    // From here the path estimates what the second vertex reflects, per unit
+                    // of throughput: the tile's pixels share it. Russian roulette still reads
+                    // the path's whole throughput.
+                    eta_scale *= beta.max_value();
+                    beta = T::start(ray.direction.normalize(), &self.camera_frame);
+                    record.second = Some(Second {
+                        p: hit.p,
+                        normal: hit.normal,
+                        shading_normal: hit.shading_normal,
+                        side: wo_world.dot(hit.shading_normal) > 0.0,
+                        distance: hit.t * ray.direction.length(),
+                    });
+                    record.own = std::mem::replace(&mut radiance, T::black());
                 }
                 if depth >= self.max_depth {
                     break;
@@ -510,6 +536,21 @@ impl Tracer<'_> {
                 if !positive_finite(pdf) {
                     break;
                 }
+                if REUSE
+                    && depth == 0
+                    && !sample.delta
+                    && !sample.wavelength_dependent
+                    && matches!(material, Material::Diffuse { .. })
+                {
+                    record.first = Some(First {
+                        hit,
+                        frame,
+                        wo,
+                        bsdf: bsdf.clone(),
+                        wi: sample.wi,
+                        pdf,
+                    });
+                }
                 beta.scatter(
                     &vertex,
                     sample.wi,
@@ -558,7 +599,12 @@ impl Tracer<'_> {
                     beta.scale_uniform(1.0 / q);
                 }
             }
-            sink(&radiance, &lambdas);
+            if REUSE && record.second.is_some() {
+                sink(&record.own, &lambdas);
+                record.reflected = radiance;
+            } else {
+                sink(&radiance, &lambdas);
+            }
             split += 1;
         }
         PathResult {

@@ -18,6 +18,7 @@ use crate::light_path::light_seed;
 use crate::light_throughput::{LightThroughput, PolarizedLight};
 use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::reuse::Record;
 use crate::sample_value::{Outputs, SampleValue};
 use crate::settings::Splits;
 use crate::splits::pilot;
@@ -48,6 +49,8 @@ pub struct Renderer<'a> {
     pool: rayon::ThreadPool,
     /// Continuations per camera sample (the settings', or the pilot's choice).
     splits: u32,
+    /// The side of the tiles whose paths share their second vertices (1: none).
+    reuse: u32,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -72,6 +75,19 @@ macro_rules! specialized {
             (true, true) => by_width!(true, Polarized),
         }
     }};
+}
+
+/// The reuse pass specialized for a renderer's package size.
+macro_rules! specialized_reuse {
+    ($renderer:expr) => {
+        match $renderer.settings.wavelengths {
+            1 => reuse_pass::<1>,
+            2 => reuse_pass::<2>,
+            4 => reuse_pass::<4>,
+            8 => reuse_pass::<8>,
+            _ => reuse_pass::<16>,
+        }
+    };
 }
 
 impl<'a> Renderer<'a> {
@@ -104,6 +120,7 @@ impl<'a> Renderer<'a> {
             filter,
             pool,
             splits: 1,
+            reuse: 1,
         };
         renderer.splits = match settings.splits {
             Splits::Fixed(k) => k,
@@ -112,6 +129,16 @@ impl<'a> Renderer<'a> {
                 renderer.pool.install(|| pilot(&renderer)).choice()
             }
         };
+        if settings.reuse > 1 {
+            if crate::reuse::supported(
+                scene,
+                settings.is_polarized(),
+                crate::path::Clock::of(settings).is_some(),
+                renderer.splits,
+            ) {
+                renderer.reuse = settings.reuse;
+            }
+        }
         Ok(renderer)
     }
 
@@ -212,27 +239,6 @@ impl<'a> Renderer<'a> {
         let mut pass = Film::for_settings(settings);
         let trace = specialized!(self, trace_row);
         let rows = self.rows(settings.seed, samples.clone());
-        if settings.reuse > 1 {
-            let size = settings.reuse;
-            let band = crate::reuse::trace_band::<8>;
-            self.pool.install(|| {
-                let width = settings.width as usize;
-                let FilmSums {
-                    xyz: sums,
-                    coverage,
-                    ..
-                } = pass.sums_mut();
-                sums.par_chunks_mut(width * size as usize)
-                    .zip(coverage.par_chunks_mut(width * size as usize))
-                    .enumerate()
-                    .for_each(|(b, (xyz, cov))| {
-                        let (r, n) =
-                            band(&tracer, &self.filter, &rows, size, b as u32 * size, xyz, cov);
-                        rays.fetch_add(r, Ordering::Relaxed);
-                        nonfinite.fetch_add(n, Ordering::Relaxed);
-                    });
-            });
-        } else {
         self.pool.install(|| {
             let width = settings.width as usize;
             let spectral_width = width * pass.spectral_width();
@@ -265,31 +271,41 @@ impl<'a> Renderer<'a> {
             } else {
                 stokes.chunks_mut(width).collect()
             };
-            sums.par_chunks_mut(width)
+            let mut outs: Vec<RowOutput> = sums
+                .chunks_mut(width)
                 .zip(spectral_rows)
                 .zip(energy_rows)
                 .zip(stokes_rows)
-                .zip(coverage.par_chunks_mut(width))
-                .enumerate()
-                .for_each(
-                    |(y, ((((row, spectral_row), energy_row), stokes_row), coverage_row))| {
-                        if cancel.load(Ordering::Relaxed) {
-                            return;
-                        }
-                        let out = RowOutput {
-                            xyz: row,
-                            spectral: spectral_row,
-                            energy: energy_row,
-                            stokes: stokes_row,
-                            coverage: coverage_row,
-                        };
-                        let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
-                        rays.fetch_add(r, Ordering::Relaxed);
-                        nonfinite.fetch_add(n, Ordering::Relaxed);
-                    },
-                );
+                .zip(coverage.chunks_mut(width))
+                .map(|((((xyz, spectral), energy), stokes), coverage)| RowOutput {
+                    xyz,
+                    spectral,
+                    energy,
+                    stokes,
+                    coverage,
+                })
+                .collect();
+            if self.reuse > 1 {
+                let band = specialized_reuse!(self);
+                for s in samples.clone() {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let (r, n) = band(self, &tracer, &rows, &mut outs, s);
+                    rays.fetch_add(r, Ordering::Relaxed);
+                    nonfinite.fetch_add(n, Ordering::Relaxed);
+                }
+                return;
+            }
+            outs.par_iter_mut().enumerate().for_each(|(y, out)| {
+                if cancel.load(Ordering::Relaxed) {
+                    return;
+                }
+                let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
+                rays.fetch_add(r, Ordering::Relaxed);
+                nonfinite.fetch_add(n, Ordering::Relaxed);
+            });
         });
-        }
         if self.light_caustics() {
             macro_rules! light_by_width {
                 ($carrier:ident) => {
@@ -389,48 +405,96 @@ struct RowOutput<'a> {
     coverage: &'a mut [f64],
 }
 
+impl RowOutput<'_> {
+    /// Adds pixel `x`'s sample (`result`, `value`) to the sums; returns whether it was
+    /// rejected (invalid wavelengths or a non-finite value).
+    fn add(&mut self, x: usize, result: &PathResult, value: &SampleValue, rows: &Rows) -> bool {
+        self.coverage[x] += f64::from(u8::from(result.covered));
+        if !(result.valid && value.finite()) {
+            return true;
+        }
+        let band_count = rows.outputs.spectral_width();
+        let spectral = self
+            .spectral
+            .get_mut(x * band_count..(x + 1) * band_count)
+            .unwrap_or_default();
+        value.add_to(
+            value.clamp_scale(rows.clamp),
+            &mut self.xyz[x],
+            spectral,
+            self.energy.get_mut(x),
+            self.stokes.get_mut(x),
+        );
+        false
+    }
+}
+
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
 fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     tracer: &Tracer,
     filter: &FilterSampler,
     settings: &Rows,
     y: u32,
-    out: RowOutput,
+    out: &mut RowOutput,
 ) -> (u64, u64) {
-    let RowOutput {
-        xyz: row,
-        spectral: spectral_row,
-        energy: energy_row,
-        stokes: stokes_row,
-        coverage,
-    } = out;
     let (mut rays, mut rejected) = (0u64, 0u64);
-    let band_count = settings.outputs.spectral_width();
     let mut value = SampleValue::default();
-    for (x, sum) in row.iter_mut().enumerate() {
+    for x in 0..settings.width {
         for s in settings.samples.clone() {
             let result = trace_sample::<N, FLUORESCENCE, T>(
-                tracer, filter, settings, x as u32, y, s, &mut value,
+                tracer, filter, settings, x, y, s, &mut value,
             );
             rays += result.rays;
-            coverage[x] += f64::from(u8::from(result.covered));
-            if result.valid && value.finite() {
-                let spectral = spectral_row
-                    .get_mut(x * band_count..(x + 1) * band_count)
-                    .unwrap_or_default();
-                value.add_to(
-                    value.clamp_scale(settings.clamp),
-                    sum,
-                    spectral,
-                    energy_row.get_mut(x),
-                    stokes_row.get_mut(x),
-                );
-            } else {
-                rejected += 1;
-            }
+            rejected += u64::from(out.add(x as usize, &result, &value, settings));
         }
     }
     (rays, rejected)
+}
+
+/// Traces sample `s` of every pixel in tiles whose paths share their second vertices
+/// (`crate::reuse`): bands of tile rows in parallel, each band's tiles in order. Returns
+/// rays traced and samples rejected.
+fn reuse_pass<const N: usize>(
+    renderer: &Renderer,
+    tracer: &Tracer,
+    rows: &Rows,
+    outs: &mut [RowOutput],
+    s: u64,
+) -> (u64, u64) {
+    let size = renderer.reuse;
+    let bands: Vec<(u32, &mut [RowOutput])> = outs
+        .chunks_mut(size as usize)
+        .enumerate()
+        .map(|(i, band)| (i as u32 * size, band))
+        .collect();
+    let totals: Vec<(u64, u64)> = bands
+        .into_par_iter()
+        .map(|(y0, band)| {
+            let (mut rays, mut rejected) = (0u64, 0u64);
+            let ys = y0..y0 + band.len() as u32;
+            crate::reuse::trace_band::<N>(
+                tracer,
+                renderer.filter(),
+                rows,
+                size,
+                ys,
+                s,
+                &mut |y, out| {
+                    rays += out.result.rays;
+                    rejected += u64::from(band[(y - y0) as usize].add(
+                        out.x as usize,
+                        &out.result,
+                        &out.value,
+                        rows,
+                    ));
+                },
+            );
+            (rays, rejected)
+        })
+        .collect();
+    totals
+        .into_iter()
+        .fold((0, 0), |(a, b), (r, n)| (a + r, b + n))
 }
 
 /// Traces sample `s` of pixel (`x`, `y`) into `value` (cleared first).
@@ -459,9 +523,9 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
     };
     // Unsplit renders run a path tracer compiled without the splitting code.
     let trace = if tracer.splits > 1 {
-        Tracer::trace::<N, FLUORESCENCE, true, T>
+        Tracer::trace::<N, FLUORESCENCE, true, false, T>
     } else {
-        Tracer::trace::<N, FLUORESCENCE, false, T>
+        Tracer::trace::<N, FLUORESCENCE, false, false, T>
     };
     trace(
         tracer,
@@ -471,6 +535,7 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
         film,
         aspect,
         &mut sink,
+        &mut Record::new(T::black(), T::black()),
     )
 }
 

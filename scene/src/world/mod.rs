@@ -710,6 +710,23 @@ impl Scene {
         b0 * tangents[0] + b1 * tangents[1] + b2 * tangents[2]
     }
 
+    /// Whether the surface at `hit` reflects the light it receives alike towards every
+    /// direction on a side, whichever ray found it: a Lambertian material whose reflectance
+    /// is one spectrum (a texture's filtered lookup depends on the ray's footprint). What a
+    /// path estimates beyond such a point serves every other point that sees it (path reuse).
+    pub fn reflects_alike(&self, hit: &Hit) -> bool {
+        matches!(
+            self.material(hit),
+            Material::Diffuse { reflectance } if !matches!(reflectance, SceneSpectrum::Texture(_))
+        )
+    }
+
+    /// Whether some surface is cut out or transparent (alpha coverage): a ray then passes
+    /// through it by chance, and a point behind it is not simply seen or hidden.
+    pub fn has_cutouts(&self) -> bool {
+        !self.attributes.alpha.is_empty()
+    }
+
     /// Whether any material reads a texture that footprints filter (base colour or
     /// metallic-roughness): only then do paths compute footprints.
     pub fn filters_textures(&self) -> bool {
