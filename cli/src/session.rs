@@ -64,6 +64,16 @@ pub fn run(
     let first = range.start + film.samples();
     let renderer = Renderer::new(scene, settings).map_err(|e| e.to_string())?;
     stats.splits = renderer.splits();
+    stats.reuse = renderer.reuse();
+    if let prism_integrator::Reuse::Fixed(t) = settings.reuse
+        && t > 1
+        && renderer.reuse() == 1
+    {
+        eprintln!(
+            "prism: warning: --reuse {t} does not apply to this render (polarized, timed, \
+             fluorescent, dispersive or cut-out); rendering without it"
+        );
+    }
     let mut ending = Ending::Complete;
     for s in first..range.end {
         if cancel.load(Ordering::Relaxed) {

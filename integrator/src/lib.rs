@@ -89,4 +89,6 @@ pub use image::{DisplaySettings, encode_png, encode_polarization_png};
 #[cfg(feature = "exr")]
 pub use image::{ExrMetadata, encode_exr};
 pub use render::{RenderStats, Renderer, render, render_into};
-pub use settings::{LambdaSampler, MAX_SPLITS, MAX_THREADS, RenderSettings, Splits};
+pub use settings::{
+    LambdaSampler, MAX_REUSE, MAX_SPLITS, MAX_THREADS, RenderSettings, Reuse, Splits,
+};

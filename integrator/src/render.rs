@@ -20,8 +20,8 @@ use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
 use crate::reuse::Record;
 use crate::sample_value::{Outputs, SampleValue};
-use crate::settings::Splits;
-use crate::splits::pilot;
+use crate::settings::{Reuse, Splits};
+use crate::splits::{mode_pilot, pilot};
 use crate::throughput::{CameraFrame, Polarized, Throughput};
 use crate::{Film, RenderError, RenderSettings};
 use prism_spectrum::SampledSpectrum;
@@ -37,6 +37,8 @@ pub struct RenderStats {
     pub nonfinite: u64,
     /// Continuations per camera sample (see [`crate::Splits`]).
     pub splits: u32,
+    /// The side of the tiles whose paths share second vertices (see [`crate::Reuse`]).
+    pub reuse: u32,
 }
 
 /// Everything a render sets up once (the wavelength distribution, the filter table, the
@@ -122,23 +124,23 @@ impl<'a> Renderer<'a> {
             splits: 1,
             reuse: 1,
         };
-        renderer.splits = match settings.splits {
-            Splits::Fixed(k) => k,
-            Splits::Auto => {
-                let pilot = specialized!(renderer, pilot);
+        let shareable = crate::reuse::supported(
+            scene,
+            settings.is_polarized(),
+            crate::path::Clock::of(settings).is_some(),
+        );
+        (renderer.splits, renderer.reuse) = match (settings.splits, settings.reuse) {
+            (_, Reuse::Fixed(t)) if t > 1 => (1, if shareable { t } else { 1 }),
+            (Splits::Fixed(k), _) => (k, 1),
+            (Splits::Auto, Reuse::Auto) if shareable => {
+                let pilot = specialized!(renderer, mode_pilot);
                 renderer.pool.install(|| pilot(&renderer)).choice()
             }
-        };
-        if settings.reuse > 1 {
-            if crate::reuse::supported(
-                scene,
-                settings.is_polarized(),
-                crate::path::Clock::of(settings).is_some(),
-                renderer.splits,
-            ) {
-                renderer.reuse = settings.reuse;
+            (Splits::Auto, _) => {
+                let pilot = specialized!(renderer, pilot);
+                (renderer.pool.install(|| pilot(&renderer)).choice(), 1)
             }
-        }
+        };
         Ok(renderer)
     }
 
@@ -150,6 +152,12 @@ impl<'a> Renderer<'a> {
     /// Continuations per camera sample: the settings' number, or the pilot's choice.
     pub fn splits(&self) -> u32 {
         self.splits
+    }
+
+    /// The side of the tiles whose paths share their second vertices (1: none): the
+    /// settings' (where the scene allows reuse), or the pilot's choice.
+    pub fn reuse(&self) -> u32 {
+        self.reuse
     }
 
     /// What every path of this render shares, with `splits` continuations per sample.
@@ -277,13 +285,15 @@ impl<'a> Renderer<'a> {
                 .zip(energy_rows)
                 .zip(stokes_rows)
                 .zip(coverage.chunks_mut(width))
-                .map(|((((xyz, spectral), energy), stokes), coverage)| RowOutput {
-                    xyz,
-                    spectral,
-                    energy,
-                    stokes,
-                    coverage,
-                })
+                .map(
+                    |((((xyz, spectral), energy), stokes), coverage)| RowOutput {
+                        xyz,
+                        spectral,
+                        energy,
+                        stokes,
+                        coverage,
+                    },
+                )
                 .collect();
             if self.reuse > 1 {
                 let band = specialized_reuse!(self);
@@ -360,6 +370,7 @@ impl<'a> Renderer<'a> {
             rays: rays.into_inner(),
             nonfinite,
             splits: self.splits,
+            reuse: self.reuse,
         }))
     }
 }
@@ -441,9 +452,8 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     let mut value = SampleValue::default();
     for x in 0..settings.width {
         for s in settings.samples.clone() {
-            let result = trace_sample::<N, FLUORESCENCE, T>(
-                tracer, filter, settings, x, y, s, &mut value,
-            );
+            let result =
+                trace_sample::<N, FLUORESCENCE, T>(tracer, filter, settings, x, y, s, &mut value);
             rays += result.rays;
             rejected += u64::from(out.add(x as usize, &result, &value, settings));
         }

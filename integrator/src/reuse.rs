@@ -94,16 +94,10 @@ impl<'s, const N: usize, R> Record<'s, N, R> {
 
 /// Whether `tracer`'s paths can share their second vertices: spectra, not Stokes vectors;
 /// wavelengths that no vertex changes (fluorescence, dispersion); no instant (a lane's
-/// time can change at a phosphor); no surface a ray passes through by chance; no
-/// splitting (its continuations are its own form of the same thing).
-pub(crate) fn supported(scene: &Scene, polarized: bool, timed: bool, splits: u32) -> bool {
+/// time can change at a phosphor); no surface a ray passes through by chance.
+pub(crate) fn supported(scene: &Scene, polarized: bool, timed: bool) -> bool {
     let features = scene.features();
-    !polarized
-        && !timed
-        && splits <= 1
-        && !features.fluorescence
-        && !features.dispersion
-        && !scene.has_cutouts()
+    !polarized && !timed && !features.fluorescence && !features.dispersion && !scene.has_cutouts()
 }
 
 /// One pixel of a tile: its position, and what its path left.
@@ -144,7 +138,8 @@ impl<'a> Tracer<'a> {
                     (y as f32 + 0.5 + offset.y) / h as f32,
                 );
                 let mut value = SampleValue::default();
-                let mut record = Record::new(SampledSpectrum::splat(0.0), SampledSpectrum::splat(0.0));
+                let mut record =
+                    Record::new(SampledSpectrum::splat(0.0), SampledSpectrum::splat(0.0));
                 let result = self.trace::<N, false, false, true, SampledSpectrum<N>>(
                     &mut stream,
                     FIRST_BOUNCE_DIMENSION,
@@ -219,7 +214,12 @@ fn gather<const N: usize>(
                 continue;
             };
             let (direction, distance, wi, pdf) = if m == k {
-                (first.frame.to_world(first.wi), second.distance, first.wi, first.pdf)
+                (
+                    first.frame.to_world(first.wi),
+                    second.distance,
+                    first.wi,
+                    first.pdf,
+                )
             } else {
                 let to = second.p - first.hit.p;
                 let distance = to.length();
@@ -259,6 +259,22 @@ fn gather<const N: usize>(
     gathered
 }
 
+/// Traces sample `s` of the tile `xs` x `ys` with its corner's wavelengths, as a render
+/// does (the pilot's tiles).
+pub(crate) fn trace_tile_at<const N: usize>(
+    tracer: &Tracer,
+    filter: &FilterSampler,
+    rows: &Rows,
+    xs: std::ops::Range<u32>,
+    ys: std::ops::Range<u32>,
+    s: u64,
+    tile: &mut Vec<(u32, TileOut)>,
+) {
+    let corner = u64::from(ys.start) * u64::from(rows.width) + u64::from(xs.start);
+    let lambda = SobolStream::new(rows.seed, corner, s).next_1d();
+    tracer.trace_tile::<N>(filter, rows, xs, ys, s, lambda, tile);
+}
+
 /// Traces sample `s` of every pixel of the rows `ys` (one row of tiles) in tiles `size`
 /// pixels wide, and hands each pixel's value to `add(y, tile_out)`.
 pub(crate) fn trace_band<const N: usize>(
@@ -273,9 +289,7 @@ pub(crate) fn trace_band<const N: usize>(
     let mut tile = Vec::new();
     for x0 in (0..rows.width).step_by(size as usize) {
         let xs = x0..(x0 + size).min(rows.width);
-        let corner = u64::from(ys.start) * u64::from(rows.width) + u64::from(x0);
-        let lambda = SobolStream::new(rows.seed, corner, s).next_1d();
-        tracer.trace_tile::<N>(filter, rows, xs, ys.clone(), s, lambda, &mut tile);
+        trace_tile_at::<N>(tracer, filter, rows, xs, ys.clone(), s, &mut tile);
         for (y, out) in tile.drain(..) {
             add(y, out);
         }

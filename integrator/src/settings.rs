@@ -96,9 +96,9 @@ pub struct RenderSettings {
     /// and the first vertex's light sample are shared, each continuation carries 1 /
     /// splits of the throughput. Chosen per render by default ([`Splits::Auto`]).
     pub splits: Splits,
-    /// Path reuse: the side of the square tiles of pixels whose paths share their second
-    /// vertices (1: none).
-    pub reuse: u32,
+    /// Path reuse: square tiles of pixels whose paths share their second vertices
+    /// (see [`Reuse`]). Chosen per render by default ([`Reuse::Auto`]).
+    pub reuse: Reuse,
     /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
     /// measured scenes, the repository's docs/trade-offs.md).
     pub wavelengths: usize,
@@ -160,7 +160,7 @@ impl Default for RenderSettings {
             seed: 0,
             max_depth: None,
             splits: Splits::Auto,
-            reuse: 1,
+            reuse: Reuse::Auto,
             wavelengths: 8,
             lambda_sampler: LambdaSampler::default(),
             scheme: PackageScheme::HeroRotation,
@@ -189,7 +189,7 @@ setters!(RenderSettings {
     seed: u64,
     max_depth: Option<u32>,
     splits: Splits,
-    reuse: u32,
+    reuse: Reuse,
     wavelengths: usize,
     lambda_sampler: LambdaSampler,
     scheme: PackageScheme,
@@ -261,6 +261,60 @@ impl std::fmt::Display for Splits {
         match self {
             Splits::Auto => f.write_str("auto"),
             Splits::Fixed(k) => write!(f, "{k}"),
+        }
+    }
+}
+
+/// The widest tile of pixels whose paths may share their second vertices.
+pub const MAX_REUSE: u32 = 8;
+
+/// Path reuse (Bekaert, Sbert and Halton 2002): the pixels of each T x T tile share the
+/// light their paths find beyond the first bounce, so each pixel's indirect light is
+/// estimated from T^2 continuations for T^2 - 1 shadow rays. Unbiased; it pays where the
+/// error is in indirect light on Lambertian surfaces (a Cornell box: 5x as efficient at
+/// T = 4), costs shadow rays where it is not, and does not apply to polarized, timed,
+/// fluorescent, dispersive or cut-out scenes, or with splitting (see the integrator's
+/// `reuse` module and docs/trade-offs.md).
+///
+/// ```
+/// use prism_integrator::Reuse;
+///
+/// assert_eq!("auto".parse::<Reuse>(), Ok(Reuse::Auto));
+/// assert_eq!("4".parse::<Reuse>(), Ok(Reuse::Fixed(4)));
+/// assert!("0".parse::<Reuse>().is_err() && "9".parse::<Reuse>().is_err());
+/// assert_eq!(Reuse::Fixed(2).to_string(), "2");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Reuse {
+    /// None, 2 or 4, whichever a pilot of the render predicts reaches a given error
+    /// soonest (with the choice of splits); only where the scene allows reuse.
+    #[default]
+    Auto,
+    /// Tiles this many pixels a side, 1 to [`MAX_REUSE`] (1: no reuse).
+    Fixed(u32),
+}
+
+impl std::str::FromStr for Reuse {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s == "auto" {
+            return Ok(Reuse::Auto);
+        }
+        match s.parse::<u32>() {
+            Ok(t) if (1..=MAX_REUSE).contains(&t) => Ok(Reuse::Fixed(t)),
+            _ => Err(format!(
+                "reuse '{s}': expected auto or a tile side 1 to {MAX_REUSE}"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for Reuse {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Reuse::Auto => f.write_str("auto"),
+            Reuse::Fixed(t) => write!(f, "{t}"),
         }
     }
 }
@@ -343,6 +397,21 @@ impl RenderSettings {
         {
             return bad(format!(
                 "{k} splits per camera sample: expected 1 to {MAX_SPLITS}"
+            ));
+        }
+        if let Reuse::Fixed(t) = self.reuse
+            && !(1..=MAX_REUSE).contains(&t)
+        {
+            return bad(format!(
+                "reuse tiles {t} pixels wide: expected 1 to {MAX_REUSE}"
+            ));
+        }
+        if let (Reuse::Fixed(t), Splits::Fixed(k)) = (self.reuse, self.splits)
+            && t > 1
+            && k > 1
+        {
+            return bad(format!(
+                "reuse {t} and {k} splits: a render shares second vertices or splits, not both"
             ));
         }
         if ![1, 2, 4, 8, 16].contains(&self.wavelengths) {

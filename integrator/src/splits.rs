@@ -15,6 +15,7 @@
 //! every thread count and every machine of a farm makes the same one.
 
 use crate::render::{Renderer, trace_sample};
+use crate::reuse::TileOut;
 use crate::sample_value::SampleValue;
 use crate::throughput::Throughput;
 
@@ -128,6 +129,164 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
         })
         .collect();
     summarize(&per_pixel)
+}
+
+/// The tile sides a pilot tries where paths can share their second vertices (the
+/// `reuse` module). Two, four: on the Cornell box three was between them, and each
+/// side's pilot costs its tile's pixels.
+pub(crate) const REUSE_CHOICES: [u32; 2] = [2, 4];
+
+/// Pilot tiles per image side (at most) for the choice with reuse: a tile of four by four
+/// pixels is sixteen pilot pixels.
+const REUSE_GRID: u32 = 16;
+
+/// How much less error per ray reuse must promise to be chosen over the best split: its
+/// noise is shared within tiles, and the pilot's estimates are themselves noisy.
+const REUSE_MARGIN: f64 = 0.85;
+
+/// What the pilot with reuse measured, per mode (unsplit, split in two, then each of
+/// [`REUSE_CHOICES`]): the mean weighted squared error of a pixel's mean and rays per
+/// sample, over the same cells of the image.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct ModePilot {
+    pub variance: [f64; 4],
+    pub rays: [f64; 4],
+}
+
+impl ModePilot {
+    /// (splits, reuse tile side) predicted to reach a given error soonest.
+    pub(crate) fn choice(&self) -> (u32, u32) {
+        let split = Pilot {
+            variance: [self.variance[0], self.variance[1]],
+            rays: [self.rays[0], self.rays[1]],
+        };
+        let k = split.choice();
+        let cost = |i: usize| self.variance[i] * self.rays[i];
+        let split_cost = cost(k as usize - 1);
+        let mut best = (k, 1, split_cost);
+        for (j, &t) in REUSE_CHOICES.iter().enumerate() {
+            let c = cost(2 + j);
+            if c.is_finite() && c > 0.0 && c < REUSE_MARGIN * split_cost && c < best.2 {
+                best = (1, t, c);
+            }
+        }
+        if !(split_cost.is_finite() && split_cost > 0.0) {
+            return (k, 1);
+        }
+        (best.0, best.1)
+    }
+}
+
+/// Traces the pilot for a scene whose paths can share their second vertices: up to
+/// `REUSE_GRID` x `REUSE_GRID` cells, in each the pixel at the cell's corner unsplit and
+/// split in two (as [`pilot`]), and the tiles of [`REUSE_CHOICES`] at that corner with
+/// reuse, each estimated twice (two seeds, `SAMPLES` samples each). A cell's error per
+/// mode is its pixels' mean; the cells with the largest errors are left out as in
+/// [`pilot`].
+pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    renderer: &Renderer,
+) -> ModePilot {
+    use rayon::prelude::*;
+    let settings = renderer.settings();
+    let (width, height) = (settings.width, settings.height);
+    let (columns, rows) = (width.min(REUSE_GRID), height.min(REUSE_GRID));
+    let tracers = [renderer.tracer(1), renderer.tracer(2)];
+    let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
+    let per_cell: Vec<ModePilot> = (0..columns * rows)
+        .into_par_iter()
+        .map(|i| {
+            let x = (i % columns) * width / columns;
+            let y = (i / columns) * height / rows;
+            let mut cell = ModePilot::default();
+            let mut value = SampleValue::default();
+            for (mode, tracer) in tracers.iter().enumerate() {
+                let mut means = [[0.0f64; 3]; 2];
+                for (seed, rows) in seeds.iter().enumerate() {
+                    for s in 0..SAMPLES {
+                        let result = trace_sample::<N, FLUORESCENCE, T>(
+                            tracer,
+                            renderer.filter(),
+                            rows,
+                            x,
+                            y,
+                            s,
+                            &mut value,
+                        );
+                        cell.rays[mode] += result.rays as f64;
+                        if result.valid && value.finite() {
+                            for (mean, v) in means[seed].iter_mut().zip(value.xyz) {
+                                *mean += v / SAMPLES as f64;
+                            }
+                        }
+                    }
+                }
+                cell.variance[mode] = weighted_error(&means);
+                cell.rays[mode] /= (2 * SAMPLES) as f64;
+            }
+            for (j, &side) in REUSE_CHOICES.iter().enumerate() {
+                let xs = x..(x + side).min(width);
+                let ys = y..(y + side).min(height);
+                let pixels = xs.len() * ys.len();
+                // Per pixel of the tile and seed, the mean colour of its samples.
+                let mut means = vec![[[0.0f64; 3]; 2]; pixels];
+                let mut tile: Vec<(u32, TileOut)> = Vec::new();
+                for (seed, rows) in seeds.iter().enumerate() {
+                    for s in 0..SAMPLES {
+                        crate::reuse::trace_tile_at::<N>(
+                            &tracers[0],
+                            renderer.filter(),
+                            rows,
+                            xs.clone(),
+                            ys.clone(),
+                            s,
+                            &mut tile,
+                        );
+                        for (p, (_, out)) in tile.iter().enumerate() {
+                            cell.rays[2 + j] += out.result.rays as f64;
+                            if out.result.valid && out.value.finite() {
+                                for (mean, v) in means[p][seed].iter_mut().zip(out.value.xyz) {
+                                    *mean += v / SAMPLES as f64;
+                                }
+                            }
+                        }
+                    }
+                }
+                cell.variance[2 + j] =
+                    means.iter().map(weighted_error).sum::<f64>() / pixels as f64;
+                cell.rays[2 + j] /= (2 * SAMPLES as usize * pixels) as f64;
+            }
+            cell
+        })
+        .collect();
+    let error = |p: &ModePilot| p.variance.iter().sum::<f64>();
+    let mut order: Vec<usize> = (0..per_cell.len()).collect();
+    order.sort_by(|&a, &b| {
+        error(&per_cell[a])
+            .total_cmp(&error(&per_cell[b]))
+            .then(a.cmp(&b))
+    });
+    let kept = per_cell.len() - (per_cell.len() as f64 * TRIMMED).ceil() as usize;
+    let kept = kept.max(1).min(per_cell.len());
+    let mut total = ModePilot::default();
+    for &i in &order[..kept] {
+        for mode in 0..4 {
+            total.variance[mode] += per_cell[i].variance[mode] / kept as f64;
+            total.rays[mode] += per_cell[i].rays[mode] / kept as f64;
+        }
+    }
+    total
+}
+
+/// One pixel's squared error of a mean, (a - b)^2 / 2 for its two seeds' means a and b,
+/// each channel's weighted by 1 / (mean^2 + 0.01) (as the relative MSE weighs errors),
+/// summed over the channels.
+fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
+    (0..3)
+        .map(|k| {
+            let mean = 0.5 * (means[0][k] + means[1][k]);
+            0.5 * (means[0][k] - means[1][k]).powi(2) / (mean * mean + 0.01)
+        })
+        .sum()
 }
 
 /// The pilot's pixels' mean error and rays, without the pixels of the largest errors

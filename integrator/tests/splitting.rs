@@ -9,7 +9,7 @@
 mod common;
 
 use common::{assert_image_mean, cornell, furnace_scene, repository_scene};
-use prism_integrator::{Film, RenderSettings, Renderer, Splits, render};
+use prism_integrator::{Film, RenderSettings, Renderer, Reuse, Splits, render};
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::Constant;
 
@@ -19,6 +19,7 @@ fn settings(size: u32, spp: u64, splits: u32) -> RenderSettings {
         .height(size)
         .samples(0..spp)
         .splits(Splits::Fixed(splits))
+        .reuse(Reuse::Fixed(1))
 }
 
 /// Every path in a white furnace carries exactly the environment's radiance, whatever
@@ -154,7 +155,8 @@ fn split_renders_are_deterministic_and_merge() {
 
 /// The automatic choice splits where the error follows the first vertex (the Cornell
 /// box's ceiling sees light only through bounces) and not where it is in what the camera
-/// ray finds (the textured scene: textures and direct light), and renders report it.
+/// ray finds (the textured scene: textures and direct light), and renders report it
+/// (without reuse, which where it applies is chosen by the same pilot: tests/reuse.rs).
 #[test]
 fn auto_splits_where_indirect_light_dominates() {
     let auto = |scene: &prism_scene::world::Scene| {

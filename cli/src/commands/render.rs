@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use clap::Args;
 use prism_integrator::{
     CameraResponse, DisplaySettings, ExrMetadata, Film, Filter, LambdaSampler, RenderSettings,
-    ResponseCurve, SpectralBands, Splits, decode_accumulation, encode_accumulation, encode_exr,
-    encode_png, encode_polarization_png,
+    ResponseCurve, Reuse, SpectralBands, Splits, decode_accumulation, encode_accumulation,
+    encode_exr, encode_png, encode_polarization_png,
 };
 use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
@@ -65,9 +65,13 @@ pub struct RenderArgs {
     /// in indirect light, it falls nearly as if there were that many more samples.
     #[arg(long, default_value = "auto")]
     pub splits: String,
-    /// Path reuse across square tiles of this many pixels a side (1: none).
-    #[arg(long, default_value_t = 1)]
-    pub reuse: u32,
+    /// Path reuse: auto (chosen per render by the same pilot as --splits: none, 2 or 4) or
+    /// 1 to 8, the side of the square tiles of pixels whose paths share the light found
+    /// beyond their first bounce. Each pixel's indirect light is then estimated from
+    /// side^2 continuations for side^2 - 1 shadow rays; at a few samples per pixel the
+    /// shared noise shows as faint blocks. Not with --splits above 1.
+    #[arg(long, default_value = "auto")]
+    pub reuse: String,
     /// Wavelengths per path: 1, 2, 4, 8 or 16.
     #[arg(long, default_value_t = 8)]
     pub wavelengths: usize,
@@ -364,7 +368,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         .seed(args.seed)
         .max_depth(args.max_depth)
         .splits(args.splits.parse::<Splits>()?)
-        .reuse(args.reuse)
+        .reuse(args.reuse.parse::<Reuse>()?)
         .wavelengths(args.wavelengths)
         .lambda_sampler(lambda_sampler)
         .threads(args.threads)
@@ -472,6 +476,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         if stats.splits > 1 {
             facts.push(("splits".into(), stats.splits.to_string()));
         }
+        if stats.reuse > 1 {
+            facts.push(("reuse".into(), stats.reuse.to_string()));
+        }
         let shown = match &white_balance {
             Some(m) => film.adapted(m),
             None => film.clone(),
@@ -505,6 +512,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             "peak_memory_bytes": crate::memory::peak_bytes(),
             "wavelengths": args.wavelengths,
             "splits": stats.splits,
+            "reuse": stats.reuse,
             "lambda_sampler": args.lambda_sampler,
             "energy": energy_stats(&film, settings.range),
             "polarized": settings.is_polarized(),
