@@ -134,7 +134,7 @@ def main():
     prism_stats["seconds"] = median(prism_runs)
     prism_stats["paths_per_second"] = a.width * a.width * a.spp / prism_stats["seconds"]
     result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
-              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits")}}
+              "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits", "reuse")}}
     if a.repeats > 1:
         result["prism"]["seconds_each"] = [r["seconds"] for r in prism_runs]
     images = {"prism": read_exr(prism_exr)}

@@ -489,12 +489,12 @@ fn reuse_pass<const N: usize>(
                 size,
                 ys,
                 s,
-                &mut |y, out| {
-                    rays += out.result.rays;
-                    rejected += u64::from(band[(y - y0) as usize].add(
-                        out.x as usize,
-                        &out.result,
-                        &out.value,
+                &mut |pixel| {
+                    rays += pixel.result.rays;
+                    rejected += u64::from(band[(pixel.y - y0) as usize].add(
+                        pixel.x as usize,
+                        &pixel.result,
+                        &pixel.value,
                         rows,
                     ));
                 },

@@ -101,16 +101,43 @@ pub(crate) fn supported(scene: &Scene, polarized: bool, timed: bool) -> bool {
 }
 
 /// One pixel of a tile: its position, and what its path left.
-struct TilePixel<'s, const N: usize> {
-    x: u32,
-    result: PathResult,
-    value: SampleValue,
+pub(crate) struct TilePixel<'s, const N: usize> {
+    pub x: u32,
+    pub y: u32,
+    pub result: PathResult,
+    pub value: SampleValue,
     record: Record<'s, N, SampledSpectrum<N>>,
 }
 
+/// A tile's pixels and the buffers of its gathering, kept from tile to tile.
+pub(crate) struct Tile<'s, const N: usize> {
+    pixels: Vec<TilePixel<'s, N>>,
+    len: usize,
+    density: Vec<f32>,
+    light: Vec<SampledSpectrum<N>>,
+    gathered: Vec<SampledSpectrum<N>>,
+}
+
+impl<'s, const N: usize> Tile<'s, N> {
+    pub(crate) fn new() -> Self {
+        Self {
+            pixels: Vec::new(),
+            len: 0,
+            density: Vec::new(),
+            light: Vec::new(),
+            gathered: Vec::new(),
+        }
+    }
+
+    /// The last tile's pixels, row by row.
+    pub(crate) fn pixels(&self) -> &[TilePixel<'s, N>] {
+        &self.pixels[..self.len]
+    }
+}
+
 impl<'a> Tracer<'a> {
-    /// Traces sample `s` of the tile of pixels `xs` x `ys` and adds each pixel's value to
-    /// `add(y, x, result, value)`.
+    /// Traces sample `s` of the tile of pixels `xs` x `ys` with the wavelengths drawn
+    /// with `lambda` into `tile`.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn trace_tile<const N: usize>(
         &self,
@@ -120,12 +147,12 @@ impl<'a> Tracer<'a> {
         ys: std::ops::Range<u32>,
         s: u64,
         lambda: f32,
-        tile: &mut Vec<(u32, TileOut)>,
+        tile: &mut Tile<'a, N>,
     ) {
         let (w, h) = (rows.width, rows.height);
         let aspect = w as f32 / h as f32;
-        let mut pixels: Vec<TilePixel<'a, N>> = Vec::with_capacity(xs.len() * ys.len());
         let mut lambdas: Option<SampledWavelengths<N>> = None;
+        tile.len = 0;
         for y in ys.clone() {
             for x in xs.clone() {
                 let pixel = u64::from(y) * u64::from(w) + u64::from(x);
@@ -137,10 +164,31 @@ impl<'a> Tracer<'a> {
                     (x as f32 + 0.5 + offset.x) / w as f32,
                     (y as f32 + 0.5 + offset.y) / h as f32,
                 );
-                let mut value = SampleValue::default();
-                let mut record =
-                    Record::new(SampledSpectrum::splat(0.0), SampledSpectrum::splat(0.0));
-                let result = self.trace::<N, false, false, true, SampledSpectrum<N>>(
+                if tile.len == tile.pixels.len() {
+                    tile.pixels.push(TilePixel {
+                        x,
+                        y,
+                        result: PathResult {
+                            valid: false,
+                            rays: 0,
+                            covered: false,
+                        },
+                        value: SampleValue::default(),
+                        record: Record::new(
+                            SampledSpectrum::splat(0.0),
+                            SampledSpectrum::splat(0.0),
+                        ),
+                    });
+                }
+                let here = &mut tile.pixels[tile.len];
+                tile.len += 1;
+                here.x = x;
+                here.y = y;
+                here.value.clear();
+                here.record.first = None;
+                here.record.second = None;
+                let value = &mut here.value;
+                here.result = self.trace::<N, false, false, true, SampledSpectrum<N>>(
                     &mut stream,
                     FIRST_BOUNCE_DIMENSION,
                     lambda,
@@ -150,58 +198,42 @@ impl<'a> Tracer<'a> {
                         lambdas = Some(*l);
                         value.add(self, rows.outputs, radiance, l);
                     },
-                    &mut record,
+                    &mut here.record,
                 );
-                pixels.push(TilePixel {
-                    x,
-                    result,
-                    value,
-                    record,
-                });
             }
         }
         if let Some(lambdas) = lambdas {
-            let gathered = gather(self.scene, &mut pixels);
-            for (pixel, light) in pixels.iter_mut().zip(gathered) {
+            gather(self.scene, tile);
+            for (pixel, light) in tile.pixels[..tile.len].iter_mut().zip(&tile.gathered) {
                 if !light.is_black() {
-                    pixel.value.add(self, rows.outputs, &light, &lambdas);
+                    pixel.value.add(self, rows.outputs, light, &lambdas);
                 }
             }
-        }
-        tile.clear();
-        let width = xs.len();
-        for (i, pixel) in pixels.into_iter().enumerate() {
-            let y = ys.start + (i / width) as u32;
-            tile.push((
-                y,
-                TileOut {
-                    x: pixel.x,
-                    result: pixel.result,
-                    value: pixel.value,
-                },
-            ));
         }
     }
 }
 
-/// A tile pixel's sample, ready for the film.
-pub(crate) struct TileOut {
-    pub x: u32,
-    pub result: PathResult,
-    pub value: SampleValue,
-}
-
 /// Per pixel of a tile, the light its first vertex gathers from the tile's second
-/// vertices (its own included); adds the shadow rays it traces to the pixels' counts.
-fn gather<const N: usize>(
-    scene: &Scene,
-    pixels: &mut [TilePixel<'_, N>],
-) -> Vec<SampledSpectrum<N>> {
-    let n = pixels.len();
-    let mut gathered = vec![SampledSpectrum::<N>::splat(0.0); n];
+/// vertices (its own included), into `tile.gathered`; adds the shadow rays it traces to
+/// the pixels' counts.
+fn gather<const N: usize>(scene: &Scene, tile: &mut Tile<'_, N>) {
+    let n = tile.len;
+    let Tile {
+        pixels,
+        density,
+        light,
+        gathered,
+        ..
+    } = tile;
+    let pixels = &mut pixels[..n];
+    let black = SampledSpectrum::<N>::splat(0.0);
+    gathered.clear();
+    gathered.resize(n, black);
+    density.clear();
+    density.resize(n, 0.0);
+    light.clear();
+    light.resize(n, black);
     // Per second vertex k: each first vertex's area density of it, and what it would add.
-    let mut density = vec![0.0f32; n];
-    let mut light = vec![SampledSpectrum::<N>::splat(0.0); n];
     for k in 0..n {
         let Some(second) = &pixels[k].record.second else {
             continue;
@@ -256,19 +288,19 @@ fn gather<const N: usize>(
             }
         }
     }
-    gathered
 }
 
 /// Traces sample `s` of the tile `xs` x `ys` with its corner's wavelengths, as a render
 /// does (the pilot's tiles).
-pub(crate) fn trace_tile_at<const N: usize>(
-    tracer: &Tracer,
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn trace_tile_at<'a, const N: usize>(
+    tracer: &Tracer<'a>,
     filter: &FilterSampler,
     rows: &Rows,
     xs: std::ops::Range<u32>,
     ys: std::ops::Range<u32>,
     s: u64,
-    tile: &mut Vec<(u32, TileOut)>,
+    tile: &mut Tile<'a, N>,
 ) {
     let corner = u64::from(ys.start) * u64::from(rows.width) + u64::from(xs.start);
     let lambda = SobolStream::new(rows.seed, corner, s).next_1d();
@@ -276,7 +308,7 @@ pub(crate) fn trace_tile_at<const N: usize>(
 }
 
 /// Traces sample `s` of every pixel of the rows `ys` (one row of tiles) in tiles `size`
-/// pixels wide, and hands each pixel's value to `add(y, tile_out)`.
+/// pixels wide, and hands each pixel's sample to `add`.
 pub(crate) fn trace_band<const N: usize>(
     tracer: &Tracer,
     filter: &FilterSampler,
@@ -284,14 +316,14 @@ pub(crate) fn trace_band<const N: usize>(
     size: u32,
     ys: std::ops::Range<u32>,
     s: u64,
-    add: &mut impl FnMut(u32, TileOut),
+    add: &mut impl FnMut(&TilePixel<'_, N>),
 ) {
-    let mut tile = Vec::new();
+    let mut tile = Tile::new();
     for x0 in (0..rows.width).step_by(size as usize) {
         let xs = x0..(x0 + size).min(rows.width);
         trace_tile_at::<N>(tracer, filter, rows, xs, ys.clone(), s, &mut tile);
-        for (y, out) in tile.drain(..) {
-            add(y, out);
+        for pixel in tile.pixels() {
+            add(pixel);
         }
     }
 }

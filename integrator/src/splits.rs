@@ -15,7 +15,7 @@
 //! every thread count and every machine of a farm makes the same one.
 
 use crate::render::{Renderer, trace_sample};
-use crate::reuse::TileOut;
+use crate::reuse::Tile;
 use crate::sample_value::SampleValue;
 use crate::throughput::Throughput;
 
@@ -192,73 +192,103 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     let (columns, rows) = (width.min(REUSE_GRID), height.min(REUSE_GRID));
     let tracers = [renderer.tracer(1), renderer.tracer(2)];
     let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
-    let per_cell: Vec<ModePilot> = (0..columns * rows)
+    let corner = |i: u32| {
+        (
+            (i % columns) * width / columns,
+            (i / columns) * height / rows,
+        )
+    };
+    // The modes 0 and 1: a cell's corner pixel, unsplit and split in two.
+    let split = |i: u32, cell: &mut ModePilot| {
+        let (x, y) = corner(i);
+        let mut value = SampleValue::default();
+        for (mode, tracer) in tracers.iter().enumerate() {
+            let mut means = [[0.0f64; 3]; 2];
+            for (seed, rows) in seeds.iter().enumerate() {
+                for s in 0..SAMPLES {
+                    let result = trace_sample::<N, FLUORESCENCE, T>(
+                        tracer,
+                        renderer.filter(),
+                        rows,
+                        x,
+                        y,
+                        s,
+                        &mut value,
+                    );
+                    cell.rays[mode] += result.rays as f64;
+                    if result.valid && value.finite() {
+                        for (mean, v) in means[seed].iter_mut().zip(value.xyz) {
+                            *mean += v / SAMPLES as f64;
+                        }
+                    }
+                }
+            }
+            cell.variance[mode] = weighted_error(&means);
+            cell.rays[mode] /= (2 * SAMPLES) as f64;
+        }
+    };
+    // Mode 2 + j: the tile of side REUSE_CHOICES[j] at the cell's corner, with reuse.
+    let reuse = |i: u32, j: usize, cell: &mut ModePilot| {
+        let (x, y) = corner(i);
+        let side = REUSE_CHOICES[j];
+        let xs = x..(x + side).min(width);
+        let ys = y..(y + side).min(height);
+        let pixels = xs.len() * ys.len();
+        // Per pixel of the tile and seed, the mean colour of its samples.
+        let mut means = vec![[[0.0f64; 3]; 2]; pixels];
+        let mut tile = Tile::new();
+        for (seed, rows) in seeds.iter().enumerate() {
+            for s in 0..SAMPLES {
+                crate::reuse::trace_tile_at::<N>(
+                    &tracers[0],
+                    renderer.filter(),
+                    rows,
+                    xs.clone(),
+                    ys.clone(),
+                    s,
+                    &mut tile,
+                );
+                for (p, out) in tile.pixels().iter().enumerate() {
+                    cell.rays[2 + j] += out.result.rays as f64;
+                    if out.result.valid && out.value.finite() {
+                        for (mean, v) in means[p][seed].iter_mut().zip(out.value.xyz) {
+                            *mean += v / SAMPLES as f64;
+                        }
+                    }
+                }
+            }
+        }
+        cell.variance[2 + j] = means.iter().map(weighted_error).sum::<f64>() / pixels as f64;
+        cell.rays[2 + j] /= (2 * SAMPLES as usize * pixels) as f64;
+    };
+    // The larger tiles cost their pixels: they are tried only where the smallest promises
+    // to pay (a scene whose error is in what the camera ray finds pays for two modes).
+    let mut per_cell: Vec<ModePilot> = (0..columns * rows)
         .into_par_iter()
         .map(|i| {
-            let x = (i % columns) * width / columns;
-            let y = (i / columns) * height / rows;
             let mut cell = ModePilot::default();
-            let mut value = SampleValue::default();
-            for (mode, tracer) in tracers.iter().enumerate() {
-                let mut means = [[0.0f64; 3]; 2];
-                for (seed, rows) in seeds.iter().enumerate() {
-                    for s in 0..SAMPLES {
-                        let result = trace_sample::<N, FLUORESCENCE, T>(
-                            tracer,
-                            renderer.filter(),
-                            rows,
-                            x,
-                            y,
-                            s,
-                            &mut value,
-                        );
-                        cell.rays[mode] += result.rays as f64;
-                        if result.valid && value.finite() {
-                            for (mean, v) in means[seed].iter_mut().zip(value.xyz) {
-                                *mean += v / SAMPLES as f64;
-                            }
-                        }
-                    }
-                }
-                cell.variance[mode] = weighted_error(&means);
-                cell.rays[mode] /= (2 * SAMPLES) as f64;
-            }
-            for (j, &side) in REUSE_CHOICES.iter().enumerate() {
-                let xs = x..(x + side).min(width);
-                let ys = y..(y + side).min(height);
-                let pixels = xs.len() * ys.len();
-                // Per pixel of the tile and seed, the mean colour of its samples.
-                let mut means = vec![[[0.0f64; 3]; 2]; pixels];
-                let mut tile: Vec<(u32, TileOut)> = Vec::new();
-                for (seed, rows) in seeds.iter().enumerate() {
-                    for s in 0..SAMPLES {
-                        crate::reuse::trace_tile_at::<N>(
-                            &tracers[0],
-                            renderer.filter(),
-                            rows,
-                            xs.clone(),
-                            ys.clone(),
-                            s,
-                            &mut tile,
-                        );
-                        for (p, (_, out)) in tile.iter().enumerate() {
-                            cell.rays[2 + j] += out.result.rays as f64;
-                            if out.result.valid && out.value.finite() {
-                                for (mean, v) in means[p][seed].iter_mut().zip(out.value.xyz) {
-                                    *mean += v / SAMPLES as f64;
-                                }
-                            }
-                        }
-                    }
-                }
-                cell.variance[2 + j] =
-                    means.iter().map(weighted_error).sum::<f64>() / pixels as f64;
-                cell.rays[2 + j] /= (2 * SAMPLES as usize * pixels) as f64;
-            }
+            split(i, &mut cell);
+            reuse(i, 0, &mut cell);
             cell
         })
         .collect();
-    let error = |p: &ModePilot| p.variance.iter().sum::<f64>();
+    let first = summarize_modes(&per_cell, 3);
+    if first.choice().1 == 1 {
+        return first;
+    }
+    per_cell.par_iter_mut().enumerate().for_each(|(i, cell)| {
+        for j in 1..REUSE_CHOICES.len() {
+            reuse(i as u32, j, cell);
+        }
+    });
+    summarize_modes(&per_cell, 4)
+}
+
+/// The cells' mean errors and rays over the first `modes` modes, without the cells of
+/// the largest errors (`TRIMMED` of them, as [`summarize`]); the other modes stay zero,
+/// which [`ModePilot::choice`] reads as not measured.
+fn summarize_modes(per_cell: &[ModePilot], modes: usize) -> ModePilot {
+    let error = |p: &ModePilot| p.variance[..modes].iter().sum::<f64>();
     let mut order: Vec<usize> = (0..per_cell.len()).collect();
     order.sort_by(|&a, &b| {
         error(&per_cell[a])
@@ -269,7 +299,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     let kept = kept.max(1).min(per_cell.len());
     let mut total = ModePilot::default();
     for &i in &order[..kept] {
-        for mode in 0..4 {
+        for mode in 0..modes {
             total.variance[mode] += per_cell[i].variance[mode] / kept as f64;
             total.rays[mode] += per_cell[i].rays[mode] / kept as f64;
         }
