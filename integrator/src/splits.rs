@@ -14,7 +14,8 @@
 //! choice is a pure function of the scene, the image size, the settings and the seed:
 //! every thread count and every machine of a farm makes the same one.
 
-use crate::render::{Renderer, trace_sample};
+use crate::path::Tracer;
+use crate::render::{Renderer, Rows, trace_sample};
 use crate::reuse::Tile;
 use crate::sample_value::SampleValue;
 use crate::throughput::Throughput;
@@ -100,31 +101,8 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             // The centres of a columns x rows grid of equal cells.
             let x = ((2 * (i % columns) + 1) * width / (2 * columns)).min(width - 1);
             let y = ((2 * (i / columns) + 1) * height / (2 * rows)).min(height - 1);
-            // Per mode and seed, the mean colour of the pixel's samples.
-            let mut means = [[[0.0f64; 3]; 2]; 2];
-            let mut rays = [0.0; 2];
-            let mut value = SampleValue::default();
-            for (mode, tracer) in tracers.iter().enumerate() {
-                for (seed, rows) in seeds.iter().enumerate() {
-                    for s in 0..SAMPLES {
-                        let result = trace_sample::<N, FLUORESCENCE, T>(
-                            tracer,
-                            renderer.filter(),
-                            rows,
-                            x,
-                            y,
-                            s,
-                            &mut value,
-                        );
-                        rays[mode] += result.rays as f64;
-                        if result.valid && value.finite() {
-                            for (mean, v) in means[mode][seed].iter_mut().zip(value.xyz) {
-                                *mean += v / SAMPLES as f64;
-                            }
-                        }
-                    }
-                }
-            }
+            let (means, rays) =
+                pixel_estimates::<N, FLUORESCENCE, T>(renderer, &tracers, &seeds, x, y);
             weighted_errors(&means, rays)
         })
         .collect();
@@ -201,30 +179,10 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     // The modes 0 and 1: a cell's corner pixel, unsplit and split in two.
     let split = |i: u32, cell: &mut ModePilot| {
         let (x, y) = corner(i);
-        let mut value = SampleValue::default();
-        for (mode, tracer) in tracers.iter().enumerate() {
-            let mut means = [[0.0f64; 3]; 2];
-            for (seed, rows) in seeds.iter().enumerate() {
-                for s in 0..SAMPLES {
-                    let result = trace_sample::<N, FLUORESCENCE, T>(
-                        tracer,
-                        renderer.filter(),
-                        rows,
-                        x,
-                        y,
-                        s,
-                        &mut value,
-                    );
-                    cell.rays[mode] += result.rays as f64;
-                    if result.valid && value.finite() {
-                        for (mean, v) in means[seed].iter_mut().zip(value.xyz) {
-                            *mean += v / SAMPLES as f64;
-                        }
-                    }
-                }
-            }
-            cell.variance[mode] = weighted_error(&means);
-            cell.rays[mode] /= (2 * SAMPLES) as f64;
+        let (means, rays) = pixel_estimates::<N, FLUORESCENCE, T>(renderer, &tracers, &seeds, x, y);
+        for mode in 0..2 {
+            cell.variance[mode] = weighted_error(&means[mode]);
+            cell.rays[mode] = rays[mode] / (2 * SAMPLES) as f64;
         }
     };
     // Mode 2 + j: the tile of side REUSE_CHOICES[j] at the cell's corner, with reuse.
@@ -288,20 +246,17 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
 /// the largest errors (`TRIMMED` of them, as [`summarize`]); the other modes stay zero,
 /// which [`ModePilot::choice`] reads as not measured.
 fn summarize_modes(per_cell: &[ModePilot], modes: usize) -> ModePilot {
-    let error = |p: &ModePilot| p.variance[..modes].iter().sum::<f64>();
-    let mut order: Vec<usize> = (0..per_cell.len()).collect();
-    order.sort_by(|&a, &b| {
-        error(&per_cell[a])
-            .total_cmp(&error(&per_cell[b]))
-            .then(a.cmp(&b))
-    });
-    let kept = per_cell.len() - (per_cell.len() as f64 * TRIMMED).ceil() as usize;
-    let kept = kept.max(1).min(per_cell.len());
+    let errors: Vec<f64> = per_cell
+        .iter()
+        .map(|p| p.variance[..modes].iter().sum::<f64>())
+        .collect();
+    let kept = kept_in_order(&errors);
+    let n = kept.len() as f64;
     let mut total = ModePilot::default();
-    for &i in &order[..kept] {
+    for &i in &kept {
         for mode in 0..modes {
-            total.variance[mode] += per_cell[i].variance[mode] / kept as f64;
-            total.rays[mode] += per_cell[i].rays[mode] / kept as f64;
+            total.variance[mode] += per_cell[i].variance[mode] / n;
+            total.rays[mode] += per_cell[i].rays[mode] / n;
         }
     }
     total
@@ -312,11 +267,51 @@ fn summarize_modes(per_cell: &[ModePilot], modes: usize) -> ModePilot {
 /// summed over the channels.
 fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
     (0..3)
-        .map(|k| {
-            let mean = 0.5 * (means[0][k] + means[1][k]);
-            0.5 * (means[0][k] - means[1][k]).powi(2) / (mean * mean + 0.01)
-        })
+        .map(|k| channel_error(means[0][k], means[1][k], 0.5 * (means[0][k] + means[1][k])))
         .sum()
+}
+
+/// Half the squared difference of two estimates `a` and `b` of a channel whose value is
+/// about `mean`, weighted as the relative MSE weighs errors.
+fn channel_error(a: f64, b: f64, mean: f64) -> f64 {
+    let weight = 1.0 / (mean * mean + 0.01);
+    0.5 * (a - b).powi(2) * weight
+}
+
+/// Per mode (unsplit, split in two) and seed, the mean colour of pixel (`x`, `y`)'s
+/// `SAMPLES` samples, and per mode the rays they traced.
+fn pixel_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    renderer: &Renderer,
+    tracers: &[Tracer; 2],
+    seeds: &[Rows; 2],
+    x: u32,
+    y: u32,
+) -> ([[[f64; 3]; 2]; 2], [f64; 2]) {
+    let mut means = [[[0.0f64; 3]; 2]; 2];
+    let mut rays = [0.0; 2];
+    let mut value = SampleValue::default();
+    for (mode, tracer) in tracers.iter().enumerate() {
+        for (seed, rows) in seeds.iter().enumerate() {
+            for s in 0..SAMPLES {
+                let result = trace_sample::<N, FLUORESCENCE, T>(
+                    tracer,
+                    renderer.filter(),
+                    rows,
+                    x,
+                    y,
+                    s,
+                    &mut value,
+                );
+                rays[mode] += result.rays as f64;
+                if result.valid && value.finite() {
+                    for (mean, v) in means[mode][seed].iter_mut().zip(value.xyz) {
+                        *mean += v / SAMPLES as f64;
+                    }
+                }
+            }
+        }
+    }
+    (means, rays)
 }
 
 /// The pilot's pixels' mean error and rays, without the pixels of the largest errors
@@ -325,18 +320,14 @@ fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
 /// decided the choice on the effects stage, differently at each image size. Sorted by
 /// value, ties by position, and summed in order: the same result on any thread count.
 fn summarize(per_pixel: &[Pilot]) -> Pilot {
-    let error = |p: &Pilot| p.variance[0] + p.variance[1];
-    let mut order: Vec<usize> = (0..per_pixel.len()).collect();
-    order.sort_by(|&a, &b| {
-        error(&per_pixel[a])
-            .total_cmp(&error(&per_pixel[b]))
-            .then(a.cmp(&b))
-    });
-    let kept = per_pixel.len() - (per_pixel.len() as f64 * TRIMMED).ceil() as usize;
-    let kept = kept.max(1).min(per_pixel.len());
-    let n = kept as f64;
+    let errors: Vec<f64> = per_pixel
+        .iter()
+        .map(|p| p.variance[0] + p.variance[1])
+        .collect();
+    let kept = kept_in_order(&errors);
+    let n = kept.len() as f64;
     let mut total = Pilot::default();
-    for &i in &order[..kept] {
+    for &i in &kept {
         let p = &per_pixel[i];
         for mode in 0..2 {
             total.variance[mode] += p.variance[mode] / n;
@@ -344,6 +335,16 @@ fn summarize(per_pixel: &[Pilot]) -> Pilot {
         }
     }
     total
+}
+
+/// The indices of `errors` without the `TRIMMED` share of the largest, sorted by error
+/// (ties by position): summed in this order, the result is the same on any thread count.
+fn kept_in_order(errors: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..errors.len()).collect();
+    order.sort_by(|&a, &b| errors[a].total_cmp(&errors[b]).then(a.cmp(&b)));
+    let kept = errors.len() - (errors.len() as f64 * TRIMMED).ceil() as usize;
+    order.truncate(kept.max(1).min(errors.len()));
+    order
 }
 
 /// One pixel's squared error of a mean per mode, (a - b)^2 / 2 for the two seeds' means a
@@ -356,9 +357,8 @@ fn weighted_errors(means: &[[[f64; 3]; 2]; 2], rays: [f64; 2]) -> Pilot {
     };
     for k in 0..3 {
         let mean = means.iter().flatten().map(|m| m[k]).sum::<f64>() / 4.0;
-        let weight = 1.0 / (mean * mean + 0.01);
         for (mode, [a, b]) in means.iter().enumerate() {
-            pilot.variance[mode] += 0.5 * (a[k] - b[k]).powi(2) * weight;
+            pilot.variance[mode] += channel_error(a[k], b[k], mean);
         }
     }
     pilot

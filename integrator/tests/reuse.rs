@@ -7,9 +7,9 @@
 
 mod common;
 
-use common::{assert_image_mean, cornell, ortho_camera, repository_scene};
+use common::{assert_image_mean, blocks, cornell, ortho_camera, relative_mse, repository_scene};
 use glam::Vec3;
-use prism_integrator::{Film, RenderSettings, Renderer, Reuse, Splits, render};
+use prism_integrator::{RenderSettings, Renderer, Reuse, Splits, render};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
@@ -96,43 +96,6 @@ fn a_reused_glowing_enclosure_returns_its_closed_form() {
         let (film, _) = render(&scene, &settings(10, 64, 3).max_depth(Some(1))).unwrap();
         assert_image_mean(&film, one, &format!("rho {rho} depth 1"));
     }
-}
-
-/// The mean of each 4 x 4 block of `film`'s pixels, channel by channel.
-fn blocks(film: &Film) -> Vec<[f64; 3]> {
-    let (w, h) = (film.width(), film.height());
-    let mut out = vec![];
-    for by in (0..h).step_by(4) {
-        for bx in (0..w).step_by(4) {
-            let mut sum = [0.0; 3];
-            for y in by..(by + 4).min(h) {
-                for x in bx..(bx + 4).min(w) {
-                    let v = film.xyz(x, y).to_array();
-                    for k in 0..3 {
-                        sum[k] += v[k] / 16.0;
-                    }
-                }
-            }
-            out.push(sum);
-        }
-    }
-    out
-}
-
-/// The relative mean squared error of `film` against `reference`, per pixel and channel.
-fn relative_mse(film: &Film, reference: &Film) -> f64 {
-    let mut sum = 0.0;
-    let mut n = 0.0;
-    for y in 0..film.height() {
-        for x in 0..film.width() {
-            let (a, b) = (film.xyz(x, y).to_array(), reference.xyz(x, y).to_array());
-            for k in 0..3 {
-                sum += (a[k] - b[k]).powi(2) / (b[k] * b[k] + 0.01);
-                n += 1.0;
-            }
-        }
-    }
-    sum / n
 }
 
 /// Reused and plain paths estimate the same image: the Cornell box's 4 x 4 blocks agree,

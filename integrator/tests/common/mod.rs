@@ -231,3 +231,40 @@ pub fn assert_image_mean(film: &Film, expected: [f64; 3], what: &str) {
         );
     }
 }
+
+/// The mean of each 4 x 4 block of `film`'s pixels, channel by channel.
+pub fn blocks(film: &Film) -> Vec<[f64; 3]> {
+    let (w, h) = (film.width(), film.height());
+    let mut out = vec![];
+    for by in (0..h).step_by(4) {
+        for bx in (0..w).step_by(4) {
+            let mut sum = [0.0; 3];
+            for y in by..(by + 4).min(h) {
+                for x in bx..(bx + 4).min(w) {
+                    let v = film.xyz(x, y).to_array();
+                    for k in 0..3 {
+                        sum[k] += v[k] / 16.0;
+                    }
+                }
+            }
+            out.push(sum);
+        }
+    }
+    out
+}
+
+/// The relative mean squared error of `film` against `reference`, per pixel and channel.
+pub fn relative_mse(film: &Film, reference: &Film) -> f64 {
+    let mut sum = 0.0;
+    let mut n = 0.0;
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            let (a, b) = (film.xyz(x, y).to_array(), reference.xyz(x, y).to_array());
+            for k in 0..3 {
+                sum += (a[k] - b[k]).powi(2) / (b[k] * b[k] + 0.01);
+                n += 1.0;
+            }
+        }
+    }
+    sum / n
+}
