@@ -7,7 +7,10 @@
 
 mod common;
 
-use common::{assert_image_mean, blocks, cornell, ortho_camera, relative_mse, repository_scene};
+use common::{
+    assert_blocks_agree, assert_deterministic_and_merges, assert_image_mean, block_statistics,
+    cornell, ortho_camera, relative_mse, repository_scene,
+};
 use glam::Vec3;
 use prism_integrator::{RenderSettings, Renderer, Reuse, Splits, render};
 use prism_scene::geometry::BvhQuality;
@@ -103,39 +106,15 @@ fn a_reused_glowing_enclosure_returns_its_closed_form() {
 #[test]
 fn reused_paths_estimate_the_plain_image() {
     let scene = cornell();
-    let block_stats = |reuse: u32| {
-        let runs: Vec<Vec<[f64; 3]>> = (0..8)
-            .map(|seed| {
-                let s = settings(16, 8, reuse).seed(700 + seed);
-                blocks(&render(&scene, &s).unwrap().0)
-            })
-            .collect();
-        let n = runs.len() as f64;
-        (0..runs[0].len())
-            .map(|b| {
-                [0, 1, 2].map(|k| {
-                    let mean = runs.iter().map(|r| r[b][k]).sum::<f64>() / n;
-                    let var =
-                        runs.iter().map(|r| (r[b][k] - mean).powi(2)).sum::<f64>() / (n - 1.0);
-                    (mean, var / n)
-                })
-            })
-            .collect::<Vec<_>>()
-    };
-    let plain = block_stats(1);
+    let statistics =
+        |reuse: u32| block_statistics(&scene, |seed| settings(16, 8, reuse).seed(700 + seed));
+    let plain = statistics(1);
     for reuse in [2, 3] {
-        let shared = block_stats(reuse);
-        for (b, (u, s)) in plain.iter().zip(&shared).enumerate() {
-            for k in 0..3 {
-                let sigma = (u[k].1 + s[k].1).sqrt();
-                assert!(
-                    (u[k].0 - s[k].0).abs() < 5.0 * sigma + 1e-6,
-                    "reuse {reuse} block {b} channel {k}: plain {} reused {} (sigma {sigma})",
-                    u[k].0,
-                    s[k].0
-                );
-            }
-        }
+        assert_blocks_agree(
+            &plain,
+            &statistics(reuse),
+            &format!("plain and reuse {reuse}"),
+        );
     }
 }
 
@@ -159,20 +138,7 @@ fn reuse_lowers_the_error() {
 /// Threads and sample ranges do not change a reused render.
 #[test]
 fn reused_renders_are_deterministic_and_merge() {
-    let scene = cornell();
-    let mut one = settings(13, 6, 3);
-    one.threads = 1;
-    let (a, _) = render(&scene, &one).unwrap();
-    let (b, _) = render(&scene, &one.clone().threads(2)).unwrap();
-    assert_eq!(a.sums(), b.sums());
-    let (mut first, _) = render(&scene, &one.clone().samples(0..2)).unwrap();
-    let (second, _) = render(&scene, &one.clone().samples(2..6)).unwrap();
-    first.merge(&second).unwrap();
-    for (x, y) in first.sums().iter().zip(a.sums()) {
-        for k in 0..3 {
-            assert!((x[k] - y[k]).abs() <= 1e-12 * y[k].abs().max(1.0));
-        }
-    }
+    assert_deterministic_and_merges(&cornell(), &settings(13, 6, 3));
 }
 
 /// The automatic choice shares second vertices where the error is in indirect light on

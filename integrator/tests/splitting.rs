@@ -8,7 +8,10 @@
 
 mod common;
 
-use common::{assert_image_mean, blocks, cornell, furnace_scene, relative_mse, repository_scene};
+use common::{
+    assert_blocks_agree, assert_deterministic_and_merges, assert_image_mean, block_statistics,
+    cornell, furnace_scene, relative_mse, repository_scene,
+};
 use prism_integrator::{RenderSettings, Renderer, Reuse, Splits, render};
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::Constant;
@@ -48,37 +51,9 @@ fn a_split_white_furnace_returns_the_environment() {
 #[test]
 fn split_paths_estimate_the_unsplit_image() {
     let scene = cornell();
-    let block_stats = |splits: u32| {
-        let runs: Vec<Vec<[f64; 3]>> = (0..8)
-            .map(|seed| {
-                let s = settings(16, 8, splits).seed(500 + seed);
-                blocks(&render(&scene, &s).unwrap().0)
-            })
-            .collect();
-        let n = runs.len() as f64;
-        (0..runs[0].len())
-            .map(|b| {
-                [0, 1, 2].map(|k| {
-                    let mean = runs.iter().map(|r| r[b][k]).sum::<f64>() / n;
-                    let var =
-                        runs.iter().map(|r| (r[b][k] - mean).powi(2)).sum::<f64>() / (n - 1.0);
-                    (mean, var / n)
-                })
-            })
-            .collect::<Vec<_>>()
-    };
-    let (unsplit, split) = (block_stats(1), block_stats(4));
-    for (b, (u, s)) in unsplit.iter().zip(&split).enumerate() {
-        for k in 0..3 {
-            let sigma = (u[k].1 + s[k].1).sqrt();
-            assert!(
-                (u[k].0 - s[k].0).abs() < 5.0 * sigma + 1e-6,
-                "block {b} channel {k}: unsplit {} split {} (sigma {sigma})",
-                u[k].0,
-                s[k].0
-            );
-        }
-    }
+    let statistics =
+        |splits: u32| block_statistics(&scene, |seed| settings(16, 8, splits).seed(500 + seed));
+    assert_blocks_agree(&statistics(1), &statistics(4), "unsplit and split in four");
 }
 
 /// Continuations are distinct paths: four per sample lower the Cornell box's error against
@@ -100,20 +75,7 @@ fn splitting_lowers_the_error() {
 /// Threads and sample ranges do not change a split render.
 #[test]
 fn split_renders_are_deterministic_and_merge() {
-    let scene = cornell();
-    let mut one = settings(12, 6, 3);
-    one.threads = 1;
-    let (a, _) = render(&scene, &one).unwrap();
-    let (b, _) = render(&scene, &one.clone().threads(2)).unwrap();
-    assert_eq!(a.sums(), b.sums());
-    let (mut first, _) = render(&scene, &one.clone().samples(0..2)).unwrap();
-    let (second, _) = render(&scene, &one.clone().samples(2..6)).unwrap();
-    first.merge(&second).unwrap();
-    for (x, y) in first.sums().iter().zip(a.sums()) {
-        for k in 0..3 {
-            assert!((x[k] - y[k]).abs() <= 1e-12 * y[k].abs().max(1.0));
-        }
-    }
+    assert_deterministic_and_merges(&cornell(), &settings(12, 6, 3));
 }
 
 /// The automatic choice splits where the error follows the first vertex (the Cornell

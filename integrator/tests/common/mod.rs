@@ -268,3 +268,65 @@ pub fn relative_mse(film: &Film, reference: &Film) -> f64 {
     }
     sum / n
 }
+
+/// Per 4 x 4 block of the renders of `scene` with `settings_of(seed)` for eight seeds,
+/// per channel: the mean over the seeds and its squared standard error.
+pub fn block_statistics(
+    scene: &Scene,
+    settings_of: impl Fn(u64) -> prism_integrator::RenderSettings,
+) -> Vec<[(f64, f64); 3]> {
+    let runs: Vec<Vec<[f64; 3]>> = (0..8)
+        .map(|seed| {
+            blocks(
+                &prism_integrator::render(scene, &settings_of(seed))
+                    .unwrap()
+                    .0,
+            )
+        })
+        .collect();
+    let n = runs.len() as f64;
+    (0..runs[0].len())
+        .map(|b| {
+            [0, 1, 2].map(|k| {
+                let mean = runs.iter().map(|r| r[b][k]).sum::<f64>() / n;
+                let var = runs.iter().map(|r| (r[b][k] - mean).powi(2)).sum::<f64>() / (n - 1.0);
+                (mean, var / n)
+            })
+        })
+        .collect()
+}
+
+/// Asserts that two sets of [`block_statistics`] agree, every block and channel within
+/// five standard errors; `what` names the pair in the message.
+pub fn assert_blocks_agree(a: &[[(f64, f64); 3]], b: &[[(f64, f64); 3]], what: &str) {
+    for (i, (u, s)) in a.iter().zip(b).enumerate() {
+        for k in 0..3 {
+            let sigma = (u[k].1 + s[k].1).sqrt();
+            assert!(
+                (u[k].0 - s[k].0).abs() < 5.0 * sigma + 1e-6,
+                "{what}: block {i} channel {k}: {} against {} (sigma {sigma})",
+                u[k].0,
+                s[k].0
+            );
+        }
+    }
+}
+
+/// Asserts that `scene` rendered with `settings` (one thread, samples 0..6) gives the same
+/// sums on two threads, and the same to rounding when rendered as samples 0..2 and 2..6
+/// and merged.
+pub fn assert_deterministic_and_merges(scene: &Scene, settings: &prism_integrator::RenderSettings) {
+    use prism_integrator::render;
+    let one = settings.clone().threads(1).samples(0..6);
+    let (a, _) = render(scene, &one).unwrap();
+    let (b, _) = render(scene, &one.clone().threads(2)).unwrap();
+    assert_eq!(a.sums(), b.sums());
+    let (mut first, _) = render(scene, &one.clone().samples(0..2)).unwrap();
+    let (second, _) = render(scene, &one.clone().samples(2..6)).unwrap();
+    first.merge(&second).unwrap();
+    for (x, y) in first.sums().iter().zip(a.sums()) {
+        for k in 0..3 {
+            assert!((x[k] - y[k]).abs() <= 1e-12 * y[k].abs().max(1.0));
+        }
+    }
+}
