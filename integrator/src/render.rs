@@ -507,6 +507,27 @@ fn reuse_pass<const N: usize>(
         .fold((0, 0), |(a, b), (r, n)| (a + r, b + n))
 }
 
+/// Sample `s` of pixel (`x`, `y`): its stream (positioned after the film dimensions),
+/// the number that chooses its wavelengths and its point on the film (in [0, 1]^2).
+pub(crate) fn camera_sample(
+    filter: &FilterSampler,
+    settings: &Rows,
+    x: u32,
+    y: u32,
+    s: u64,
+) -> (SobolStream, f32, Vec2) {
+    let (w, h) = (settings.width, settings.height);
+    let pixel = u64::from(y) * u64::from(w) + u64::from(x);
+    let mut stream = SobolStream::new(settings.seed, pixel, s);
+    let u_lambda = stream.next_1d();
+    let offset = filter.offset(stream.next_2d());
+    let film = Vec2::new(
+        (x as f32 + 0.5 + offset.x) / w as f32,
+        (y as f32 + 0.5 + offset.y) / h as f32,
+    );
+    (stream, u_lambda, film)
+}
+
 /// Traces sample `s` of pixel (`x`, `y`) into `value` (cleared first).
 pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     tracer: &Tracer,
@@ -518,14 +539,7 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
     value: &mut SampleValue,
 ) -> PathResult {
     let (w, h) = (settings.width, settings.height);
-    let pixel = u64::from(y) * u64::from(w) + u64::from(x);
-    let mut stream = SobolStream::new(settings.seed, pixel, s);
-    let u_lambda = stream.next_1d();
-    let offset = filter.offset(stream.next_2d());
-    let film = Vec2::new(
-        (x as f32 + 0.5 + offset.x) / w as f32,
-        (y as f32 + 0.5 + offset.y) / h as f32,
-    );
+    let (mut stream, u_lambda, film) = camera_sample(filter, settings, x, y, s);
     value.clear();
     let aspect = w as f32 / h as f32;
     let mut sink = |radiance: &T::Radiance, lambdas: &_| {
@@ -545,7 +559,7 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
         film,
         aspect,
         &mut sink,
-        &mut Record::new(T::black(), T::black()),
+        &mut Record::new(T::black()),
     )
 }
 

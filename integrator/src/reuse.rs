@@ -24,7 +24,7 @@
 //! What it costs: a shadow ray per pair of first and second vertices of different
 //! pixels, T^2 - 1 per pixel and sample. What it buys: each pixel's indirect light is
 //! estimated from T^2 continuations instead of one; on the Cornell box the error per
-//! sample falls 3.4x (T = 2) to 9x (T = 4) for 1.1-1.4x the time (docs/trade-offs.md).
+//! sample falls 3.4x (T = 2) to 9x (T = 4) for 1.2-1.6x the time (docs/trade-offs.md).
 //!
 //! The tiles stay in place from sample to sample, so that the second vertices a pixel
 //! gathers over its samples come from a few Sobol streams, each stratified over the
@@ -34,7 +34,7 @@
 //! pixel the image shows it as faint T x T blocks. A tile's wavelengths are its corner
 //! pixel's (that pixel's wavelength dimension), stratified over the samples.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_scene::world::{Bsdf, Hit, Scene};
@@ -42,7 +42,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::filter::FilterSampler;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Frame, PathResult, Tracer};
-use crate::render::Rows;
+use crate::render::{Rows, camera_sample};
 use crate::sample_value::SampleValue;
 
 /// A path's first vertex, recorded when it is Lambertian: the technique that can reach
@@ -81,13 +81,14 @@ pub(crate) struct Record<'s, const N: usize, R> {
     pub reflected: R,
 }
 
-impl<'s, const N: usize, R> Record<'s, N, R> {
-    pub(crate) fn new(black: R, also_black: R) -> Self {
+impl<'s, const N: usize, R: Clone> Record<'s, N, R> {
+    /// An empty record whose radiances are `black`.
+    pub(crate) fn new(black: R) -> Self {
         Self {
             first: None,
             second: None,
-            own: black,
-            reflected: also_black,
+            own: black.clone(),
+            reflected: black,
         }
     }
 }
@@ -155,15 +156,8 @@ impl<'a> Tracer<'a> {
         tile.len = 0;
         for y in ys.clone() {
             for x in xs.clone() {
-                let pixel = u64::from(y) * u64::from(w) + u64::from(x);
-                let mut stream = SobolStream::new(rows.seed, pixel, s);
-                // The pixel's own wavelength dimension stays unused: the tile's is shared.
-                let _ = stream.next_1d();
-                let offset = filter.offset(stream.next_2d());
-                let film = Vec2::new(
-                    (x as f32 + 0.5 + offset.x) / w as f32,
-                    (y as f32 + 0.5 + offset.y) / h as f32,
-                );
+                // The pixel's own wavelength number stays unused: the tile's is shared.
+                let (mut stream, _, film) = camera_sample(filter, rows, x, y, s);
                 if tile.len == tile.pixels.len() {
                     tile.pixels.push(TilePixel {
                         x,
@@ -174,10 +168,7 @@ impl<'a> Tracer<'a> {
                             covered: false,
                         },
                         value: SampleValue::default(),
-                        record: Record::new(
-                            SampledSpectrum::splat(0.0),
-                            SampledSpectrum::splat(0.0),
-                        ),
+                        record: Record::new(SampledSpectrum::splat(0.0)),
                     });
                 }
                 let here = &mut tile.pixels[tile.len];
