@@ -8,6 +8,7 @@
   python3 benches/peer/compare.py box --width 128 --reference-spp 4096   # render one first
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr   # Mitsuba's, 8192 spp
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --repeats 3   # median times
+  python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --narrow-peers  # peers as without AVX-512
 
 Issue 30's measure is the last form: the reference is a converged render of the independent
 renderer (Mitsuba 3's llvm_ad_spectral at 8192 spp, benches/peer/mitsuba_reference.py), made
@@ -99,6 +100,9 @@ def main():
                     help="time every renderer this many times, in turns, and report the median (a shared "
                          "host's speed drifts by 20-30%% within minutes; images and errors are the first run's, "
                          "every run's being the same)")
+    ap.add_argument("--narrow-peers", action="store_true",
+                    help="run Mitsuba as on a host without AVX-512 (narrow_peer.py: Dr.Jit 8 lanes wide for "
+                         "Zen 3, Embree capped at AVX2); an imitation of such a host, not a measurement on one")
     a = ap.parse_args()
     out = tempfile.mkdtemp(prefix="prism-peer-")
     prism = os.path.join(ROOT, "target", "release", "prism")
@@ -118,7 +122,9 @@ def main():
     variants = a.variants.split(",")
 
     def run_peer(variant, exr):
-        peer = subprocess.run([sys.executable, os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"), variant,
+        script = (os.path.join(ROOT, "benches", "peer", "narrow_peer.py") if a.narrow_peers
+                  else os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"))
+        peer = subprocess.run([sys.executable, script, variant,
                                a.scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
                               check=True, capture_output=True, text=True)
         return json.loads(peer.stdout.strip().splitlines()[-1])
@@ -134,6 +140,7 @@ def main():
     prism_stats["seconds"] = median(prism_runs)
     prism_stats["paths_per_second"] = a.width * a.width * a.spp / prism_stats["seconds"]
     result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
+              "peers": "imitating a host without AVX-512" if a.narrow_peers else "native",
               "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits", "reuse")}}
     if a.repeats > 1:
         result["prism"]["seconds_each"] = [r["seconds"] for r in prism_runs]
