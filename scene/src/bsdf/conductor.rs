@@ -59,13 +59,6 @@ impl<const N: usize> SmoothConductor<N> {
         let f = SampledSpectrum::from_fn(|i| {
             fresnel_conductor(cos_o, self.eta[i], self.k[i]) / cos_o.abs()
         });
-        Some(BsdfSample {
-            wi,
-            f,
-            pdf: [1.0; N],
-            delta: true,
-            wavelength_dependent: false,
-            eta: 1.0,
-        })
+        Some(BsdfSample::specular(wi, f, [1.0; N]))
     }
 }

@@ -91,14 +91,7 @@ impl<const N: usize> SmoothDielectric<N> {
         if uc < r0 {
             let wi = Vec3::new(-wo.x, -wo.y, wo.z);
             let f = SampledSpectrum(reflectance) / cos_o.abs();
-            return Some(BsdfSample {
-                wi,
-                f,
-                pdf: reflectance,
-                delta: true,
-                wavelength_dependent: false,
-                eta: 1.0,
-            });
+            return Some(BsdfSample::specular(wi, f, reflectance));
         }
         let (wi, eta_hero) = refract(wo, self.eta[0])?;
         let dispersive = self.dispersive();

@@ -41,14 +41,7 @@ impl<const N: usize> Diffuse<N> {
         if pdf == 0.0 || cos_theta(wo) == 0.0 {
             return None;
         }
-        Some(BsdfSample {
-            wi,
-            f: self.f(wo, wi),
-            pdf: [pdf; N],
-            delta: false,
-            wavelength_dependent: false,
-            eta: 1.0,
-        })
+        Some(BsdfSample::smooth(wi, self.f(wo, wi), [pdf; N]))
     }
 
     /// The density of [`Diffuse::sample`] returning `wi` given `wo`.

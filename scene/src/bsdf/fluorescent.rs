@@ -164,14 +164,7 @@ impl FluorescentDiffuse<'_> {
             }
         }
         Some(FluorescentSample {
-            bsdf: BsdfSample {
-                wi,
-                f,
-                pdf,
-                delta: false,
-                wavelength_dependent: false,
-                eta: 1.0,
-            },
+            bsdf: BsdfSample::smooth(wi, f, pdf),
             lambda_in,
             lambda_pdf,
         })

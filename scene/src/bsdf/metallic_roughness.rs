@@ -598,14 +598,7 @@ impl<'a, const N: usize> MetallicRoughness<'a, N> {
         if !positive_finite(pdf) {
             return None;
         }
-        Some(BsdfSample {
-            wi,
-            f: self.f(wo, wi),
-            pdf: [pdf; N],
-            delta: false,
-            wavelength_dependent: false,
-            eta: 1.0,
-        })
+        Some(BsdfSample::smooth(wi, self.f(wo, wi), [pdf; N]))
     }
 }
 

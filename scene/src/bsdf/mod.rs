@@ -71,6 +71,30 @@ pub struct BsdfSample<const N: usize> {
     pub eta: f32,
 }
 
+impl<const N: usize> BsdfSample<N> {
+    /// A direction of a lobe with a density, whichever wavelength chose it, leaving the
+    /// index of refraction as it was (a reflection, or a crossing of a thin sheet).
+    pub(crate) fn smooth(wi: Vec3, f: SampledSpectrum<N>, pdf: [f32; N]) -> Self {
+        Self {
+            wi,
+            f,
+            pdf,
+            delta: false,
+            wavelength_dependent: false,
+            eta: 1.0,
+        }
+    }
+
+    /// A Dirac delta's direction, the same for every wavelength, leaving the index of
+    /// refraction as it was: `pdf` is the discrete probability of choosing it.
+    pub(crate) fn specular(wi: Vec3, f: SampledSpectrum<N>, pdf: [f32; N]) -> Self {
+        Self {
+            delta: true,
+            ..Self::smooth(wi, f, pdf)
+        }
+    }
+}
+
 /// cos(theta) of a local direction.
 pub(crate) fn cos_theta(w: Vec3) -> f32 {
     w.z

@@ -37,13 +37,10 @@ impl<const N: usize> Sheet<N> {
         if cos == 0.0 || !wo.is_finite() {
             return None;
         }
-        Some(BsdfSample {
-            wi: -wo,
-            f: self.transmittance / cos,
-            pdf: [1.0; N],
-            delta: true,
-            wavelength_dependent: false,
-            eta: 1.0,
-        })
+        Some(BsdfSample::specular(
+            -wo,
+            self.transmittance / cos,
+            [1.0; N],
+        ))
     }
 }

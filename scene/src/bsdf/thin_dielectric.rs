@@ -98,18 +98,16 @@ impl<const N: usize> ThinDielectric<N> {
             let reflectance = self.eta.map(|e| sheet_reflectance(cos, e));
             let reflect = uc < reflectance[0];
             let choice = reflectance.map(|r| if reflect { r } else { 1.0 - r });
-            return Some(BsdfSample {
-                wi: if reflect {
-                    Vec3::new(-wo.x, -wo.y, wo.z)
-                } else {
-                    -wo
-                },
-                f: SampledSpectrum(choice) / cos,
-                pdf: choice,
-                delta: true,
-                wavelength_dependent: false,
-                eta: 1.0,
-            });
+            let wi = if reflect {
+                Vec3::new(-wo.x, -wo.y, wo.z)
+            } else {
+                -wo
+            };
+            return Some(BsdfSample::specular(
+                wi,
+                SampledSpectrum(choice) / cos,
+                choice,
+            ));
         }
         let wm = self.distribution.sample_visible_normal(wo, u);
         let reflected = 2.0 * wo.dot(wm) * wm - wo;
@@ -126,13 +124,6 @@ impl<const N: usize> ThinDielectric<N> {
         if !positive_finite(pdf) {
             return None;
         }
-        Some(BsdfSample {
-            wi,
-            f: self.f(wo, wi),
-            pdf: [pdf; N],
-            delta: false,
-            wavelength_dependent: false,
-            eta: 1.0,
-        })
+        Some(BsdfSample::smooth(wi, self.f(wo, wi), [pdf; N]))
     }
 }
