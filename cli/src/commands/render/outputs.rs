@@ -1,0 +1,208 @@
+//! What a render writes and reports: its images with prism's facts, the polarization
+//! PNG, the statistics, and how it ended.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use prism_integrator::{
+    DisplaySettings, ExrMetadata, Film, RenderSettings, RenderStats, encode_exr, encode_png,
+    encode_polarization_png,
+};
+use prism_spectrum::color::{Mat3, RgbSpaceId, ToneMap};
+
+use super::RenderArgs;
+use crate::output::{check_writable, write_atomically};
+use crate::session::{Ending, Outcome};
+
+/// The rendered image to every output, adapted to the white balance if one is asked for,
+/// with the facts that reproduce it; and the polarization PNG.
+pub(super) fn write_render(
+    args: &RenderArgs,
+    film: &Film,
+    settings: &RenderSettings,
+    stats: &RenderStats,
+    space: RgbSpaceId,
+    white_balance: Option<&Mat3>,
+) -> Result<(), String> {
+    let mut facts = vec![
+        ("seed".into(), args.seed.to_string()),
+        ("wavelengths".into(), args.wavelengths.to_string()),
+        ("lambda_sampler".into(), args.lambda_sampler.clone()),
+        (
+            "wavelength_range".into(),
+            format!("{}:{}", settings.range.0, settings.range.1),
+        ),
+    ];
+    if let Some(spec) = &args.white_balance {
+        facts.push(("white_balance".into(), spec.clone()));
+    }
+    if settings.is_polarized() {
+        facts.push(("polarized".into(), "1".into()));
+    }
+    if let Some(angle) = settings.camera_polarizer {
+        facts.push(("camera_polarizer".into(), angle.to_string()));
+    }
+    if let Some(t) = settings.at {
+        facts.push(("at".into(), t.to_string()));
+    }
+    if stats.splits > 1 {
+        facts.push(("splits".into(), stats.splits.to_string()));
+    }
+    if stats.reuse > 1 {
+        facts.push(("reuse".into(), stats.reuse.to_string()));
+    }
+    let shown = match white_balance {
+        Some(m) => film.adapted(m),
+        None => film.clone(),
+    };
+    write_images(&shown, &args.outputs, space, display(args)?, facts)?;
+    if let Some(path) = &args.polarization_png
+        && let Some(bytes) = encode_polarization_png(&shown, space.space(), display(args)?)
+    {
+        write_atomically(path, &bytes)?;
+    }
+    Ok(())
+}
+
+/// --stats: one JSON object on stdout.
+pub(super) fn print_stats(
+    args: &RenderArgs,
+    settings: &RenderSettings,
+    outcome: &Outcome,
+    started: Instant,
+) {
+    let Outcome {
+        film,
+        stats,
+        ending,
+        seconds,
+    } = outcome;
+    let json = serde_json::json!({
+        "spp": film.samples(),
+        "width": settings.width,
+        "height": settings.height,
+        "seconds": seconds,
+        "total_seconds": started.elapsed().as_secs_f64(),
+        "paths": stats.paths,
+        "paths_per_second": stats.paths as f64 / seconds.max(1e-9),
+        "rays": stats.rays,
+        "rays_per_second": stats.rays as f64 / seconds.max(1e-9),
+        "nonfinite_samples": stats.nonfinite,
+        "ending": format!("{ending:?}"),
+        "peak_memory_bytes": crate::memory::peak_bytes(),
+        "wavelengths": args.wavelengths,
+        "splits": stats.splits,
+        "reuse": stats.reuse,
+        "lambda_sampler": args.lambda_sampler,
+        "energy": energy_stats(film, settings.range),
+        "polarized": settings.is_polarized(),
+        "camera_polarizer": settings.camera_polarizer,
+        "at": settings.at,
+        "shutter": settings.shutter,
+    });
+    println!("{json}");
+}
+
+/// How the render ended, said where it did not complete; an interrupted render exits 130
+/// (128 + SIGINT), its image written.
+pub(super) fn finish(
+    args: &RenderArgs,
+    outcome: &Outcome,
+    range: &Range<u64>,
+) -> Result<(), String> {
+    let done = outcome.film.samples();
+    match outcome.ending {
+        Ending::Complete => Ok(()),
+        Ending::TimeBudget => {
+            if !args.quiet {
+                eprintln!(
+                    "prism: time budget reached at {done} spp of {}",
+                    range.end - range.start
+                );
+            }
+            Ok(())
+        }
+        Ending::Interrupted => {
+            eprintln!(
+                "prism: interrupted at {done} spp of {}; the image so far was written",
+                range.end - range.start
+            );
+            std::process::exit(130);
+        }
+    }
+}
+
+/// The image means of the energy channels, or null without --energy.
+fn energy_stats(film: &Film, range: (f32, f32)) -> serde_json::Value {
+    if !film.has_energy() {
+        return serde_json::Value::Null;
+    }
+    let (w, h) = (film.width(), film.height());
+    let mut sum = [0.0f64; 2];
+    for y in 0..h {
+        for x in 0..w {
+            let e = film.energy(x, y).unwrap_or_default();
+            sum[0] += e[0];
+            sum[1] += e[1];
+        }
+    }
+    let n = f64::from(w) * f64::from(h);
+    let ev = prism_spectrum::constants::ELEMENTARY_CHARGE;
+    serde_json::json!({
+        "range_nm": [range.0, range.1],
+        "mean_radiance_w_m2_sr": sum[0] / n,
+        "mean_radiance_ev_s_m2_sr": sum[0] / n / ev,
+        "mean_photon_radiance_s_m2_sr": sum[1] / n,
+    })
+}
+
+pub(super) fn has_extension(path: &Path, extension: &str) -> bool {
+    path.extension().and_then(|e| e.to_str()) == Some(extension)
+}
+
+/// Every output is a .exr or .png file that can be written.
+pub fn check_outputs(outputs: &[PathBuf]) -> Result<(), String> {
+    for out in outputs {
+        if !(has_extension(out, "exr") || has_extension(out, "png")) {
+            return Err(format!(
+                "output '{}': the extension must be .exr or .png",
+                out.display()
+            ));
+        }
+        check_writable(out)?;
+    }
+    Ok(())
+}
+
+/// How --exposure, --tonemap and --transparent show a film in a PNG.
+fn display(args: &RenderArgs) -> Result<DisplaySettings, String> {
+    Ok(DisplaySettings::default()
+        .exposure(args.exposure)
+        .tone_map(ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?)
+        .alpha(args.transparent))
+}
+
+/// Writes `film` to every output: .exr as linear RGB and alpha in `space` with prism's
+/// facts, .png as `display` says.
+pub fn write_images(
+    film: &Film,
+    outputs: &[PathBuf],
+    space: RgbSpaceId,
+    display: DisplaySettings,
+    facts: Vec<(String, String)>,
+) -> Result<(), String> {
+    let space = space.space();
+    for out in outputs {
+        let bytes = if has_extension(out, "exr") {
+            let metadata = ExrMetadata::default()
+                .spp(film.samples())
+                .strings(facts.clone());
+            encode_exr(film, space, &metadata).map_err(|e| e.to_string())?
+        } else {
+            encode_png(film, space, display)
+        };
+        write_atomically(out, &bytes)?;
+    }
+    Ok(())
+}
