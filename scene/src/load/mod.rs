@@ -12,6 +12,7 @@ mod lights;
 mod material_layers;
 mod materials;
 mod meshopt;
+mod primitive;
 mod summary;
 mod tangents;
 mod tex_coord_sets;
