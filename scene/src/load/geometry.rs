@@ -212,67 +212,9 @@ pub fn load_scene(
             gltf::material::AlphaMode::Blend => note(&mut gltf_features, "alphaMode BLEND"),
         }
     }
-    let mut buffers = gltf
-        .buffers()
-        .map(|buffer| {
-            // EXT_meshopt_compression's placeholders are filled by decoding (below).
-            if super::meshopt::is_fallback(&buffer) {
-                return Ok(vec![0; buffer.length().min(1 << 31)]);
-            }
-            let data = match buffer.source() {
-                gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
-                    LoadError::Buffer(format!(
-                        "buffer {} refers to a missing GLB binary chunk",
-                        buffer.index()
-                    ))
-                })?,
-                gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
-                    Some(rest) => {
-                        let payload =
-                            rest.split_once(";base64,").map(|(_, p)| p).ok_or_else(|| {
-                                LoadError::Buffer(format!(
-                                    "buffer {}: only base64 data URIs are supported",
-                                    buffer.index()
-                                ))
-                            })?;
-                        base64::decode(payload).ok_or_else(|| {
-                            LoadError::Buffer(format!(
-                                "buffer {}: malformed base64 data URI",
-                                buffer.index()
-                            ))
-                        })?
-                    }
-                    None => resolve(uri).map_err(|e| LoadError::Resource {
-                        referrer: format!("buffer {}", buffer.index()),
-                        uri: uri.to_string(),
-                        source: Arc::new(e),
-                    })?,
-                },
-            };
-            if data.len() < buffer.length() {
-                return Err(LoadError::Buffer(format!(
-                    "buffer {} has {} bytes but declares {}",
-                    buffer.index(),
-                    data.len(),
-                    buffer.length()
-                )));
-            }
-            Ok(data)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut buffers = read_buffers(&gltf, resolve)?;
     super::meshopt::decode_views(&gltf, &mut buffers)?;
-    let scene = match scene {
-        Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
-            LoadError::Scene(format!(
-                "no scene {i} (the file has {})",
-                gltf.scenes().count()
-            ))
-        })?,
-        None => gltf
-            .default_scene()
-            .or_else(|| gltf.scenes().next())
-            .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
-    };
+    let scene = select_scene(&gltf, scene)?;
     super::instancing::check(&gltf, &scene)?;
     let mut out = LoadedGeometry {
         warnings,
@@ -285,24 +227,7 @@ pub fn load_scene(
     let upsampler = (gltf.materials().len() > 0 || has_lights || root_spectral.is_some())
         .then(|| Upsampler::new(options.upsampling, options.table.clone()))
         .transpose()?;
-    // The raw `PRISM_spectral` of each punctual light (the gltf crate keeps light
-    // extensions as raw JSON).
-    let light_spectral: Vec<Option<serde_json::Value>> = gltf
-        .as_json()
-        .extensions
-        .as_ref()
-        .and_then(|e| e.khr_lights_punctual.as_ref())
-        .map_or_else(Vec::new, |l| {
-            l.lights
-                .iter()
-                .map(|light| {
-                    let raw = light.extensions.as_ref()?;
-                    let mut map: serde_json::Map<String, serde_json::Value> =
-                        serde_json::from_str(raw.get()).ok()?;
-                    map.remove(spectral::EXTENSION)
-                })
-                .collect()
-        });
+    let light_spectral = punctual_spectral(&gltf);
     if let Some(upsampler) = &upsampler {
         let cx = spectral::Context { resolve, upsampler };
         let textures = super::textures::TextureLoader::new(&gltf, &buffers, resolve, upsampler);
@@ -310,26 +235,7 @@ pub fn load_scene(
             .materials()
             .map(|m| material(&m, &cx, &textures))
             .collect::<Result<_, _>>()?;
-        for m in &out.materials {
-            if m.transmission > 0.0 && m.iridescence.is_some() {
-                warn_once(
-                    &mut out.warnings,
-                    &format!(
-                        "material {}: KHR_materials_iridescence on a transmissive material is not rendered (the glass is)",
-                        m.name
-                    ),
-                );
-            }
-            if m.transmission > 0.0 && m.layers.is_some() {
-                warn_once(
-                    &mut out.warnings,
-                    &format!(
-                        "material {}: KHR_materials_specular, _anisotropy, _clearcoat, _sheen and _diffuse_transmission on a transmissive material are not rendered (the glass is)",
-                        m.name
-                    ),
-                );
-            }
-        }
+        warn_unrendered_layers(&out.materials, &mut out.warnings);
         if let Some(v) = root_spectral {
             out.spectral = spectral::scene(v, &cx).map_err(LoadError::Spectral)?;
         }
@@ -422,6 +328,126 @@ pub fn load_scene(
             scene.index()
         )));
     }
+    add_lights(&mut out, punctual_lights);
+    Ok(out)
+}
+
+/// The bytes of every buffer: the GLB chunk, a base64 data URI or a file through
+/// `resolve`, each at least as long as it declares (EXT_meshopt_compression's fallback
+/// buffers are zeros until their views are decoded).
+fn read_buffers(gltf: &gltf::Gltf, resolve: &super::Resolver) -> Result<Vec<Vec<u8>>, LoadError> {
+    gltf.buffers()
+        .map(|buffer| {
+            // EXT_meshopt_compression's placeholders are filled by `meshopt::decode_views`.
+            if super::meshopt::is_fallback(&buffer) {
+                return Ok(vec![0; buffer.length().min(1 << 31)]);
+            }
+            let data = match buffer.source() {
+                gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
+                    LoadError::Buffer(format!(
+                        "buffer {} refers to a missing GLB binary chunk",
+                        buffer.index()
+                    ))
+                })?,
+                gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
+                    Some(rest) => {
+                        let payload =
+                            rest.split_once(";base64,").map(|(_, p)| p).ok_or_else(|| {
+                                LoadError::Buffer(format!(
+                                    "buffer {}: only base64 data URIs are supported",
+                                    buffer.index()
+                                ))
+                            })?;
+                        base64::decode(payload).ok_or_else(|| {
+                            LoadError::Buffer(format!(
+                                "buffer {}: malformed base64 data URI",
+                                buffer.index()
+                            ))
+                        })?
+                    }
+                    None => resolve(uri).map_err(|e| LoadError::Resource {
+                        referrer: format!("buffer {}", buffer.index()),
+                        uri: uri.to_string(),
+                        source: Arc::new(e),
+                    })?,
+                },
+            };
+            if data.len() < buffer.length() {
+                return Err(LoadError::Buffer(format!(
+                    "buffer {} has {} bytes but declares {}",
+                    buffer.index(),
+                    data.len(),
+                    buffer.length()
+                )));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// Scene `index` of the file, else its default scene, else its first.
+fn select_scene(gltf: &gltf::Gltf, index: Option<usize>) -> Result<gltf::Scene<'_>, LoadError> {
+    Ok(match index {
+        Some(i) => gltf.scenes().nth(i).ok_or_else(|| {
+            LoadError::Scene(format!(
+                "no scene {i} (the file has {})",
+                gltf.scenes().count()
+            ))
+        })?,
+        None => gltf
+            .default_scene()
+            .or_else(|| gltf.scenes().next())
+            .ok_or_else(|| LoadError::Scene("the file has no scene".into()))?,
+    })
+}
+
+/// The raw `PRISM_spectral` of each punctual light (the gltf crate keeps light extensions
+/// as raw JSON).
+fn punctual_spectral(gltf: &gltf::Gltf) -> Vec<Option<serde_json::Value>> {
+    gltf.as_json()
+        .extensions
+        .as_ref()
+        .and_then(|e| e.khr_lights_punctual.as_ref())
+        .map_or_else(Vec::new, |l| {
+            l.lights
+                .iter()
+                .map(|light| {
+                    let raw = light.extensions.as_ref()?;
+                    let mut map: serde_json::Map<String, serde_json::Value> =
+                        serde_json::from_str(raw.get()).ok()?;
+                    map.remove(spectral::EXTENSION)
+                })
+                .collect()
+        })
+}
+
+/// A warning for each transmissive material with layers prism renders only on opaque ones.
+fn warn_unrendered_layers(materials: &[MaterialDesc], warnings: &mut Vec<String>) {
+    for m in materials {
+        if m.transmission > 0.0 && m.iridescence.is_some() {
+            warn_once(
+                warnings,
+                &format!(
+                    "material {}: KHR_materials_iridescence on a transmissive material is not rendered (the glass is)",
+                    m.name
+                ),
+            );
+        }
+        if m.transmission > 0.0 && m.layers.is_some() {
+            warn_once(
+                warnings,
+                &format!(
+                    "material {}: KHR_materials_specular, _anisotropy, _clearcoat, _sheen and _diffuse_transmission on a transmissive material are not rendered (the glass is)",
+                    m.name
+                ),
+            );
+        }
+    }
+}
+
+/// The scene's lights: an area light per instance of an emissive material, then the
+/// punctual lights (whose polarization and schedule indices shift past the area lights).
+fn add_lights(out: &mut LoadedGeometry, punctual_lights: Vec<LightDesc>) {
     let emissive = |i: &MeshInstance| {
         i.material
             .and_then(|m| out.materials.get(m))
@@ -446,7 +472,6 @@ pub fn load_scene(
         *index += areas;
     }
     out.lights.extend(punctual_lights);
-    Ok(out)
 }
 
 /// Parses and validates a glTF or GLB, with the warnings its extensions call for. A
