@@ -166,6 +166,89 @@ impl Scene {
             let m = instance.material.map_or(default_material, |m| m as u32);
             triangle_material[instance.first..instance.first + instance.count].fill(m);
         }
+        let SceneLights {
+            emission,
+            mut lights,
+            polarized,
+            mut schedules,
+        } = SceneLights::of(&loaded);
+        let environment = options
+            .environment
+            .as_ref()
+            .or(loaded.spectral.environment.as_ref());
+        if let Some(environment) = environment {
+            // The file's schedule is its environment's; one given in its place has none.
+            if options.environment.is_none()
+                && let Some(on) = &loaded.spectral.environment_on
+            {
+                schedules.push((lights.len(), Arc::new(on.clone())));
+            }
+            lights.push(environment.light());
+        }
+        let decays: Vec<_> = loaded
+            .materials
+            .iter()
+            .enumerate()
+            .filter_map(|(m, desc)| {
+                let decay = desc.spectral.as_ref()?.decay.clone()?;
+                Some((m, Arc::new(decay)))
+            })
+            .collect();
+        let lit_by_default = lit_by_default(&loaded, &lights, &triangle_material);
+        if lit_by_default {
+            lights.push(Light::Environment {
+                radiance: super::grey_environment(DEFAULT_ENVIRONMENT),
+            });
+        }
+        let normal_maps = normal_maps(&loaded, materials.len());
+        let alpha = alpha_coverage(&loaded, &triangle_material, materials.len());
+        let camera = loaded.camera(options.camera.as_deref())?;
+        Scene::new(SceneParts {
+            triangles: loaded.triangles,
+            attributes: super::VertexAttributes {
+                normals: loaded.normals,
+                uvs: loaded.uvs,
+                uvs1: loaded.uvs1,
+                tangents: loaded.tangents,
+                normal_maps,
+                alpha,
+                colors: loaded.colors,
+                color_table: loaded.color_table,
+            },
+            triangle_material,
+            materials,
+            emission,
+            lights,
+            camera,
+            quality: options.quality,
+        })
+        .and_then(|mut scene| {
+            scene.lit_by_default = lit_by_default;
+            for (index, polarization) in polarized {
+                scene.polarize_light(index, polarization)?;
+            }
+            let timeline = super::Timeline::new(scene.lights().all().len(), schedules, decays);
+            if timeline.is_timed() {
+                scene.set_timeline(timeline)?;
+            }
+            Ok(scene)
+        })
+    }
+}
+
+/// The lights of a loaded file's descriptions (an emissive instance's triangles each a
+/// light), with the polarizations and schedules of those that have them, by scene light
+/// index.
+struct SceneLights {
+    /// The emission spectra the triangle lights share, one per emissive material.
+    emission: Vec<SceneSpectrum>,
+    lights: Vec<Light>,
+    polarized: Vec<(usize, crate::polarization::LinearPolarization)>,
+    schedules: Vec<(usize, Arc<super::Schedule>)>,
+}
+
+impl SceneLights {
+    fn of(loaded: &LoadedGeometry) -> Self {
         let mut emission = Vec::new();
         let mut emission_of_material = vec![None; loaded.materials.len()];
         let mut lights = Vec::new();
@@ -177,7 +260,7 @@ impl Scene {
                 polarized.push((lights.len(), *p));
             }
             if let Some((_, s)) = loaded.light_schedules.iter().find(|(i, _)| *i == d) {
-                schedules.push((lights.len(), std::sync::Arc::new(s.clone())));
+                schedules.push((lights.len(), Arc::new(s.clone())));
             }
             match desc {
                 LightDesc::Area {
@@ -198,7 +281,7 @@ impl Scene {
                         .spectral
                         .as_ref()
                         .and_then(|s| s.on.clone())
-                        .map(std::sync::Arc::new);
+                        .map(Arc::new);
                     for t in instance.first..instance.first + instance.count {
                         if let Some(on) = &on {
                             schedules.push((lights.len(), on.clone()));
@@ -242,93 +325,49 @@ impl Scene {
                 }),
             }
         }
-        let environment = options
-            .environment
-            .as_ref()
-            .or(loaded.spectral.environment.as_ref());
-        if let Some(environment) = environment {
-            // The file's schedule is its environment's; one given in its place has none.
-            if options.environment.is_none()
-                && let Some(on) = &loaded.spectral.environment_on
-            {
-                schedules.push((lights.len(), std::sync::Arc::new(on.clone())));
-            }
-            lights.push(environment.light());
-        }
-        let decays: Vec<_> = loaded
-            .materials
-            .iter()
-            .enumerate()
-            .filter_map(|(m, desc)| {
-                let decay = desc.spectral.as_ref()?.decay.clone()?;
-                Some((m, std::sync::Arc::new(decay)))
-            })
-            .collect();
-        // A file with no light meant to light it (most real assets: viewers light them
-        // with an environment) is lit as a glTF viewer would, by a neutral environment:
-        // D65 of emissive-colour value 1. Emission no brighter than an emissive colour of
-        // 1 (glowing screens and indicators, unlit surfaces) is not such a light; a
-        // spectral emission or one scaled by KHR_materials_emissive_strength above 1 is.
-        let lamp = |m: &MaterialDesc| {
-            m.emission_peak > 1.0 || m.spectral.as_ref().is_some_and(|s| s.emission.is_some())
-        };
-        let lit_by_default = lights.iter().all(|l| match l {
-            Light::Triangle { triangle, .. } => {
-                let m = triangle_material[*triangle as usize] as usize;
-                !loaded.materials.get(m).is_some_and(lamp)
-            }
-            _ => false,
-        });
-        if lit_by_default {
-            lights.push(Light::Environment {
-                radiance: super::grey_environment(DEFAULT_ENVIRONMENT),
-            });
-        }
-        // Normal maps per material, the default material's none; no list when no
-        // material has one (hits then never look).
-        let normal_maps = if loaded.materials.iter().any(|m| m.normal_texture.is_some()) {
-            let mut maps: Vec<_> = loaded
-                .materials
-                .iter()
-                .map(|m| m.normal_texture.clone())
-                .collect();
-            maps.resize(materials.len(), None);
-            maps
-        } else {
-            Vec::new()
-        };
-        let alpha = alpha_coverage(&loaded, &triangle_material, materials.len());
-        let camera = loaded.camera(options.camera.as_deref())?;
-        Scene::new(SceneParts {
-            triangles: loaded.triangles,
-            attributes: super::VertexAttributes {
-                normals: loaded.normals,
-                uvs: loaded.uvs,
-                uvs1: loaded.uvs1,
-                tangents: loaded.tangents,
-                normal_maps,
-                alpha,
-                colors: loaded.colors,
-                color_table: loaded.color_table,
-            },
-            triangle_material,
-            materials,
+        Self {
             emission,
             lights,
-            camera,
-            quality: options.quality,
-        })
-        .and_then(|mut scene| {
-            scene.lit_by_default = lit_by_default;
-            for (index, polarization) in polarized {
-                scene.polarize_light(index, polarization)?;
-            }
-            let timeline = super::Timeline::new(scene.lights().all().len(), schedules, decays);
-            if timeline.is_timed() {
-                scene.set_timeline(timeline)?;
-            }
-            Ok(scene)
-        })
+            polarized,
+            schedules,
+        }
+    }
+}
+
+/// Whether the scene is to be lit as a glTF viewer lights a model: no light among `lights`
+/// is meant to light it.
+fn lit_by_default(loaded: &LoadedGeometry, lights: &[Light], triangle_material: &[u32]) -> bool {
+    // A file with no light meant to light it (most real assets: viewers light them
+    // with an environment) is lit as a glTF viewer would, by a neutral environment:
+    // D65 of emissive-colour value 1. Emission no brighter than an emissive colour of
+    // 1 (glowing screens and indicators, unlit surfaces) is not such a light; a
+    // spectral emission or one scaled by KHR_materials_emissive_strength above 1 is.
+    let lamp = |m: &MaterialDesc| {
+        m.emission_peak > 1.0 || m.spectral.as_ref().is_some_and(|s| s.emission.is_some())
+    };
+    lights.iter().all(|l| match l {
+        Light::Triangle { triangle, .. } => {
+            let m = triangle_material[*triangle as usize] as usize;
+            !loaded.materials.get(m).is_some_and(lamp)
+        }
+        _ => false,
+    })
+}
+
+/// The normal map of each of `materials` materials (the default material's none).
+fn normal_maps(loaded: &LoadedGeometry, materials: usize) -> Vec<Option<Arc<super::NormalMap>>> {
+    // Normal maps per material, the default material's none; no list when no
+    // material has one (hits then never look).
+    if loaded.materials.iter().any(|m| m.normal_texture.is_some()) {
+        let mut maps: Vec<_> = loaded
+            .materials
+            .iter()
+            .map(|m| m.normal_texture.clone())
+            .collect();
+        maps.resize(materials, None);
+        maps
+    } else {
+        Vec::new()
     }
 }
 
