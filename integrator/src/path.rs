@@ -6,10 +6,12 @@ use glam::{Vec2, Vec3};
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::mis::power_heuristic;
 use prism_sampling::stream::{SampleStream, SobolStream};
-use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
+use prism_sampling::wavelength::{
+    PackageScheme, ReradiationSampler, WavelengthDistribution, WavelengthPackage,
+};
 use prism_scene::bsdf::{Diffuse, TransportMode};
 use prism_scene::geometry::Ray;
-use prism_scene::world::{Bsdf, EmissionCache, Material, Scene};
+use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, Scene, SceneSpectrum};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -216,6 +218,64 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// At a fluorescent vertex of reflectance `reflectance` and re-radiation `reradiation`,
+    /// the wavelength each lane's light arrived at, the lane's weight, and whether it was
+    /// re-emitted (drawn with `u_wavelength`): unchanged with probability R / (R + F)
+    /// (weight R + F), else from the re-radiation column F or the lights' spectra, one-sample
+    /// MIS with the balance heuristic (weight (R + F) / F * M / p_mix).
+    #[inline]
+    fn reradiated<const N: usize>(
+        &self,
+        hit: &Hit,
+        reflectance: &SceneSpectrum,
+        reradiation: &ReradiationSampler,
+        transport: &SampledWavelengths<N>,
+        u_wavelength: f32,
+    ) -> ([f32; N], SampledSpectrum<N>, [bool; N]) {
+        let guide = self.scene.light_wavelengths(hit);
+        let r = reflectance.at_uv(hit.tex, transport);
+        let mut incident = *transport.lambdas();
+        let mut weights = SampledSpectrum::splat(1.0);
+        let mut reemitted = [false; N];
+        for j in 0..N {
+            let out = transport.lambda(j);
+            let f = reradiation.incident_integral(out) as f32;
+            let total = r[j] + f;
+            let mut weight = total;
+            if total > 0.0 && f > 0.0 && u_wavelength * total >= r[j] {
+                let u = ((u_wavelength * total - r[j]) / f).min(0.999_999_9);
+                let lambda = match guide {
+                    None => reradiation
+                        .sample_incident(out, f64::from(u))
+                        .map(|s| s.lambda),
+                    Some(_) if u < 0.5 => reradiation
+                        .sample_incident(out, f64::from(2.0 * u))
+                        .map(|s| s.lambda),
+                    Some(g) => Some(g.sample(f64::from(2.0 * u - 1.0)).value as f32),
+                };
+                weight = match lambda {
+                    Some(l) => {
+                        let p_column = reradiation.pdf_incident(l, out);
+                        let p = match guide {
+                            None => p_column,
+                            Some(g) => 0.5 * p_column + 0.5 * g.pdf(f64::from(l)) as f32,
+                        };
+                        incident[j] = l;
+                        reemitted[j] = true;
+                        if p > 0.0 {
+                            total / f * reradiation.value(l, out) as f32 / p
+                        } else {
+                            0.0
+                        }
+                    }
+                    None => 0.0,
+                };
+            }
+            weights[j] = weight;
+        }
+        (incident, weights, reemitted)
+    }
+
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
     /// dimensions; `u_lambda` chose the hero wavelength. The path's radiance goes to
@@ -400,57 +460,16 @@ impl<'a> Tracer<'a> {
                         reflectance,
                         reradiation,
                     } if FLUORESCENCE => {
-                        // Each lane picks the wavelength its light arrived at: unchanged with
-                        // probability R / (R + F) (weight R + F), else from the re-radiation
-                        // column F or the lights' spectra, one-sample MIS with the balance
-                        // heuristic (weight (R + F) / F * M / p_mix). The surface is
-                        // Lambertian either way.
+                        // Each lane picks the wavelength its light arrived at (`reradiated`);
+                        // the surface is Lambertian either way.
                         let u_wavelength = here.next_1d();
-                        let guide = self.scene.light_wavelengths(&hit);
-                        let r = reflectance.at_uv(hit.tex, &transport);
-                        let mut incident = *transport.lambdas();
-                        let mut weights = SampledSpectrum::splat(1.0);
-                        let mut reemitted = [false; N];
-                        for j in 0..N {
-                            let out = transport.lambda(j);
-                            let f = reradiation.incident_integral(out) as f32;
-                            let total = r[j] + f;
-                            let mut weight = total;
-                            if total > 0.0 && f > 0.0 && u_wavelength * total >= r[j] {
-                                let u = ((u_wavelength * total - r[j]) / f).min(0.999_999_9);
-                                let lambda = match guide {
-                                    None => reradiation
-                                        .sample_incident(out, f64::from(u))
-                                        .map(|s| s.lambda),
-                                    Some(_) if u < 0.5 => reradiation
-                                        .sample_incident(out, f64::from(2.0 * u))
-                                        .map(|s| s.lambda),
-                                    Some(g) => {
-                                        Some(g.sample(f64::from(2.0 * u - 1.0)).value as f32)
-                                    }
-                                };
-                                weight = match lambda {
-                                    Some(l) => {
-                                        let p_column = reradiation.pdf_incident(l, out);
-                                        let p = match guide {
-                                            None => p_column,
-                                            Some(g) => {
-                                                0.5 * p_column + 0.5 * g.pdf(f64::from(l)) as f32
-                                            }
-                                        };
-                                        incident[j] = l;
-                                        reemitted[j] = true;
-                                        if p > 0.0 {
-                                            total / f * reradiation.value(l, out) as f32 / p
-                                        } else {
-                                            0.0
-                                        }
-                                    }
-                                    None => 0.0,
-                                };
-                            }
-                            weights[j] = weight;
-                        }
+                        let (incident, mut weights, reemitted) = self.reradiated(
+                            &hit,
+                            reflectance,
+                            reradiation,
+                            &transport,
+                            u_wavelength,
+                        );
                         if let (Some(times), Some(decay)) = (&mut times, self.scene.decay_at(&hit))
                         {
                             self.delay(decay, here.next_1d(), &reemitted, times, &mut weights);
