@@ -276,6 +276,56 @@ impl<'a> Tracer<'a> {
         (incident, weights, reemitted)
     }
 
+    /// Next-event estimation at `vertex` (not a delta): a light sampled with `u_light`, its
+    /// shadow ray traced unless the light or the BSDF is dark at every wavelength, and what
+    /// arrives added to `radiance` with the power heuristic against BSDF sampling. Returns
+    /// the rays traced.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn next_event<const N: usize, T: Throughput<N>>(
+        &self,
+        hit: &Hit,
+        vertex: &Vertex<'_, '_, N>,
+        u_light: Vec2,
+        transport: &SampledWavelengths<N>,
+        times: Option<&[f64; N]>,
+        emission: &mut EmissionCache<N>,
+        beta: &T,
+        radiance: &mut T::Radiance,
+    ) -> u64 {
+        let Some(mut light) = self.scene.sample_light(hit, u_light, transport, emission) else {
+            return 0;
+        };
+        if let Some(times) = times {
+            self.gate(Some(light.light), times, &mut light.radiance);
+        }
+        let wi = vertex.frame.to_local(light.wi);
+        let f = vertex.bsdf.f(vertex.wo, wi) * wi.z.abs();
+        // A light dark at every wavelength of the path (chosen by the defensive share of a
+        // spectral choice, or by power) needs no shadow ray.
+        if f.is_black() || light.radiance.is_black() {
+            return 0;
+        }
+        if !self.scene.occluded(&hit.spawn_to(light.wi, light.distance)) {
+            let w = if light.delta {
+                1.0
+            } else {
+                power_heuristic(1, light.pdf, 1, vertex.bsdf.pdf(vertex.wo, wi))
+            };
+            let arrival = Arrival {
+                wi,
+                f: &f,
+                radiance: &light.radiance,
+                weight: w / light.pdf,
+            };
+            beta.add_scattered(radiance, vertex, arrival, || {
+                let p = self.scene.light_polarization(light.light)?;
+                Some(p.stokes(-light.wi))
+            });
+        }
+        1
+    }
+
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
     /// dimensions; `u_lambda` chose the hero wavelength. The path's radiance goes to
@@ -497,39 +547,17 @@ impl<'a> Tracer<'a> {
                 };
 
                 // Next-event estimation.
-                if !bsdf.is_delta()
-                    && !replay
-                    && let Some(mut light) =
-                        self.scene
-                            .sample_light(&hit, u_light, &transport, &mut emission)
-                {
-                    if let Some(times) = &times {
-                        self.gate(Some(light.light), times, &mut light.radiance);
-                    }
-                    let wi = frame.to_local(light.wi);
-                    let f = bsdf.f(wo, wi) * wi.z.abs();
-                    // A light dark at every wavelength of the path (chosen by the defensive
-                    // share of a spectral choice, or by power) needs no shadow ray.
-                    if !f.is_black() && !light.radiance.is_black() {
-                        rays += 1;
-                        if !self.scene.occluded(&hit.spawn_to(light.wi, light.distance)) {
-                            let w = if light.delta {
-                                1.0
-                            } else {
-                                power_heuristic(1, light.pdf, 1, bsdf.pdf(wo, wi))
-                            };
-                            let arrival = Arrival {
-                                wi,
-                                f: &f,
-                                radiance: &light.radiance,
-                                weight: w / light.pdf,
-                            };
-                            beta.add_scattered(&mut radiance, &vertex, arrival, || {
-                                let p = self.scene.light_polarization(light.light)?;
-                                Some(p.stokes(-light.wi))
-                            });
-                        }
-                    }
+                if !bsdf.is_delta() && !replay {
+                    rays += self.next_event(
+                        &hit,
+                        &vertex,
+                        u_light,
+                        &transport,
+                        times.as_ref(),
+                        &mut emission,
+                        &beta,
+                        &mut radiance,
+                    );
                 }
 
                 if SPLIT && depth == 0 {
