@@ -1,8 +1,19 @@
-//! Writing files so that nothing is ever half-written: a temporary file beside the target,
-//! flushed and synced, then renamed over it.
+//! Reading files with one error line that names them, and writing files so that nothing is
+//! ever half-written: a temporary file beside the target, flushed and synced, then renamed
+//! over it.
 
 use std::io::Write;
 use std::path::Path;
+
+/// The bytes of `path`, or one line naming it.
+pub fn read_file(path: &Path) -> Result<Vec<u8>, String> {
+    std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))
+}
+
+/// The text of `path`, or one line naming it.
+pub fn read_text(path: &Path) -> Result<String, String> {
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))
+}
 
 /// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {

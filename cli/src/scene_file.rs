@@ -19,8 +19,7 @@ pub fn load_with(
     scene: Option<usize>,
     upsampling: Upsampling,
 ) -> Result<LoadedGeometry, String> {
-    let read =
-        |p: &Path| std::fs::read(p).map_err(|e| format!("cannot read '{}': {e}", p.display()));
+    let read = |p: &Path| crate::output::read_file(p);
     let is_overlay = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"));

@@ -23,8 +23,7 @@ pub struct CompareArgs {
 }
 
 fn load(path: &Path) -> Result<ChannelImage, String> {
-    let bytes =
-        std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    let bytes = crate::output::read_file(path)?;
     let image = decode_exr(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
     if image.channels.iter().any(|(name, _)| name.ends_with(".hi")) {
         return Err(format!(

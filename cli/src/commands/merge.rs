@@ -46,8 +46,7 @@ pub fn run(args: &MergeArgs) -> Result<(), String> {
         .parts
         .iter()
         .map(|path| {
-            let bytes = std::fs::read(path)
-                .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            let bytes = crate::output::read_file(path)?;
             decode_accumulation(&bytes).map_err(|e| format!("'{}': {e}", path.display()))
         })
         .collect::<Result<Vec<_>, String>>()?;

@@ -125,8 +125,7 @@ fn accuracy(
 }
 
 fn info(file: &std::path::Path) -> Result<(), String> {
-    let bytes =
-        std::fs::read(file).map_err(|e| format!("cannot read '{}': {e}", file.display()))?;
+    let bytes = crate::output::read_file(file)?;
     let table =
         CoefficientTable::from_bytes(&bytes).map_err(|e| format!("'{}': {e}", file.display()))?;
     let s = table.space();

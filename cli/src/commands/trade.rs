@@ -257,8 +257,7 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
     };
     let reference = match &args.reference {
         Some(path) => {
-            let bytes = std::fs::read(path)
-                .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            let bytes = crate::output::read_file(path)?;
             let mut image = decode_exr(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
             image
                 .channels
@@ -357,8 +356,7 @@ fn measure(args: &TradeArgs) -> Result<(), String> {
 }
 
 fn read_runs(path: &Path) -> Result<Vec<Run>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    let text = crate::output::read_text(path)?;
     let mut runs = Vec::new();
     for (i, line) in text.lines().enumerate().skip(1) {
         let f: Vec<&str> = line.split(',').collect();

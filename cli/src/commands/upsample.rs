@@ -70,8 +70,7 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
             refine: args.refine,
         },
         Some(path) => {
-            let bytes = std::fs::read(path)
-                .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            let bytes = crate::output::read_file(path)?;
             let table = CoefficientTable::from_bytes(&bytes)
                 .map_err(|e| format!("'{}': {e}", path.display()))?;
             if !table.space().matches(&context) {

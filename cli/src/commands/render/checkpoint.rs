@@ -57,8 +57,7 @@ fn later_settings_fingerprint(args: &RenderArgs) -> String {
 
 /// The film of a checkpoint, checked against this render's settings and range.
 pub(super) fn resume(path: &Path, fingerprint: &str, range: &Range<u64>) -> Result<Film, String> {
-    let bytes =
-        std::fs::read(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    let bytes = crate::output::read_file(path)?;
     let saved = decode_accumulation(&bytes).map_err(|e| format!("'{}': {e}", path.display()))?;
     if saved.settings != fingerprint {
         return Err(format!(

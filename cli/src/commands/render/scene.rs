@@ -35,8 +35,7 @@ pub(super) fn prepare(args: &RenderArgs) -> Result<(Scene, Option<CameraResponse
         .camera_response
         .as_deref()
         .map(|path| {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            let text = crate::output::read_text(path)?;
             CameraResponse::from_csv(&text).map_err(|e| format!("'{}': {e}", path.display()))
         })
         .transpose()?;
