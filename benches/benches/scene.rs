@@ -10,7 +10,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec3;
-use prism_scene::geometry::{Bvh, BvhQuality, Ray, triangle_normal};
+use prism_scene::geometry::{Bvh, BvhQuality, NodeLanes, Ray, triangle_normal};
 use prism_scene::load::load_geometry;
 
 fn triangles(scene: &str) -> Vec<[Vec3; 3]> {
@@ -99,26 +99,33 @@ fn scene(c: &mut Criterion) {
         ("bunny box", bunny),
         ("Cornell box", triangles("cornell-box.gltf")),
     ] {
-        let bvh = Bvh::build(&scene, BvhQuality::Medium);
-        let mut group = c.benchmark_group(format!("rays ({name})"));
-        group.throughput(Throughput::Elements(coherent.len() as u64));
-        group.sample_size(10);
-        let closest = |rays: &[Ray]| rays.iter().filter(|r| bvh.intersect(r).is_some()).count();
-        group.bench_function("closest, coherent 256x256", |b| {
-            b.iter(|| closest(&coherent))
-        });
-        group.bench_function("closest, incoherent 65536", |b| {
-            b.iter(|| closest(&incoherent))
-        });
-        group.bench_function("occluded, segments 65536", |b| {
-            b.iter(|| segments.iter().filter(|r| bvh.occluded(r)).count())
-        });
+        let mut bvh = Bvh::build(&scene, BvhQuality::Medium);
         let (bounces, shadows) = first_vertex(&bvh, &coherent);
-        group.bench_function("closest, bounces", |b| b.iter(|| closest(&bounces)));
-        group.bench_function("occluded, shadows", |b| {
-            b.iter(|| shadows.iter().filter(|r| bvh.occluded(r)).count())
-        });
-        group.finish();
+        // Both node tests where the CPU has AVX (the renderer takes the widest).
+        for lanes in [NodeLanes::Eight, NodeLanes::Four] {
+            if !bvh.use_node_lanes(lanes) {
+                continue;
+            }
+            let bvh = &bvh;
+            let mut group = c.benchmark_group(format!("rays ({name}, {lanes:?} lanes)"));
+            group.throughput(Throughput::Elements(coherent.len() as u64));
+            group.sample_size(10);
+            let closest = |rays: &[Ray]| rays.iter().filter(|r| bvh.intersect(r).is_some()).count();
+            group.bench_function("closest, coherent 256x256", |b| {
+                b.iter(|| closest(&coherent))
+            });
+            group.bench_function("closest, incoherent 65536", |b| {
+                b.iter(|| closest(&incoherent))
+            });
+            group.bench_function("occluded, segments 65536", |b| {
+                b.iter(|| segments.iter().filter(|r| bvh.occluded(r)).count())
+            });
+            group.bench_function("closest, bounces", |b| b.iter(|| closest(&bounces)));
+            group.bench_function("occluded, shadows", |b| {
+                b.iter(|| shadows.iter().filter(|r| bvh.occluded(r)).count())
+            });
+            group.finish();
+        }
     }
 }
 

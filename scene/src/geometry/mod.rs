@@ -6,7 +6,7 @@ mod offset;
 mod ray;
 mod triangle;
 
-pub use bvh::{Bvh, BvhQuality, SurfaceHit};
+pub use bvh::{Bvh, BvhQuality, NodeLanes, SurfaceHit};
 pub use frame::Frame;
 pub use offset::{offset_ray_origin, triangle_point_error};
 pub use ray::Ray;

@@ -1,6 +1,9 @@
 //! The BVH: obvhs builds a binary tree (PLOC with reinsertion), prism collapses it into an
-//! eight-wide tree with runs of triangle packets for leaves and traverses it with SSE.
+//! eight-wide tree with runs of triangle packets for leaves and traverses it with SSE, or
+//! with AVX where the CPU has it.
 
+#[cfg(target_arch = "x86_64")]
+mod avx;
 mod packet;
 mod traverse;
 mod wide;
@@ -15,7 +18,7 @@ use obvhs::bvh2::builder::build_bvh2;
 
 use super::Ray;
 use super::triangle::{TriangleHit, WatertightRay, triangle_normal};
-use traverse::{Pending, stack_size};
+use traverse::{BoxRay, Pending, stack_size};
 use wide::{Source, WideBvh};
 
 /// How much effort the BVH build spends for faster traversal.
@@ -51,13 +54,39 @@ pub struct SurfaceHit {
     pub vertices: [Vec3; 3],
 }
 
+/// How many of a node's eight children one instruction tests: four (SSE, every x86-64
+/// CPU, and the portable code elsewhere) or eight (AVX, with the traversal compiled for
+/// x86-64-v3). [`Bvh::build`] takes the widest the running CPU has, so one portable binary
+/// uses what each host offers; both give the same answers to the bit, so the choice never
+/// changes an image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NodeLanes {
+    /// Two SSE tests of four boxes.
+    Four,
+    /// One AVX test of eight boxes.
+    Eight,
+}
+
+impl NodeLanes {
+    /// The widest node test the running CPU can run.
+    pub fn widest() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if avx::available() {
+            return Self::Eight;
+        }
+        Self::Four
+    }
+}
+
 /// An eight-wide BVH over triangles with packets of four triangles for leaves, traversed
-/// one ray at a time with SSE (Wald, Benthin and Boulos, "Getting rid of packets", RT
-/// 2008), every hit decided by prism's watertight triangle test.
+/// one ray at a time, a node's boxes tested four or eight at a time (Wald, Benthin and
+/// Boulos, "Getting rid of packets", RT 2008), every hit decided by prism's watertight
+/// triangle test.
 pub struct Bvh {
     tree: Option<WideBvh>,
     triangles: usize,
     skipped: usize,
+    lanes: NodeLanes,
 }
 
 impl Bvh {
@@ -104,7 +133,23 @@ impl Bvh {
             tree,
             triangles: vertices.len(),
             skipped,
+            lanes: NodeLanes::widest(),
         }
+    }
+
+    /// The node test the traversals use.
+    pub fn node_lanes(&self) -> NodeLanes {
+        self.lanes
+    }
+
+    /// Uses the node test `lanes` where the running CPU has it, else keeps the present one;
+    /// returns whether it switched (to compare or time the two).
+    pub fn use_node_lanes(&mut self, lanes: NodeLanes) -> bool {
+        if lanes == NodeLanes::Eight && NodeLanes::widest() != NodeLanes::Eight {
+            return false;
+        }
+        self.lanes = lanes;
+        true
     }
 
     /// Bytes held: nodes and leaf packets.
@@ -133,7 +178,16 @@ impl Bvh {
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         let tree = self.tree.as_ref()?;
         let watertight = WatertightRay::new(ray)?;
-        let found = with_stack(tree, |stack| tree.closest(ray, &watertight, stack));
+        let found = with_stack(tree, |stack| match self.lanes {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `lanes` is `Eight` only where the CPU has AVX (`use_node_lanes`).
+            #[allow(
+                unsafe_code,
+                reason = "code compiled for AVX2, entered where the CPU has it"
+            )]
+            NodeLanes::Eight => unsafe { tree.closest_avx(ray, &watertight, stack) },
+            _ => tree.closest::<BoxRay>(ray, &watertight, stack),
+        });
         found.map(|(triangle, hit, vertices)| SurfaceHit {
             triangle: triangle as usize,
             hit,
@@ -147,7 +201,16 @@ impl Bvh {
         let (Some(tree), Some(watertight)) = (self.tree.as_ref(), WatertightRay::new(ray)) else {
             return false;
         };
-        with_stack(tree, |stack| tree.any(ray, &watertight, stack))
+        with_stack(tree, |stack| match self.lanes {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as in `intersect`.
+            #[allow(
+                unsafe_code,
+                reason = "code compiled for AVX2, entered where the CPU has it"
+            )]
+            NodeLanes::Eight => unsafe { tree.any_avx(ray, &watertight, stack) },
+            _ => tree.any::<BoxRay>(ray, &watertight, stack),
+        })
     }
 }
 

@@ -5,7 +5,7 @@
 use glam::{Vec3, Vec4};
 
 use super::packet::{Packet, RayLanes};
-use super::wide::{ChildRef, LEAF, Node, WIDTH, WideBvh, leaf_packets};
+use super::wide::{ChildRef, GROUPS, LEAF, Node, WIDTH, WideBvh, leaf_packets};
 use crate::geometry::Ray;
 use crate::geometry::offset::gamma;
 use crate::geometry::triangle::{TriangleHit, WatertightRay};
@@ -23,66 +23,99 @@ pub(super) fn stack_size(depth: usize) -> usize {
     (WIDTH - 1) * depth + 1
 }
 
-/// The ray's slab-test set-up.
-struct BoxRay {
+/// A ray's test against a node's eight boxes: which children it enters before `t_max`,
+/// as a bit mask, and where it enters each. Implemented four lanes wide ([`BoxRay`], any
+/// x86-64 or other CPU) and eight wide ([`super::avx::BoxRay8`], with AVX); both perform
+/// the same IEEE operations per child in the same order, so their answers are equal to
+/// the bit and the choice between them never changes an image.
+pub(super) trait NodeTest {
+    fn new(ray: &Ray) -> Self;
+    fn enter(&self, node: &Node, t_max: f32) -> (u32, [f32; WIDTH]);
+}
+
+/// A ray direction's reciprocal, with a zero component made a tiny one of the same sign,
+/// so that 1/d is finite and (bound - origin) / d is never 0 * inf: the ray is then
+/// treated as parallel to within 1e-30, far inside the padding of every box.
+#[inline(always)]
+pub(super) fn slab_inverse(ray: &Ray) -> [f32; 3] {
+    ray.direction.to_array().map(|d| {
+        let d = if d.abs() < 1e-30 {
+            1e-30f32.copysign(d)
+        } else {
+            d
+        };
+        1.0 / d
+    })
+}
+
+/// Per axis, the index in `Node::bounds` of the plane a ray with reciprocal direction
+/// `inverse` meets first, and of the one it meets last.
+#[inline(always)]
+pub(super) fn slab_planes(inverse: [f32; 3]) -> ([usize; 3], [usize; 3]) {
+    let positive = inverse.map(|i| i >= 0.0);
+    (
+        [0, 1, 2].map(|a| if positive[a] { a } else { a + 3 }),
+        [0, 1, 2].map(|a| if positive[a] { a + 3 } else { a }),
+    )
+}
+
+/// The factor that widens a slab test's exit distance: 1 + 2 gamma(3), the bound on the
+/// test's rounding (*PBR* 4th ed. §6.8.2), so rounding never culls a box the ray touches.
+#[inline(always)]
+pub(super) fn exit_widening() -> f32 {
+    1.0 + 2.0 * gamma(3)
+}
+
+/// The slab test four lanes wide (SSE): the ray's set-up.
+pub(super) struct BoxRay {
     origin: [Vec4; 3],
     inverse: [Vec4; 3],
-    /// Per axis, the index in `Node::bounds` of the plane the ray meets first.
     near: [usize; 3],
     far: [usize; 3],
 }
 
-impl BoxRay {
+impl NodeTest for BoxRay {
+    #[inline(always)]
     fn new(ray: &Ray) -> Self {
-        // A zero direction component becomes a tiny one of the same sign, so 1/d is finite
-        // and (bound - origin) / d is never 0 * inf: the ray is then treated as parallel
-        // to within 1e-30, far inside the padding of every box.
-        let inverse = ray.direction.to_array().map(|d| {
-            let d = if d.abs() < 1e-30 {
-                1e-30f32.copysign(d)
-            } else {
-                d
-            };
-            1.0 / d
-        });
-        let positive = inverse.map(|i| i >= 0.0);
+        let inverse = slab_inverse(ray);
+        let (near, far) = slab_planes(inverse);
         Self {
             origin: ray.origin.to_array().map(Vec4::splat),
             inverse: inverse.map(Vec4::splat),
-            near: [0, 1, 2].map(|a| if positive[a] { a } else { a + 3 }),
-            far: [0, 1, 2].map(|a| if positive[a] { a + 3 } else { a }),
+            near,
+            far,
         }
     }
 
-    /// Which children the ray enters before `t_max`, as a bit mask, and where it enters
-    /// each: every group of four children in turn (the groups' tests are independent, so
-    /// they overlap in the pipeline).
+    /// Every group of four children in turn (the groups' tests are independent, so they
+    /// overlap in the pipeline).
     #[inline(always)]
     fn enter(&self, node: &Node, t_max: f32) -> (u32, [f32; WIDTH]) {
         let mut mask = 0;
         let mut t_enter = [0.0; WIDTH];
-        for (group, bounds) in node.bounds.iter().enumerate() {
-            let (m, t) = self.enter_group(bounds, t_max);
+        for group in 0..GROUPS {
+            let (m, t) = self.enter_group(node, group, t_max);
             mask |= m << (4 * group);
             t_enter[4 * group..4 * group + 4].copy_from_slice(&t.to_array());
         }
         (mask, t_enter)
     }
+}
 
-    /// [`BoxRay::enter`] for four children. The exit distance is widened by 1 + 2
-    /// gamma(3), the bound on the slab test's rounding (*PBR* 4th ed. §6.8.2), so rounding
-    /// never culls a box the ray touches.
+impl BoxRay {
+    /// [`NodeTest::enter`] for the four children of `group`.
     #[inline(always)]
-    fn enter_group(&self, bounds: &[Vec4; 6], t_max: f32) -> (u32, Vec4) {
-        let slab =
-            |plane: usize, axis: usize| (bounds[plane] - self.origin[axis]) * self.inverse[axis];
+    fn enter_group(&self, node: &Node, group: usize, t_max: f32) -> (u32, Vec4) {
+        let slab = |plane: usize, axis: usize| {
+            (node.bounds[plane][group] - self.origin[axis]) * self.inverse[axis]
+        };
         let t_enter = slab(self.near[0], 0)
             .max(slab(self.near[1], 1))
             .max(slab(self.near[2], 2).max(Vec4::ZERO));
         let t_exit = slab(self.far[0], 0)
             .min(slab(self.far[1], 1))
             .min(slab(self.far[2], 2).min(Vec4::splat(t_max)));
-        let widened = t_exit * Vec4::splat(1.0 + 2.0 * gamma(3));
+        let widened = t_exit * Vec4::splat(exit_widening());
         (t_enter.cmple(widened).bitmask(), t_enter)
     }
 }
@@ -92,13 +125,14 @@ impl WideBvh {
     /// triangle, the scalar watertight test's hit, and the triangle's vertices (read from
     /// its packet, already in cache, so that callers need not fetch them again).
     /// `stack` holds at least [`stack_size`] entries.
-    pub(super) fn closest(
+    #[inline(always)]
+    pub(super) fn closest<B: NodeTest>(
         &self,
         ray: &Ray,
         watertight: &WatertightRay,
         stack: &mut [Pending],
     ) -> Option<(u32, TriangleHit, [Vec3; 3])> {
-        let boxes = BoxRay::new(ray);
+        let boxes = B::new(ray);
         let lanes = RayLanes::new(watertight);
         // The packet and lane of the closest hit so far.
         let mut best: Option<(&Packet, usize, TriangleHit)> = None;
@@ -190,8 +224,14 @@ impl WideBvh {
 
     /// Whether any triangle lies along `ray` with 0 < t < `ray.t_max`; the first hit found
     /// ends the search.
-    pub(super) fn any(&self, ray: &Ray, watertight: &WatertightRay, stack: &mut [Pending]) -> bool {
-        let boxes = BoxRay::new(ray);
+    #[inline(always)]
+    pub(super) fn any<B: NodeTest>(
+        &self,
+        ray: &Ray,
+        watertight: &WatertightRay,
+        stack: &mut [Pending],
+    ) -> bool {
+        let boxes = B::new(ray);
         let lanes = RayLanes::new(watertight);
         let t_max = ray.t_max;
         stack[0].child = 0;

@@ -66,33 +66,35 @@ pub(super) fn leaf_packets(child: ChildRef) -> std::ops::Range<usize> {
     first..first + ((child & !LEAF) >> RUN_SHIFT) as usize + 1
 }
 
-/// Eight children's bounds, four lanes per group: `bounds[g][0..3]` the minimum x, y, z of
-/// children 4g..4g+4 and `bounds[g][3..6]` the maximum.
+/// Eight children's bounds, plane by plane: `bounds[0..3]` the minimum x, y, z of the eight
+/// children and `bounds[3..6]` the maximum, each plane's eight values in a row (children
+/// 4g..4g+4 in `bounds[plane][g]`), so that a node test four lanes wide reads a group and
+/// one eight lanes wide reads a whole plane.
 #[derive(Debug, Clone, Copy)]
-#[repr(C, align(16))]
+#[repr(C, align(32))]
 pub(super) struct Node {
-    pub(super) bounds: [[Vec4; 6]; GROUPS],
+    pub(super) bounds: [[Vec4; GROUPS]; 6],
     pub(super) children: [ChildRef; WIDTH],
 }
 
 impl Node {
     const UNUSED: Self = Self {
-        bounds: [[
-            Vec4::INFINITY,
-            Vec4::INFINITY,
-            Vec4::INFINITY,
-            Vec4::NEG_INFINITY,
-            Vec4::NEG_INFINITY,
-            Vec4::NEG_INFINITY,
-        ]; GROUPS],
+        bounds: [
+            [Vec4::INFINITY; GROUPS],
+            [Vec4::INFINITY; GROUPS],
+            [Vec4::INFINITY; GROUPS],
+            [Vec4::NEG_INFINITY; GROUPS],
+            [Vec4::NEG_INFINITY; GROUPS],
+            [Vec4::NEG_INFINITY; GROUPS],
+        ],
         children: [EMPTY; WIDTH],
     };
 
     fn set(&mut self, lane: usize, bounds: &Aabb, child: ChildRef) {
         let (group, lane_in_group) = (lane / LANES, lane % LANES);
         for axis in 0..3 {
-            self.bounds[group][axis][lane_in_group] = bounds.min[axis];
-            self.bounds[group][axis + 3][lane_in_group] = bounds.max[axis];
+            self.bounds[axis][group][lane_in_group] = bounds.min[axis];
+            self.bounds[axis + 3][group][lane_in_group] = bounds.max[axis];
         }
         self.children[lane] = child;
     }
@@ -421,9 +423,9 @@ mod tests {
             let mut seen = vec![0u32; count];
             let mut built = 0.0f64;
             let half_area = |node: &super::Node, lane: usize| {
-                let b = &node.bounds[lane / 4];
-                let lo = Vec3A::new(b[0][lane % 4], b[1][lane % 4], b[2][lane % 4]);
-                let hi = Vec3A::new(b[3][lane % 4], b[4][lane % 4], b[5][lane % 4]);
+                let b = |plane: usize| node.bounds[plane][lane / 4][lane % 4];
+                let lo = Vec3A::new(b(0), b(1), b(2));
+                let hi = Vec3A::new(b(3), b(4), b(5));
                 f64::from(Aabb::new(lo, hi).half_area())
             };
             for node in &tree.nodes {
