@@ -66,11 +66,17 @@ impl NodeTest for BoxRay8 {
         // aligned to 32 (`Node` is `repr(C, align(32))`, and a plane is 32 bytes).
         unsafe {
             let t_enter = _mm256_max_ps(
-                _mm256_max_ps(self.slab(node, self.near[0], 0), self.slab(node, self.near[1], 1)),
+                _mm256_max_ps(
+                    self.slab(node, self.near[0], 0),
+                    self.slab(node, self.near[1], 1),
+                ),
                 _mm256_max_ps(self.slab(node, self.near[2], 2), _mm256_setzero_ps()),
             );
             let t_exit = _mm256_min_ps(
-                _mm256_min_ps(self.slab(node, self.far[0], 0), self.slab(node, self.far[1], 1)),
+                _mm256_min_ps(
+                    self.slab(node, self.far[0], 0),
+                    self.slab(node, self.far[1], 1),
+                ),
                 _mm256_min_ps(self.slab(node, self.far[2], 2), _mm256_set1_ps(t_max)),
             );
             let widened = _mm256_mul_ps(t_exit, _mm256_set1_ps(exit_widening()));
