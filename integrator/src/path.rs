@@ -174,6 +174,11 @@ pub(crate) fn wavelengths<const N: usize>(
 }
 
 impl<'a> Tracer<'a> {
+    /// The package of wavelengths a sample draws with `u_lambda` (its hero's number).
+    pub(crate) fn package<const N: usize>(&self, u_lambda: f32) -> WavelengthPackage<N> {
+        WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme)
+    }
+
     /// Darkens the lanes of `le`, light `light`'s, whose time finds it off.
     fn gate<const N: usize>(
         &self,
@@ -328,7 +333,7 @@ impl<'a> Tracer<'a> {
 
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
-    /// dimensions; `u_lambda` chose the hero wavelength. The path's radiance goes to
+    /// dimensions; `first_package` holds its wavelengths ([`Tracer::package`]). The path's radiance goes to
     /// `sink` with the wavelengths and densities it was estimated with: once at the end,
     /// and once more before a package split (the estimate so far, with the whole
     /// package's densities).
@@ -355,14 +360,14 @@ impl<'a> Tracer<'a> {
         &self,
         stream: &mut SobolStream,
         sample_base: u64,
-        u_lambda: f32,
+        first_package: &WavelengthPackage<N>,
         film: Vec2,
         aspect: f32,
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
         record: &mut Record<'a, N, T::Radiance>,
+        emission: &mut EmissionCache<N>,
     ) -> PathResult {
-        let first_package =
-            WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
+        let first_package = *first_package;
         let Some(first_lambdas) = wavelengths(&first_package) else {
             return PathResult {
                 valid: false,
@@ -372,7 +377,6 @@ impl<'a> Tracer<'a> {
         };
         let first_times = self.clock.map(|clock| [clock.time(stream); N]);
         let camera_ray: Ray = self.scene.camera().generate_ray(film, aspect);
-        let mut emission = EmissionCache::new();
         let mut rays = 0u64;
         let mut covered = false;
         // Splitting (Arvo and Kirk's, as production renderers' "diffuse samples"): the
@@ -438,7 +442,7 @@ impl<'a> Tracer<'a> {
                     }
                     if let Some((mut le, light_pdf)) =
                         self.scene
-                            .escaped(ray.direction.normalize(), &transport, &mut emission)
+                            .escaped(ray.direction.normalize(), &transport, emission)
                     {
                         if let Some(times) = &times {
                             self.gate(self.scene.environment_light(), times, &mut le);
@@ -456,9 +460,7 @@ impl<'a> Tracer<'a> {
                     self.scene.set_footprint(&mut hit, wo_world, width);
                 }
                 absorb(self.scene, &ray, &hit, &transport, &mut beta);
-                let mut le = self
-                    .scene
-                    .emitted(&hit, wo_world, &transport, &mut emission);
+                let mut le = self.scene.emitted(&hit, wo_world, &transport, emission);
                 if let Some(times) = &times
                     && !le.is_black()
                 {
@@ -466,7 +468,7 @@ impl<'a> Tracer<'a> {
                 }
                 if !le.is_black() && !light_caustic && !replay {
                     let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
-                        let light_pdf = self.scene.light_pdf(from, &hit, &transport, &mut emission);
+                        let light_pdf = self.scene.light_pdf(from, &hit, &transport, emission);
                         power_heuristic(1, bsdf_pdf, 1, light_pdf)
                     });
                     beta.add_emitted(&mut radiance, &le, w);
@@ -531,12 +533,10 @@ impl<'a> Tracer<'a> {
                         };
                         Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0)))
                     }
-                    _ => self.scene.bsdf_cached(
-                        &hit,
-                        &transport,
-                        TransportMode::Radiance,
-                        &mut emission,
-                    ),
+                    _ => {
+                        self.scene
+                            .bsdf_cached(&hit, &transport, TransportMode::Radiance, emission)
+                    }
                 };
                 let frame = Frame::from_normal(hit.shading_normal);
                 let wo = frame.to_local(wo_world);
@@ -554,7 +554,7 @@ impl<'a> Tracer<'a> {
                         u_light,
                         &transport,
                         times.as_ref(),
-                        &mut emission,
+                        emission,
                         &beta,
                         &mut radiance,
                     );

@@ -8,7 +8,7 @@ use prism_sampling::stream::{SampleStream, SobolStream};
 use std::ops::Range;
 
 use prism_sampling::wavelength::WavelengthDistribution;
-use prism_scene::world::{Light, Scene, SceneSpectrum};
+use prism_scene::world::{EmissionCache, Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
@@ -555,11 +555,12 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
         tracer,
         &mut stream,
         FIRST_BOUNCE_DIMENSION,
-        u_lambda,
+        &tracer.package(u_lambda),
         film,
         aspect,
         &mut sink,
         &mut Record::new(T::black()),
+        &mut EmissionCache::new(),
     )
 }
 

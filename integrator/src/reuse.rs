@@ -37,7 +37,7 @@
 use glam::Vec3;
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
-use prism_scene::world::{Bsdf, Hit, Scene};
+use prism_scene::world::{Bsdf, EmissionCache, Hit, Scene};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::filter::FilterSampler;
@@ -113,6 +113,9 @@ pub(crate) struct TilePixel<'s, const N: usize> {
 /// A tile's pixels and the buffers of its gathering, kept from tile to tile.
 pub(crate) struct Tile<'s, const N: usize> {
     pixels: Vec<TilePixel<'s, N>>,
+    /// The spectra the tile's paths evaluate, kept from path to path: they share their
+    /// wavelengths (the cache refills where the next tile's differ).
+    emission: EmissionCache<N>,
     len: usize,
     density: Vec<f32>,
     light: Vec<SampledSpectrum<N>>,
@@ -123,6 +126,7 @@ impl<'s, const N: usize> Tile<'s, N> {
     pub(crate) fn new() -> Self {
         Self {
             pixels: Vec::new(),
+            emission: EmissionCache::new(),
             len: 0,
             density: Vec::new(),
             light: Vec::new(),
@@ -153,6 +157,8 @@ impl<'a> Tracer<'a> {
         let (w, h) = (rows.width, rows.height);
         let aspect = w as f32 / h as f32;
         let mut lambdas: Option<SampledWavelengths<N>> = None;
+        // The tile's paths share their wavelengths: drawn once.
+        let package = self.package::<N>(lambda);
         tile.len = 0;
         for y in ys.clone() {
             for x in xs.clone() {
@@ -182,7 +188,7 @@ impl<'a> Tracer<'a> {
                 here.result = self.trace::<N, false, false, true, SampledSpectrum<N>>(
                     &mut stream,
                     FIRST_BOUNCE_DIMENSION,
-                    lambda,
+                    &package,
                     film,
                     aspect,
                     &mut |radiance: &SampledSpectrum<N>, l: &SampledWavelengths<N>| {
@@ -190,6 +196,7 @@ impl<'a> Tracer<'a> {
                         value.add(self, rows.outputs, radiance, l);
                     },
                     &mut here.record,
+                    &mut tile.emission,
                 );
             }
         }

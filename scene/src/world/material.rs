@@ -386,8 +386,18 @@ pub enum Bsdf<'a, const N: usize> {
 
 impl<const N: usize> Bsdf<'_, N> {
     /// f(wo, wi) per lane.
-    #[inline]
+    #[inline(always)]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
+        // Lambertian, the commonest, where it is asked: the others' code (large, once
+        // inlined into one match) stays out of line.
+        match self {
+            Bsdf::Diffuse(b) => b.f(wo, wi),
+            _ => self.f_other(wo, wi),
+        }
+    }
+
+    #[inline(never)]
+    fn f_other(&self, wo: Vec3, wi: Vec3) -> SampledSpectrum<N> {
         match self {
             Bsdf::Diffuse(b) => b.f(wo, wi),
             Bsdf::MetallicRoughness(b) => b.f(wo, wi),
@@ -400,8 +410,16 @@ impl<const N: usize> Bsdf<'_, N> {
     }
 
     /// The solid-angle density of sampling `wi` (the hero lane's, where lanes differ).
-    #[inline]
+    #[inline(always)]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self {
+            Bsdf::Diffuse(b) => b.pdf(wo, wi),
+            _ => self.pdf_other(wo, wi),
+        }
+    }
+
+    #[inline(never)]
+    fn pdf_other(&self, wo: Vec3, wi: Vec3) -> f32 {
         match self {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
             Bsdf::MetallicRoughness(b) => b.pdf(wo, wi),
