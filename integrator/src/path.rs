@@ -173,6 +173,15 @@ pub(crate) fn wavelengths<const N: usize>(
     SampledWavelengths::new(package.lambda, package.pdf).ok()
 }
 
+/// What the light a path meets is weighed with: the wavelengths and times it is evaluated
+/// at, and the last bounce's BSDF density and origin (None after the camera or a delta
+/// bounce), for MIS against light sampling.
+struct Arrived<'p, const N: usize> {
+    transport: &'p SampledWavelengths<N>,
+    times: Option<&'p [f64; N]>,
+    previous: Option<(f32, Vec3)>,
+}
+
 impl<'a> Tracer<'a> {
     /// The package of wavelengths a sample draws with `u_lambda` (its hero's number).
     pub(crate) fn package<const N: usize>(&self, u_lambda: f32) -> WavelengthPackage<N> {
@@ -279,6 +288,63 @@ impl<'a> Tracer<'a> {
             weights[j] = weight;
         }
         (incident, weights, reemitted)
+    }
+
+    /// Adds the light of the environment a ray that left the scene arrives from, weighed by
+    /// MIS against light sampling after a bounce.
+    #[inline(always)]
+    fn add_escaped<const N: usize, T: Throughput<N>>(
+        &self,
+        ray: &Ray,
+        arrived: &Arrived<'_, N>,
+        emission: &mut EmissionCache<N>,
+        beta: &T,
+        radiance: &mut T::Radiance,
+    ) {
+        let Some((mut le, light_pdf)) =
+            self.scene
+                .escaped(ray.direction.normalize(), arrived.transport, emission)
+        else {
+            return;
+        };
+        if let Some(times) = arrived.times {
+            self.gate(self.scene.environment_light(), times, &mut le);
+        }
+        let w = arrived.previous.map_or(1.0, |(bsdf_pdf, _)| {
+            power_heuristic(1, bsdf_pdf, 1, light_pdf)
+        });
+        beta.add_emitted(radiance, &le, w);
+    }
+
+    /// Adds the light `hit` emits towards `wo_world`, weighed by MIS against light
+    /// sampling after a bounce.
+    #[inline(always)]
+    fn add_hit_emission<const N: usize, T: Throughput<N>>(
+        &self,
+        hit: &Hit,
+        wo_world: Vec3,
+        arrived: &Arrived<'_, N>,
+        emission: &mut EmissionCache<N>,
+        beta: &T,
+        radiance: &mut T::Radiance,
+    ) {
+        let mut le = self
+            .scene
+            .emitted(hit, wo_world, arrived.transport, emission);
+        if le.is_black() {
+            return;
+        }
+        if let Some(times) = arrived.times {
+            self.gate(self.scene.light_of(hit), times, &mut le);
+            if le.is_black() {
+                return;
+            }
+        }
+        let w = arrived.previous.map_or(1.0, |(bsdf_pdf, from)| {
+            let light_pdf = self.scene.light_pdf(from, hit, arrived.transport, emission);
+            power_heuristic(1, bsdf_pdf, 1, light_pdf)
+        });
+        beta.add_emitted(radiance, &le, w);
     }
 
     /// Next-event estimation at `vertex` (not a delta): a light sampled with `u_light`, its
@@ -440,18 +506,12 @@ impl<'a> Tracer<'a> {
                     if depth == 0 && self.transparent {
                         break;
                     }
-                    if let Some((mut le, light_pdf)) =
-                        self.scene
-                            .escaped(ray.direction.normalize(), &transport, emission)
-                    {
-                        if let Some(times) = &times {
-                            self.gate(self.scene.environment_light(), times, &mut le);
-                        }
-                        let w = previous.map_or(1.0, |(bsdf_pdf, _)| {
-                            power_heuristic(1, bsdf_pdf, 1, light_pdf)
-                        });
-                        beta.add_emitted(&mut radiance, &le, w);
-                    }
+                    let arrived = Arrived {
+                        transport: &transport,
+                        times: times.as_ref(),
+                        previous,
+                    };
+                    self.add_escaped(&ray, &arrived, emission, &beta, &mut radiance);
                     break;
                 };
                 let wo_world = -ray.direction.normalize();
@@ -460,18 +520,14 @@ impl<'a> Tracer<'a> {
                     self.scene.set_footprint(&mut hit, wo_world, width);
                 }
                 absorb(self.scene, &ray, &hit, &transport, &mut beta);
-                let mut le = self.scene.emitted(&hit, wo_world, &transport, emission);
-                if let Some(times) = &times
-                    && !le.is_black()
-                {
-                    self.gate(self.scene.light_of(&hit), times, &mut le);
-                }
-                if !le.is_black() && !light_caustic && !replay {
-                    let w = previous.map_or(1.0, |(bsdf_pdf, from)| {
-                        let light_pdf = self.scene.light_pdf(from, &hit, &transport, emission);
-                        power_heuristic(1, bsdf_pdf, 1, light_pdf)
-                    });
-                    beta.add_emitted(&mut radiance, &le, w);
+                // Light a light path carries, or a split's replay has counted, is not added.
+                if !light_caustic && !replay {
+                    let arrived = Arrived {
+                        transport: &transport,
+                        times: times.as_ref(),
+                        previous,
+                    };
+                    self.add_hit_emission(&hit, wo_world, &arrived, emission, &beta, &mut radiance);
                 }
                 if REUSE && depth == 1 && record.first.is_some() && self.scene.reflects_alike(&hit)
                 {
@@ -480,13 +536,7 @@ impl<'a> Tracer<'a> {
                     // the path's whole throughput.
                     eta_scale *= beta.max_value();
                     beta = T::start(ray.direction.normalize(), &self.camera_frame);
-                    record.second = Some(Second {
-                        p: hit.p,
-                        normal: hit.normal,
-                        shading_normal: hit.shading_normal,
-                        side: wo_world.dot(hit.shading_normal) > 0.0,
-                        distance: hit.t * ray.direction.length(),
-                    });
+                    record.second = Some(Second::at(&hit, &ray, wo_world));
                     record.own = std::mem::replace(&mut radiance, T::black());
                 }
                 if depth >= self.max_depth {

@@ -37,6 +37,7 @@
 use glam::Vec3;
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_scene::geometry::Ray;
 use prism_scene::world::{Bsdf, EmissionCache, Hit, Scene};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -69,6 +70,21 @@ pub(crate) struct Second {
     pub side: bool,
     /// Distance from the first vertex.
     pub distance: f32,
+}
+
+impl Second {
+    /// The second vertex `hit`, which `ray` (from the first vertex) found, seen from the
+    /// direction `wo_world` back along it.
+    #[inline(always)]
+    pub(crate) fn at(hit: &Hit, ray: &Ray, wo_world: Vec3) -> Self {
+        Self {
+            p: hit.p,
+            normal: hit.normal,
+            shading_normal: hit.shading_normal,
+            side: wo_world.dot(hit.shading_normal) > 0.0,
+            distance: hit.t * ray.direction.length(),
+        }
+    }
 }
 
 /// What a path leaves for its tile: its first and second vertices, the light it
