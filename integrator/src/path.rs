@@ -399,10 +399,11 @@ impl<'a> Tracer<'a> {
 
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
-    /// dimensions; `first_package` holds its wavelengths ([`Tracer::package`]). The path's radiance goes to
-    /// `sink` with the wavelengths and densities it was estimated with: once at the end,
-    /// and once more before a package split (the estimate so far, with the whole
-    /// package's densities).
+    /// dimensions; `first_package` holds the sample's wavelengths ([`Tracer::package`]),
+    /// and `emission` caches spectra at them (a cache from another path is refilled if its
+    /// wavelengths differ). The path's radiance goes to `sink` with the wavelengths and
+    /// densities it was estimated with: once at the end, and once more before a package
+    /// split (the estimate so far, with the whole package's densities).
     ///
     /// `FLUORESCENCE` is whether the scene has re-radiating materials: without it the
     /// wavelengths light is evaluated at are always the film's, and no vertex pays for
