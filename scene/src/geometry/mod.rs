@@ -8,7 +8,7 @@ mod triangle;
 
 pub use bvh::{Bvh, BvhQuality, NodeLanes, SurfaceHit};
 pub use frame::Frame;
-pub use offset::{offset_ray_origin, triangle_point_error};
+pub use offset::{offset_ray_origin, offset_ray_origin_to_side, triangle_point_error};
 pub use ray::Ray;
 pub(crate) use triangle::unit_or_zero;
 pub use triangle::{TriangleHit, intersect_triangle, triangle_area, triangle_normal};

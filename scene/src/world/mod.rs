@@ -5,6 +5,7 @@
 
 mod alpha;
 mod builder;
+mod departure;
 mod emission_cache;
 mod environment;
 #[cfg(feature = "gltf")]
@@ -23,6 +24,7 @@ mod time;
 
 pub use alpha::{Alpha, AlphaMode};
 pub use builder::SceneBuilder;
+pub use departure::Departure;
 pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 #[cfg(feature = "gltf")]

@@ -35,11 +35,14 @@
 //! pixel's (that pixel's wavelength dimension), stratified over the samples.
 
 use glam::Vec3;
-use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_scene::geometry::Ray;
 use prism_scene::world::{Bsdf, EmissionCache, Hit, Scene};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+mod gather;
+
+use gather::Gathering;
 
 use crate::filter::FilterSampler;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Frame, PathResult, Tracer};
@@ -133,9 +136,7 @@ pub(crate) struct Tile<'s, const N: usize> {
     /// wavelengths (the cache refills where the next tile's differ).
     emission: EmissionCache<N>,
     len: usize,
-    density: Vec<f32>,
-    light: Vec<SampledSpectrum<N>>,
-    gathered: Vec<SampledSpectrum<N>>,
+    gathering: Gathering<N>,
 }
 
 impl<'s, const N: usize> Tile<'s, N> {
@@ -144,9 +145,7 @@ impl<'s, const N: usize> Tile<'s, N> {
             pixels: Vec::new(),
             emission: EmissionCache::new(),
             len: 0,
-            density: Vec::new(),
-            light: Vec::new(),
-            gathered: Vec::new(),
+            gathering: Gathering::new(),
         }
     }
 
@@ -217,88 +216,12 @@ impl<'a> Tracer<'a> {
             }
         }
         if let Some(lambdas) = lambdas {
-            gather(self.scene, tile);
-            for (pixel, light) in tile.pixels[..tile.len].iter_mut().zip(&tile.gathered) {
+            let pixels = &mut tile.pixels[..tile.len];
+            let gathered = tile.gathering.gather(self.scene, pixels);
+            for (pixel, light) in pixels.iter_mut().zip(gathered) {
                 if !light.is_black() {
                     pixel.value.add(self, rows.outputs, light, &lambdas);
                 }
-            }
-        }
-    }
-}
-
-/// Per pixel of a tile, the light its first vertex gathers from the tile's second
-/// vertices (its own included), into `tile.gathered`; adds the shadow rays it traces to
-/// the pixels' counts.
-fn gather<const N: usize>(scene: &Scene, tile: &mut Tile<'_, N>) {
-    let n = tile.len;
-    let Tile {
-        pixels,
-        density,
-        light,
-        gathered,
-        ..
-    } = tile;
-    let pixels = &mut pixels[..n];
-    let black = SampledSpectrum::<N>::splat(0.0);
-    gathered.clear();
-    gathered.resize(n, black);
-    density.clear();
-    density.resize(n, 0.0);
-    light.clear();
-    light.resize(n, black);
-    // Per second vertex k: each first vertex's area density of it, and what it would add.
-    for k in 0..n {
-        let Some(second) = &pixels[k].record.second else {
-            continue;
-        };
-        let reflected = pixels[k].record.reflected;
-        let mut total = 0.0f32;
-        for m in 0..n {
-            density[m] = 0.0;
-            let Some(first) = &pixels[m].record.first else {
-                continue;
-            };
-            let (direction, distance, wi, pdf) = if m == k {
-                (
-                    first.frame.to_world(first.wi),
-                    second.distance,
-                    first.wi,
-                    first.pdf,
-                )
-            } else {
-                let to = second.p - first.hit.p;
-                let distance = to.length();
-                // x1_m must lie on the side of x2_k whose reflected light S_k is.
-                if !positive_finite(distance)
-                    || ((first.hit.p - second.p).dot(second.shading_normal) > 0.0) != second.side
-                {
-                    continue;
-                }
-                let direction = to / distance;
-                let wi = first.frame.to_local(direction);
-                (direction, distance, wi, first.bsdf.pdf(first.wo, wi))
-            };
-            let jacobian = second.normal.dot(direction).abs() / (distance * distance);
-            if !positive_finite(pdf) || !positive_finite(jacobian) {
-                continue;
-            }
-            if m != k {
-                pixels[m].result.rays += 1;
-                if scene.occluded(&first.hit.spawn_to(direction, distance)) {
-                    continue;
-                }
-            }
-            density[m] = pdf * jacobian;
-            total += density[m];
-            light[m] = first.bsdf.f(first.wo, wi) * (wi.z.abs() * jacobian) * reflected;
-        }
-        if !positive_finite(total) {
-            continue;
-        }
-        for m in 0..n {
-            if density[m] > 0.0 {
-                gathered[m] += light[m] * (1.0 / total);
             }
         }
     }
