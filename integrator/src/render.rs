@@ -248,53 +248,7 @@ impl<'a> Renderer<'a> {
         let trace = specialized!(self, trace_row);
         let rows = self.rows(settings.seed, samples.clone());
         self.pool.install(|| {
-            let width = settings.width as usize;
-            let spectral_width = width * pass.spectral_width();
-            let FilmSums {
-                xyz: sums,
-                spectral,
-                energy,
-                stokes,
-                coverage,
-            } = pass.sums_mut();
-            // Films without spectral or energy sums give each row an empty slice.
-            let spectral_rows: Vec<&mut [f64]> = if spectral_width == 0 {
-                (0..settings.height)
-                    .map(|_| -> &mut [f64] { &mut [] })
-                    .collect()
-            } else {
-                spectral.chunks_mut(spectral_width).collect()
-            };
-            let energy_rows: Vec<&mut [[f64; 2]]> = if energy.is_empty() {
-                (0..settings.height)
-                    .map(|_| -> &mut [[f64; 2]] { &mut [] })
-                    .collect()
-            } else {
-                energy.chunks_mut(width).collect()
-            };
-            let stokes_rows: Vec<&mut [[[f64; 3]; 3]]> = if stokes.is_empty() {
-                (0..settings.height)
-                    .map(|_| -> &mut [[[f64; 3]; 3]] { &mut [] })
-                    .collect()
-            } else {
-                stokes.chunks_mut(width).collect()
-            };
-            let mut outs: Vec<RowOutput> = sums
-                .chunks_mut(width)
-                .zip(spectral_rows)
-                .zip(energy_rows)
-                .zip(stokes_rows)
-                .zip(coverage.chunks_mut(width))
-                .map(
-                    |((((xyz, spectral), energy), stokes), coverage)| RowOutput {
-                        xyz,
-                        spectral,
-                        energy,
-                        stokes,
-                        coverage,
-                    },
-                )
-                .collect();
+            let mut outs = row_outputs(&mut pass, settings.width as usize, settings.height);
             if self.reuse > 1 {
                 let band = specialized_reuse!(self);
                 for s in samples.clone() {
@@ -317,46 +271,7 @@ impl<'a> Renderer<'a> {
             });
         });
         if self.light_caustics() {
-            macro_rules! light_by_width {
-                ($carrier:ident) => {
-                    match settings.wavelengths {
-                        1 => light_row::<1, $carrier<1>>,
-                        2 => light_row::<2, $carrier<2>>,
-                        4 => light_row::<4, $carrier<4>>,
-                        8 => light_row::<8, $carrier<8>>,
-                        _ => light_row::<16, $carrier<16>>,
-                    }
-                };
-            }
-            let light_row = if settings.is_polarized() {
-                light_by_width!(PolarizedLight)
-            } else {
-                light_by_width!(SampledSpectrum)
-            };
-            // Rows of light paths run in parallel in batches, and each batch's splats are
-            // added in row order: the sums do not depend on the threads, and the batch
-            // bounds the splats held at once.
-            const BATCH_ROWS: u32 = 16;
-            let mut splatter = Splatter::new(&mut pass, &self.filter);
-            for first in (0..settings.height).step_by(BATCH_ROWS as usize) {
-                if cancel.load(Ordering::Relaxed) {
-                    break;
-                }
-                let last = (first + BATCH_ROWS).min(settings.height);
-                let batch: Vec<RowSplats> = self.pool.install(|| {
-                    (first..last)
-                        .into_par_iter()
-                        .map(|y| light_row(&tracer, &rows, y))
-                        .collect()
-                });
-                for row in batch {
-                    rays.fetch_add(row.rays, Ordering::Relaxed);
-                    nonfinite.fetch_add(row.rejected, Ordering::Relaxed);
-                    for splat in &row.splats {
-                        splatter.add(splat.film, &splat.value, settings.clamp);
-                    }
-                }
-            }
+            self.add_light_paths(&tracer, &rows, &mut pass, cancel, &rays, &nonfinite);
         }
         if cancel.load(Ordering::Relaxed) {
             return Ok(None);
@@ -372,6 +287,60 @@ impl<'a> Renderer<'a> {
             splits: self.splits,
             reuse: self.reuse,
         }))
+    }
+
+    /// Traces the light paths of the caustics seen directly (`light_path.rs`) for one pass
+    /// and splats them into `pass`, counting their rays and rejected samples.
+    fn add_light_paths(
+        &self,
+        tracer: &Tracer,
+        rows: &Rows,
+        pass: &mut Film,
+        cancel: &AtomicBool,
+        rays: &AtomicU64,
+        nonfinite: &AtomicU64,
+    ) {
+        let settings = &self.settings;
+        macro_rules! light_by_width {
+            ($carrier:ident) => {
+                match settings.wavelengths {
+                    1 => light_row::<1, $carrier<1>>,
+                    2 => light_row::<2, $carrier<2>>,
+                    4 => light_row::<4, $carrier<4>>,
+                    8 => light_row::<8, $carrier<8>>,
+                    _ => light_row::<16, $carrier<16>>,
+                }
+            };
+        }
+        let light_row = if settings.is_polarized() {
+            light_by_width!(PolarizedLight)
+        } else {
+            light_by_width!(SampledSpectrum)
+        };
+        // Rows of light paths run in parallel in batches, and each batch's splats are
+        // added in row order: the sums do not depend on the threads, and the batch
+        // bounds the splats held at once.
+        const BATCH_ROWS: u32 = 16;
+        let mut splatter = Splatter::new(pass, &self.filter);
+        for first in (0..settings.height).step_by(BATCH_ROWS as usize) {
+            if cancel.load(Ordering::Relaxed) {
+                break;
+            }
+            let last = (first + BATCH_ROWS).min(settings.height);
+            let batch: Vec<RowSplats> = self.pool.install(|| {
+                (first..last)
+                    .into_par_iter()
+                    .map(|y| light_row(tracer, rows, y))
+                    .collect()
+            });
+            for row in batch {
+                rays.fetch_add(row.rays, Ordering::Relaxed);
+                nonfinite.fetch_add(row.rejected, Ordering::Relaxed);
+                for splat in &row.splats {
+                    splatter.add(splat.film, &splat.value, settings.clamp);
+                }
+            }
+        }
     }
 }
 
@@ -404,6 +373,43 @@ pub fn render(
     let stats =
         render_into(scene, settings, &mut film, &AtomicBool::new(false))?.unwrap_or_default();
     Ok((film, stats))
+}
+
+/// `pass`'s sums cut into rows of a `width` x `height` image; a film without spectral,
+/// energy or Stokes sums gives each row an empty slice of them.
+fn row_outputs(pass: &mut Film, width: usize, height: u32) -> Vec<RowOutput<'_>> {
+    let spectral_width = width * pass.spectral_width();
+    let FilmSums {
+        xyz,
+        spectral,
+        energy,
+        stokes,
+        coverage,
+    } = pass.sums_mut();
+    xyz.chunks_mut(width)
+        .zip(rows_of(spectral, spectral_width, height))
+        .zip(rows_of(energy, width, height))
+        .zip(rows_of(stokes, width, height))
+        .zip(coverage.chunks_mut(width))
+        .map(
+            |((((xyz, spectral), energy), stokes), coverage)| RowOutput {
+                xyz,
+                spectral,
+                energy,
+                stokes,
+                coverage,
+            },
+        )
+        .collect()
+}
+
+/// `sums` in rows of `row` values, or `height` empty rows where there are none.
+fn rows_of<T>(sums: &mut [T], row: usize, height: u32) -> Vec<&mut [T]> {
+    if row == 0 || sums.is_empty() {
+        (0..height).map(|_| -> &mut [T] { &mut [] }).collect()
+    } else {
+        sums.chunks_mut(row).collect()
+    }
 }
 
 /// One row's sums: XYZ, spectral bands (empty when not spectral), energy (empty
