@@ -116,13 +116,21 @@ pub(crate) fn connect<R: Real>(firsts: &FirstVertices<R>, second: &Second) -> Co
     }
 }
 
+/// What a first vertex's connections need besides the lanes' geometry.
+struct Start {
+    /// Where its shadow rays leave.
+    departure: Departure,
+    /// Whether its BSDF is Lambertian, whose density the lanes compute (any other is asked
+    /// per pair).
+    lambertian: bool,
+}
+
 /// The buffers of a tile's gathering, kept from tile to tile.
 pub(super) struct Gathering<const N: usize> {
     /// The first vertices, eight to a group.
     groups: Vec<FirstVertices<Lane8>>,
-    /// Per pixel: where its first vertex's shadow rays leave, and whether its BSDF is
-    /// Lambertian (whose density the lanes compute; any other is asked per pair).
-    departures: Vec<Option<(Departure, bool)>>,
+    /// Per pixel, what its first vertex's connections need besides the lanes.
+    starts: Vec<Option<Start>>,
     connections: Vec<Connection<Lane8>>,
     density: Vec<f32>,
     light: Vec<SampledSpectrum<N>>,
@@ -133,7 +141,7 @@ impl<const N: usize> Gathering<N> {
     pub(super) fn new() -> Self {
         Self {
             groups: Vec::new(),
-            departures: Vec::new(),
+            starts: Vec::new(),
             connections: Vec::new(),
             density: Vec::new(),
             light: Vec::new(),
@@ -193,7 +201,7 @@ impl<const N: usize> Gathering<N> {
                         continue;
                     }
                     let wi = Vec3::from(connection.wi);
-                    let lambertian = matches!(self.departures[m], Some((_, true)));
+                    let lambertian = self.starts[m].as_ref().is_some_and(|s| s.lambertian);
                     let pdf = if lambertian {
                         connection.pdf
                     } else {
@@ -207,10 +215,10 @@ impl<const N: usize> Gathering<N> {
                 }
                 if m != k {
                     pixels[m].result.rays += 1;
-                    let Some((departure, _)) = &self.departures[m] else {
+                    let Some(start) = &self.starts[m] else {
                         continue;
                     };
-                    if scene.occluded(&departure.ray_to(direction, distance)) {
+                    if scene.occluded(&start.departure.ray_to(direction, distance)) {
                         continue;
                     }
                 }
@@ -231,15 +239,15 @@ impl<const N: usize> Gathering<N> {
     }
 
     /// Lays the pixels' first vertices out in groups of lanes (a pixel without one: zeros,
-    /// which its `record.first` being None excludes) and notes their departures.
+    /// which its `record.first` being None excludes) and notes what else each needs.
     fn set_first_vertices(&mut self, pixels: &[TilePixel<'_, N>], lanes: bool) {
-        self.departures.clear();
-        self.departures.extend(pixels.iter().map(|pixel| {
+        self.starts.clear();
+        self.starts.extend(pixels.iter().map(|pixel| {
             let first = pixel.record.first.as_ref()?;
-            Some((
-                first.hit.departure(),
-                matches!(first.bsdf, Bsdf::Diffuse(_)),
-            ))
+            Some(Start {
+                departure: first.hit.departure(),
+                lambertian: matches!(first.bsdf, Bsdf::Diffuse(_)),
+            })
         }));
         self.groups.clear();
         if !lanes {
