@@ -71,122 +71,46 @@ impl Attributes {
         buffers: &[Vec<u8>],
         weights: &[f32],
     ) -> Result<Self, LoadError> {
-        // The reader trusts the document; what it would panic on is an error here first.
-        for (semantic, expected) in [
-            (gltf::Semantic::Positions, &accessor::POSITION),
-            (gltf::Semantic::Normals, &accessor::NORMAL),
-            (gltf::Semantic::Tangents, &accessor::TANGENT),
-            (gltf::Semantic::TexCoords(sets.first()), &accessor::TEXCOORD),
-            (
-                gltf::Semantic::TexCoords(sets.second().unwrap_or(sets.first())),
-                &accessor::TEXCOORD,
-            ),
-            (gltf::Semantic::Colors(0), &accessor::COLOR),
-        ] {
-            if let Some(a) = primitive.get(&semantic) {
-                accessor::check(&a, expected, name, buffers)?;
+        check_accessors(primitive, sets, name, buffers)?;
+        let morph_targets = primitive.morph_targets().next().is_some();
+        // Morphed to the default weights where the primitive has targets.
+        let morphed = |normals: bool, values: Vec<Vec3>| {
+            if morph_targets {
+                morph(primitive, weights, normals, values, buffers)
+            } else {
+                values
             }
-        }
-        if let Some(a) = primitive.indices() {
-            accessor::check(&a, &accessor::INDICES, name, buffers)?;
-        }
-        let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-        // Quantized attributes (KHR_mesh_quantization) read as floats like any other.
-        let attribute = |semantic: gltf::Semantic| primitive.get(&semantic);
-        let positions: Vec<Vec3> = match attribute(gltf::Semantic::Positions) {
-            None => {
-                return Err(LoadError::Geometry(format!(
-                    "{name}: a primitive has no POSITION attribute"
-                )));
-            }
-            Some(a) => accessor::read_f32::<3>(&a, buffers)
-                .ok_or_else(|| {
-                    LoadError::Geometry(format!(
-                        "{name}: POSITION accessor {} cannot be read (it runs past its buffer view or buffer)",
-                        a.index()
-                    ))
-                })?
-                .into_iter()
-                .map(Vec3::from)
-                .collect(),
         };
-        let morphed = primitive.morph_targets().next().is_some();
-        if morphed {
+        let positions = read_positions(primitive, name, buffers)?;
+        if morph_targets {
             note(&mut out.gltf_features, "morph targets (default weights)");
             warn_once(
                 &mut out.warnings,
                 "morph targets are rendered at their default weights",
             );
         }
-        let positions = if morphed {
-            morph(primitive, weights, false, positions, buffers)
-        } else {
-            positions
-        };
+        let positions = morphed(false, positions);
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(LoadError::Geometry(format!(
                 "{name}: position {i} is not finite"
             )));
         }
-        let indices: Vec<u32> = match (reader.read_indices(), primitive.indices()) {
-            (Some(i), _) => i.into_u32().collect(),
-            (None, None) => (0..positions.len() as u32).collect(),
-            // Declared but unreadable: not a non-indexed primitive.
-            (None, Some(accessor)) => {
-                return Err(LoadError::Geometry(format!(
-                    "{name}: index accessor {} cannot be read (it runs past its buffer view or buffer)",
-                    accessor.index()
-                )));
-            }
+        let indices = read_indices(primitive, name, buffers, positions.len())?;
+        let per_vertex = PerVertex {
+            primitive,
+            buffers,
+            name,
+            count: positions.len(),
         };
-        if !indices.len().is_multiple_of(3) {
-            return Err(LoadError::Geometry(format!(
-                "{name}: {} indices do not form triangles",
-                indices.len()
-            )));
-        }
-        if let Some(bad) = indices.iter().find(|&&i| i as usize >= positions.len()) {
-            return Err(LoadError::Geometry(format!(
-                "{name}: index {bad} is past the {} vertices",
-                positions.len()
-            )));
-        }
-        let count = positions.len();
-        let attribute_count = |what: &str, n: usize| {
-            LoadError::Geometry(format!(
-                "{name}: {what} has {n} entries for {count} vertices"
-            ))
-        };
-        let normals: Option<Vec<Vec3>> = attribute(gltf::Semantic::Normals)
+        let normals = per_vertex
+            .accessor(gltf::Semantic::Normals)
             .and_then(|a| accessor::read_f32::<3>(&a, buffers))
-            .map(|n| n.into_iter().map(Vec3::from).collect())
-            .map(|n| {
-                if morphed {
-                    morph(primitive, weights, true, n, buffers)
-                } else {
-                    n
-                }
-            });
-        if let Some(n) = &normals
-            && n.len() != count
-        {
-            return Err(attribute_count("NORMAL", n.len()));
-        }
-        let read_uvs = |set: u32| -> Result<Option<Vec<Vec2>>, LoadError> {
-            let uvs: Option<Vec<Vec2>> = attribute(gltf::Semantic::TexCoords(set))
-                .and_then(|a| accessor::read_f32::<2>(&a, buffers))
-                .map(|t| t.into_iter().map(Vec2::from).collect());
-            match uvs {
-                Some(t) if t.len() != count => {
-                    Err(attribute_count(&format!("TEXCOORD_{set}"), t.len()))
-                }
-                uvs => Ok(uvs),
-            }
-        };
-        let uvs = read_uvs(sets.first())?;
+            .map(|n| morphed(true, n.into_iter().map(Vec3::from).collect()));
+        let normals = per_vertex.counted(normals, "NORMAL")?;
+        let uvs = per_vertex.uvs(sets.first())?;
         let uvs1 = match sets.second() {
             Some(set) => {
-                let second = read_uvs(set)?;
+                let second = per_vertex.uvs(set)?;
                 if second.is_none() {
                     warn_once(
                         &mut out.warnings,
@@ -200,34 +124,14 @@ impl Attributes {
             }
             None => None,
         };
-        let tangents: Option<Vec<Vec4>> = attribute(gltf::Semantic::Tangents)
+        let tangents = per_vertex
+            .accessor(gltf::Semantic::Tangents)
             .and_then(|a| accessor::read_f32::<4>(&a, buffers))
             .map(|t| t.into_iter().map(Vec4::from).collect());
-        if let Some(t) = &tangents
-            && t.len() != count
-        {
-            return Err(attribute_count("TANGENT", t.len()));
-        }
+        let tangents = per_vertex.counted(tangents, "TANGENT")?;
         let colors = vertex_colors(primitive, buffers);
-        if colors.is_some() {
-            note(&mut out.gltf_features, "COLOR_0");
-        }
-        for set in [Some(sets.first()), sets.second()].into_iter().flatten() {
-            if set > 0 {
-                note(&mut out.gltf_features, &format!("TEXCOORD_{set}"));
-            }
-        }
-        if primitive.indices().is_none() {
-            note(&mut out.gltf_features, "non-indexed primitives");
-        }
-        if primitive.attributes().any(|(_, a)| a.sparse().is_some()) {
-            note(&mut out.gltf_features, "sparse accessors");
-        }
-        if let Some(c) = &colors
-            && c.len() != count
-        {
-            return Err(attribute_count("COLOR_0", c.len()));
-        }
+        note_features(out, primitive, sets, colors.is_some());
+        let colors = per_vertex.counted(colors, "COLOR_0")?;
         Ok(Self {
             positions,
             indices,
@@ -237,6 +141,156 @@ impl Attributes {
             tangents,
             colors,
         })
+    }
+}
+
+/// Checks the accessors of the attributes prism reads, and the indices', before the glTF
+/// reader reads them: it trusts the document, and what it would panic on is an error here.
+fn check_accessors(
+    primitive: &gltf::Primitive,
+    sets: &TexCoordSets,
+    name: &str,
+    buffers: &[Vec<u8>],
+) -> Result<(), LoadError> {
+    for (semantic, expected) in [
+        (gltf::Semantic::Positions, &accessor::POSITION),
+        (gltf::Semantic::Normals, &accessor::NORMAL),
+        (gltf::Semantic::Tangents, &accessor::TANGENT),
+        (gltf::Semantic::TexCoords(sets.first()), &accessor::TEXCOORD),
+        (
+            gltf::Semantic::TexCoords(sets.second().unwrap_or(sets.first())),
+            &accessor::TEXCOORD,
+        ),
+        (gltf::Semantic::Colors(0), &accessor::COLOR),
+    ] {
+        if let Some(a) = primitive.get(&semantic) {
+            accessor::check(&a, expected, name, buffers)?;
+        }
+    }
+    if let Some(a) = primitive.indices() {
+        accessor::check(&a, &accessor::INDICES, name, buffers)?;
+    }
+    Ok(())
+}
+
+/// The primitive's positions, before morphing (quantized ones, KHR_mesh_quantization,
+/// read as floats like any other).
+fn read_positions(
+    primitive: &gltf::Primitive,
+    name: &str,
+    buffers: &[Vec<u8>],
+) -> Result<Vec<Vec3>, LoadError> {
+    let Some(a) = primitive.get(&gltf::Semantic::Positions) else {
+        return Err(LoadError::Geometry(format!(
+            "{name}: a primitive has no POSITION attribute"
+        )));
+    };
+    let positions = accessor::read_f32::<3>(&a, buffers).ok_or_else(|| {
+        LoadError::Geometry(format!(
+            "{name}: POSITION accessor {} cannot be read (it runs past its buffer view or buffer)",
+            a.index()
+        ))
+    })?;
+    Ok(positions.into_iter().map(Vec3::from).collect())
+}
+
+/// The primitive's triangle indices into its `count` vertices (0, 1, 2, ... where it has
+/// none), each checked to be within them.
+fn read_indices(
+    primitive: &gltf::Primitive,
+    name: &str,
+    buffers: &[Vec<u8>],
+    count: usize,
+) -> Result<Vec<u32>, LoadError> {
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    let indices: Vec<u32> = match (reader.read_indices(), primitive.indices()) {
+        (Some(i), _) => i.into_u32().collect(),
+        (None, None) => (0..count as u32).collect(),
+        // Declared but unreadable: not a non-indexed primitive.
+        (None, Some(accessor)) => {
+            return Err(LoadError::Geometry(format!(
+                "{name}: index accessor {} cannot be read (it runs past its buffer view or buffer)",
+                accessor.index()
+            )));
+        }
+    };
+    if !indices.len().is_multiple_of(3) {
+        return Err(LoadError::Geometry(format!(
+            "{name}: {} indices do not form triangles",
+            indices.len()
+        )));
+    }
+    if let Some(bad) = indices.iter().find(|&&i| i as usize >= count) {
+        return Err(LoadError::Geometry(format!(
+            "{name}: index {bad} is past the {count} vertices"
+        )));
+    }
+    Ok(indices)
+}
+
+/// Reads a primitive's optional per-vertex attributes, each of which must have one entry
+/// per vertex.
+struct PerVertex<'p, 'b> {
+    primitive: &'p gltf::Primitive<'p>,
+    buffers: &'b [Vec<u8>],
+    name: &'p str,
+    /// Vertices (positions).
+    count: usize,
+}
+
+impl PerVertex<'_, '_> {
+    /// The accessor of attribute `semantic`, if the primitive has it.
+    fn accessor(&self, semantic: gltf::Semantic) -> Option<gltf::Accessor<'_>> {
+        self.primitive.get(&semantic)
+    }
+
+    /// `values` of attribute `what`, if read, provided there is one per vertex.
+    fn counted<T>(&self, values: Option<Vec<T>>, what: &str) -> Result<Option<Vec<T>>, LoadError> {
+        match values {
+            Some(v) if v.len() != self.count => Err(self.miscounted(what, v.len())),
+            values => Ok(values),
+        }
+    }
+
+    /// Texture coordinate set `set`, if present.
+    fn uvs(&self, set: u32) -> Result<Option<Vec<Vec2>>, LoadError> {
+        let uvs = self
+            .accessor(gltf::Semantic::TexCoords(set))
+            .and_then(|a| accessor::read_f32::<2>(&a, self.buffers));
+        let uvs = self.counted(uvs, &format!("TEXCOORD_{set}"))?;
+        Ok(uvs.map(|t| t.into_iter().map(Vec2::from).collect()))
+    }
+
+    /// The error for an attribute `what` of `n` entries.
+    fn miscounted(&self, what: &str, n: usize) -> LoadError {
+        LoadError::Geometry(format!(
+            "{}: {what} has {n} entries for {} vertices",
+            self.name, self.count
+        ))
+    }
+}
+
+/// Notes the glTF features a primitive's attributes use (vertex colours, texture sets
+/// past the first, no indices, sparse accessors).
+fn note_features(
+    out: &mut LoadedGeometry,
+    primitive: &gltf::Primitive,
+    sets: &TexCoordSets,
+    colors: bool,
+) {
+    if colors {
+        note(&mut out.gltf_features, "COLOR_0");
+    }
+    for set in [Some(sets.first()), sets.second()].into_iter().flatten() {
+        if set > 0 {
+            note(&mut out.gltf_features, &format!("TEXCOORD_{set}"));
+        }
+    }
+    if primitive.indices().is_none() {
+        note(&mut out.gltf_features, "non-indexed primitives");
+    }
+    if primitive.attributes().any(|(_, a)| a.sparse().is_some()) {
+        note(&mut out.gltf_features, "sparse accessors");
     }
 }
 
