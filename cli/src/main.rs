@@ -8,6 +8,10 @@
 // means an optional argument, not a link; escaping it would print the backslash.
 #![allow(rustdoc::broken_intra_doc_links)]
 
+// First: the modules below print with its `outln!`.
+#[macro_use]
+mod stdout;
+
 mod commands;
 mod cpu;
 mod memory;
@@ -73,6 +77,8 @@ fn main() -> ExitCode {
         Command::Trade(args) => commands::trade::run(&args),
     };
     match result {
+        // What could not be written was named on stderr when it failed.
+        Ok(()) if stdout::failed() => ExitCode::from(1),
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("prism: error: {message}");

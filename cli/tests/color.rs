@@ -160,3 +160,41 @@ fn help_has_examples() {
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).contains("prism color blackbody:6500"));
 }
+
+/// `prism color ... | head -1`: a reader that stops reading is not an error, and above all
+/// not a panic (`println!` panicked on the closed pipe).
+#[test]
+fn a_closed_pipe_on_stdout_ends_quietly() {
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(["color", "blackbody:6500"])
+        .stdout(writer)
+        .output()
+        .expect("prism runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+}
+
+/// Output lost to a full disk is one line on stderr and a failed exit.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_disk_on_stdout_fails_with_one_line() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("/dev/full");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(["color", "blackbody:6500"])
+        .stdout(full)
+        .output()
+        .expect("prism runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with("prism: error: cannot write to standard output"),
+        "{stderr}"
+    );
+}

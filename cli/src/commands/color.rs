@@ -60,16 +60,18 @@ pub fn run(args: &ColorArgs) -> Result<(), String> {
             "cct_kelvin": cct.map(|c| c.kelvin),
             "duv": cct.map(|c| c.duv),
         });
-        println!("{value}");
+        outln!("{value}");
     } else {
-        println!("spectrum  {}", args.spec);
-        println!("observer  {}", observer.name());
-        println!(
+        outln!("spectrum  {}", args.spec);
+        outln!("observer  {}", observer.name());
+        outln!(
             "XYZ       {:.6} {:.6} {:.6}  (normalized to Y = 1)",
-            xyz.x, xyz.y, xyz.z
+            xyz.x,
+            xyz.y,
+            xyz.z
         );
-        println!("xy        {:.6} {:.6}", xy.x, xy.y);
-        println!(
+        outln!("xy        {:.6} {:.6}", xy.x, xy.y);
+        outln!(
             "rgb       {:.6} {:.6} {:.6}  (linear {})",
             rgb[0],
             rgb[1],
@@ -77,8 +79,8 @@ pub fn run(args: &ColorArgs) -> Result<(), String> {
             space.name()
         );
         match cct {
-            Some(c) => println!("CCT       {:.1} K  (Duv {:+.5})", c.kelvin, c.duv),
-            None => println!(
+            Some(c) => outln!("CCT       {:.1} K  (Duv {:+.5})", c.kelvin, c.duv),
+            None => outln!(
                 "CCT       undefined (too far from the Planckian locus or outside 1000-100000 K)"
             ),
         }

@@ -57,20 +57,20 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             "mean_ratio": c.mean_ratio,
             "channel_relmse": c.channel_relmse,
         });
-        println!("{json}");
+        outln!("{json}");
     } else {
-        println!("channels        {}", c.channels.join(", "));
-        println!("rmse            {:.6e}", c.rmse);
-        println!("relmse          {:.6e}", c.relmse);
-        println!("mae             {:.6e}", c.mae);
+        outln!("channels        {}", c.channels.join(", "));
+        outln!("rmse            {:.6e}", c.rmse);
+        outln!("relmse          {:.6e}", c.relmse);
+        outln!("mae             {:.6e}", c.mae);
         match c.psnr {
-            Some(p) => println!("psnr            {p:.3} dB"),
-            None => println!("psnr            - (equal images or black reference)"),
+            Some(p) => outln!("psnr            {p:.3} dB"),
+            None => outln!("psnr            - (equal images or black reference)"),
         }
-        println!("max difference  {:.6e}", c.max_difference);
+        outln!("max difference  {:.6e}", c.max_difference);
         for ((name, ratio), rel) in c.channels.iter().zip(&c.mean_ratio).zip(&c.channel_relmse) {
             let ratio = ratio.map_or("-".to_string(), |r| format!("{r:.6}"));
-            println!("{name:<15} mean ratio {ratio}, relmse {rel:.6e}");
+            outln!("{name:<15} mean ratio {ratio}, relmse {rel:.6e}");
         }
     }
     match args.max_relmse {

@@ -21,19 +21,20 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
     let start = std::time::Instant::now();
     let bvh = Bvh::build(&loaded.triangles, BvhQuality::Medium);
     let build = start.elapsed().as_secs_f64();
-    println!("scene          {}", args.scene.display());
-    println!(
+    outln!("scene          {}", args.scene.display());
+    outln!(
         "triangles      {} ({} degenerate skipped)",
         s.triangles,
         bvh.skipped()
     );
-    println!("instances      {}", s.instances);
-    println!("materials      {}", s.materials);
-    println!(
+    outln!("instances      {}", s.instances);
+    outln!("materials      {}", s.materials);
+    outln!(
         "area lights    {} instances, {} triangles",
-        s.emissive_instances, s.emissive_triangles
+        s.emissive_instances,
+        s.emissive_triangles
     );
-    println!(
+    outln!(
         "cameras        {}",
         if s.cameras.is_empty() {
             "none (a default camera frames the scene)".into()
@@ -41,8 +42,8 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             s.cameras.join(", ")
         }
     );
-    println!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
-    println!(
+    outln!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
+    outln!(
         "features       transmission: {}, dispersion: {}, fluorescence: {}, textures: {}",
         yes(s.uses_transmission),
         yes(s.uses_dispersion),
@@ -50,7 +51,7 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
         yes(s.uses_textures)
     );
     let (elements, lights) = s.polarizing;
-    println!(
+    outln!(
         "polarization   {}",
         if elements + lights == 0 {
             "no polarizers, retarders or polarized lights (--polarized still shows what glass and metals do)".into()
@@ -61,7 +62,7 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
         }
     );
     let (scheduled, phosphors) = s.timed;
-    println!(
+    outln!(
         "time           {}",
         if scheduled + phosphors == 0 {
             "no schedules or phosphors (--at renders the same image at any time)".into()
@@ -71,7 +72,7 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             )
         }
     );
-    println!(
+    outln!(
         "glTF           {}",
         if s.gltf_features.is_empty() {
             "core only".into()
@@ -79,7 +80,7 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             s.gltf_features.join(", ")
         }
     );
-    println!(
+    outln!(
         "light spectra  {}",
         if s.light_spectra.is_empty() {
             "none (a neutral D65 environment lights the scene)".into()
@@ -87,11 +88,12 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             s.light_spectra.join("; ")
         }
     );
-    println!(
+    outln!(
         "wavelengths    {}-{} nm needed (lights and fluorescence; --spectral-range and the samplers' range should cover it)",
-        s.wavelength_range.0, s.wavelength_range.1
+        s.wavelength_range.0,
+        s.wavelength_range.1
     );
-    println!(
+    outln!(
         "memory         {:.1} MB triangles + BVH (built in {:.0} ms)",
         bvh.memory_bytes() as f64 / 1e6,
         build * 1e3

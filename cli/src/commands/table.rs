@@ -73,20 +73,20 @@ fn fit(space: &str, res: usize, output: &std::path::Path) -> Result<(), String> 
     let bytes = table.to_bytes();
     crate::output::write_atomically(output, &bytes)?;
     let (mean, p99, max) = accuracy(&context, choice.illuminant.as_ref(), &table);
-    println!("wrote {} ({} bytes)", output.display(), bytes.len());
-    println!(
+    outln!("wrote {} ({} bytes)", output.display(), bytes.len());
+    outln!(
         "fit: {seconds:.2} s wall, {} nodes, {:.2} iterations per node",
         stats.nodes,
         stats.iterations as f64 / stats.nodes as f64
     );
-    println!(
+    outln!(
         "reachable nodes: {:.4}% ({} of {} beyond 1e-3 Lab: beyond the reach of sigmoid-polynomial reflectances), largest residual {:.2e}",
         100.0 * (1.0 - stats.unreachable as f64 / stats.nodes as f64),
         stats.unreachable,
         stats.nodes,
         stats.max_residual
     );
-    println!(
+    outln!(
         "trilinear lookup, 2000 random colours, dE2000: mean {mean:.4}, p99 {p99:.4}, max {max:.4}"
     );
     Ok(())
@@ -129,13 +129,13 @@ fn info(file: &std::path::Path) -> Result<(), String> {
     let table =
         CoefficientTable::from_bytes(&bytes).map_err(|e| format!("'{}': {e}", file.display()))?;
     let s = table.space();
-    println!("file          {} ({} bytes)", file.display(), bytes.len());
-    println!(
+    outln!("file          {} ({} bytes)", file.display(), bytes.len());
+    outln!(
         "format        prism coefficient table, version {}",
         prism_upsample::FORMAT_VERSION
     );
-    println!("colour space  {}", s.name);
-    println!(
+    outln!("colour space  {}", s.name);
+    outln!(
         "primaries     r ({}, {})  g ({}, {})  b ({}, {})",
         s.primaries[0][0],
         s.primaries[0][1],
@@ -144,9 +144,9 @@ fn info(file: &std::path::Path) -> Result<(), String> {
         s.primaries[2][0],
         s.primaries[2][1]
     );
-    println!("white         ({:.6}, {:.6})", s.white[0], s.white[1]);
-    println!("observer      CIE 1931 2 degree");
-    println!(
+    outln!("white         ({:.6}, {:.6})", s.white[0], s.white[1]);
+    outln!("observer      CIE 1931 2 degree");
+    outln!(
         "resolution    {0} ({0}^3 nodes per largest channel)",
         table.resolution()
     );

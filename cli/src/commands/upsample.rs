@@ -109,7 +109,7 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
             f64::NEG_INFINITY => json!("-inf"),
             v => json!(v),
         };
-        println!(
+        outln!(
             "{}",
             json!({
                 "space": choice.name,
@@ -122,23 +122,27 @@ pub fn run(args: &UpsampleArgs) -> Result<(), String> {
             })
         );
     } else {
-        println!("space         {}", choice.name);
+        outln!("space         {}", choice.name);
         if spectrum.is_none() {
-            println!("spectrum      black (exactly zero)");
+            outln!("spectrum      black (exactly zero)");
         } else {
-            println!(
+            outln!(
                 "coefficients  {:e} {:e} {:e}  (f(l) = S(c0 l^2 + c1 l + c2), l in nm)",
-                c[0], c[1], c[2]
+                c[0],
+                c[1],
+                c[2]
             );
         }
         if clamped {
-            println!("warning       the input was outside [0, 1] and was clamped");
+            outln!("warning       the input was outside [0, 1] and was clamped");
         }
-        println!(
+        outln!(
             "round trip    {:.6} {:.6} {:.6}",
-            round_trip[0], round_trip[1], round_trip[2]
+            round_trip[0],
+            round_trip[1],
+            round_trip[2]
         );
-        println!("dE2000        {de:.2e}");
+        outln!("dE2000        {de:.2e}");
     }
     Ok(())
 }

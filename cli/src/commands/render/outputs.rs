@@ -101,7 +101,7 @@ pub(super) fn print_stats(
         "at": settings.at,
         "shutter": settings.shutter,
     });
-    println!("{json}");
+    outln!("{json}");
 }
 
 /// How the render ended, said where it did not complete; an interrupted render exits 130
