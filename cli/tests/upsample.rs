@@ -278,3 +278,26 @@ fn default_tables_are_cached() {
     assert_eq!(first.stdout, third.stdout);
     let _ = std::fs::remove_dir_all(&cache);
 }
+
+/// `prism upsample --stdin ... | head -1`: a reader that closes the pipe ends the stream
+/// quietly, without an error.
+#[test]
+fn stdin_stream_ends_quietly_at_a_closed_pipe() {
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_prism"))
+        .args(["upsample", "--stdin"])
+        .stdin(Stdio::piped())
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("prism runs");
+    let mut input = child.stdin.take().expect("stdin");
+    // The child may stop reading once its output is refused: a failed write here is fine.
+    let _ = input.write_all(b"0.8 0.2 0.1\n0.5 0.5 0.5\n");
+    drop(input);
+    let out = child.wait_with_output().expect("prism ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+}

@@ -214,8 +214,20 @@ fn stream(context: &FitContext, method: &Method) -> Result<(), String> {
         let (spectrum, _) =
             upsample(context, method, rgb).map_err(|e| format!("stdin line {}: {e}", index + 1))?;
         let c = spectrum.map_or([0.0, 0.0, f64::NEG_INFINITY], |s| s.coefficients);
-        writeln!(out, "{:e} {:e} {:e}", c[0], c[1], c[2])
-            .map_err(|e| format!("writing stdout: {e}"))?;
+        let written = writeln!(out, "{:e} {:e} {:e}", c[0], c[1], c[2]);
+        if !wants_more(written)? {
+            return Ok(());
+        }
     }
-    out.flush().map_err(|e| format!("writing stdout: {e}"))
+    wants_more(out.flush()).map(|_| ())
+}
+
+/// Whether the reader of stdout still reads after a write: not once it has closed the pipe
+/// (`... | head`), which ends the stream quietly; any other failure is an error.
+fn wants_more(written: std::io::Result<()>) -> Result<bool, String> {
+    match written {
+        Ok(()) => Ok(true),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(false),
+        Err(e) => Err(format!("writing stdout: {e}")),
+    }
 }
