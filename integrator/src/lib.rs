@@ -49,6 +49,7 @@
 #[cfg(feature = "exr")]
 mod accumulation;
 mod bands;
+mod batch;
 mod camera_response;
 mod compare;
 mod error;
@@ -90,5 +91,5 @@ pub use image::{DisplaySettings, encode_png, encode_polarization_png};
 pub use image::{ExrMetadata, encode_exr};
 pub use render::{RenderStats, Renderer, render, render_into};
 pub use settings::{
-    LambdaSampler, MAX_REUSE, MAX_SPLITS, MAX_THREADS, RenderSettings, Reuse, Splits,
+    LambdaSampler, MAX_REUSE, MAX_SPLITS, MAX_THREADS, RenderSettings, Reuse, Splits, Tracing,
 };

@@ -20,7 +20,7 @@ use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
 use crate::reuse::Record;
 use crate::sample_value::{Outputs, SampleValue};
-use crate::settings::{Reuse, Splits};
+use crate::settings::{Reuse, Splits, Tracing};
 use crate::splits::{mode_pilot, pilot};
 use crate::throughput::{CameraFrame, Polarized, Throughput};
 use crate::{Film, RenderError, RenderSettings};
@@ -124,6 +124,10 @@ impl<'a> Renderer<'a> {
             splits: 1,
             reuse: 1,
         };
+        if let Tracing::Lanes(_) = settings.tracing {
+            (renderer.splits, renderer.reuse) = lanes_modes(scene, settings)?;
+            return Ok(renderer);
+        }
         let shareable = crate::reuse::supported(
             scene,
             settings.is_polarized(),
@@ -245,7 +249,10 @@ impl<'a> Renderer<'a> {
         let tracer = self.tracer(self.splits);
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
-        let trace = specialized!(self, trace_row);
+        let trace = match settings.tracing {
+            Tracing::Lanes(width) => batch_row(settings.wavelengths, width),
+            Tracing::Paths => specialized!(self, trace_row),
+        };
         let rows = self.rows(settings.seed, samples.clone());
         self.pool.install(|| {
             let mut outs = row_outputs(&mut pass, settings.width as usize, settings.height);
@@ -354,6 +361,36 @@ pub(crate) struct Rows {
     pub outputs: Outputs,
 }
 
+/// The splits and the tile of path reuse of a render by the batch tracer, which traces
+/// unsplit paths without reuse (1, 1): an error where it cannot render the scene with the
+/// settings.
+fn lanes_modes(scene: &Scene, settings: &RenderSettings) -> Result<(u32, u32), RenderError> {
+    let refuse = |why: &str| {
+        Err(RenderError::Setting(format!(
+            "the batch tracer cannot render this: {why}"
+        )))
+    };
+    if let Some(why) = crate::batch::unsupported(scene, settings) {
+        return refuse(&why);
+    }
+    match (settings.splits, settings.reuse) {
+        (Splits::Fixed(k), _) if k > 1 => refuse("it traces unsplit paths (splits 1)"),
+        (_, Reuse::Fixed(t)) if t > 1 => refuse("it does not reuse paths (reuse 1)"),
+        _ => Ok((1, 1)),
+    }
+}
+
+/// The batch tracer's row for packages of `wavelengths`, `width` lanes wide.
+fn batch_row(wavelengths: usize, width: Option<usize>) -> crate::batch::RowTracer {
+    match wavelengths {
+        1 => crate::batch::row_tracer::<1>(width),
+        2 => crate::batch::row_tracer::<2>(width),
+        4 => crate::batch::row_tracer::<4>(width),
+        8 => crate::batch::row_tracer::<8>(width),
+        _ => crate::batch::row_tracer::<16>(width),
+    }
+}
+
 /// Renders `settings.samples` of every pixel into `film`: a [`Renderer`] for one pass.
 pub fn render_into(
     scene: &Scene,
@@ -414,7 +451,7 @@ fn rows_of<T>(sums: &mut [T], row: usize, height: u32) -> Vec<&mut [T]> {
 
 /// One row's sums: XYZ, spectral bands (empty when not spectral), energy (empty
 /// without energy output), Stokes components (empty unless polarized) and coverage.
-struct RowOutput<'a> {
+pub(crate) struct RowOutput<'a> {
     xyz: &'a mut [[f64; 3]],
     spectral: &'a mut [f64],
     energy: &'a mut [[f64; 2]],
@@ -425,7 +462,13 @@ struct RowOutput<'a> {
 impl RowOutput<'_> {
     /// Adds pixel `x`'s sample (`result`, `value`) to the sums; returns whether it was
     /// rejected (invalid wavelengths or a non-finite value).
-    fn add(&mut self, x: usize, result: &PathResult, value: &SampleValue, rows: &Rows) -> bool {
+    pub(crate) fn add(
+        &mut self,
+        x: usize,
+        result: &PathResult,
+        value: &SampleValue,
+        rows: &Rows,
+    ) -> bool {
         self.coverage[x] += f64::from(u8::from(result.covered));
         if !(result.valid && value.finite()) {
             return true;

@@ -149,6 +149,9 @@ pub struct RenderSettings {
     /// (seconds), and each path sees the scene at a time drawn uniformly between them, so
     /// the image is the mean over the exposure.
     pub shutter: Option<(f64, f64)>,
+    /// Which tracer runs the camera paths: one path at a time (the default), or the
+    /// batch tracer's lanes of paths (issue 30; the same images where it serves a scene).
+    pub tracing: Tracing,
 }
 
 impl Default for RenderSettings {
@@ -178,6 +181,7 @@ impl Default for RenderSettings {
             camera_polarizer: None,
             at: None,
             shutter: None,
+            tracing: Tracing::Paths,
         }
     }
 }
@@ -207,6 +211,7 @@ setters!(RenderSettings {
     camera_polarizer: Option<f32>,
     at: Option<f64>,
     shutter: Option<(f64, f64)>,
+    tracing: Tracing,
 });
 
 /// The most worker threads a render may ask for.
@@ -261,6 +266,56 @@ impl std::fmt::Display for Splits {
         match self {
             Splits::Auto => f.write_str("auto"),
             Splits::Fixed(k) => write!(f, "{k}"),
+        }
+    }
+}
+
+/// Which tracer runs a render's camera paths.
+///
+/// ```
+/// use prism_integrator::Tracing;
+///
+/// assert_eq!("paths".parse::<Tracing>(), Ok(Tracing::Paths));
+/// assert_eq!("lanes".parse::<Tracing>(), Ok(Tracing::Lanes(None)));
+/// assert_eq!("lanes:8".parse::<Tracing>(), Ok(Tracing::Lanes(Some(8))));
+/// assert!("lanes:5".parse::<Tracing>().is_err() && "wide".parse::<Tracing>().is_err());
+/// assert_eq!(Tracing::Lanes(Some(16)).to_string(), "lanes:16");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Tracing {
+    /// The path tracer: each camera path traced alone, every feature served.
+    #[default]
+    Paths,
+    /// The batch tracer: the paths of neighbouring pixels in lanes, bounce by bounce, so
+    /// many lanes wide (4, 8 or 16; None: the CPU's vector width, 16 with AVX-512, 8 with
+    /// AVX2, else 4). Images are the path tracer's, byte for byte, at any width. It serves
+    /// Lambertian scenes, unpolarized, in the steady state, unsplit, without path reuse.
+    Lanes(Option<usize>),
+}
+
+impl std::str::FromStr for Tracing {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "paths" => Ok(Tracing::Paths),
+            "lanes" => Ok(Tracing::Lanes(None)),
+            "lanes:4" => Ok(Tracing::Lanes(Some(4))),
+            "lanes:8" => Ok(Tracing::Lanes(Some(8))),
+            "lanes:16" => Ok(Tracing::Lanes(Some(16))),
+            _ => Err(format!(
+                "tracer '{s}': expected paths, lanes, or lanes:4, lanes:8 or lanes:16"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for Tracing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Tracing::Paths => f.write_str("paths"),
+            Tracing::Lanes(None) => f.write_str("lanes"),
+            Tracing::Lanes(Some(w)) => write!(f, "lanes:{w}"),
         }
     }
 }
@@ -363,6 +418,11 @@ impl RenderSettings {
                 ));
             }
             _ => {}
+        }
+        if let Tracing::Lanes(Some(w)) = self.tracing
+            && ![4, 8, 16].contains(&w)
+        {
+            return bad(format!("the batch tracer runs 4, 8 or 16 lanes, not {w}"));
         }
         if self.width == 0 || self.height == 0 {
             return bad(format!(

@@ -6,6 +6,7 @@
 use glam::{Vec2, Vec3};
 use prism_sampling::lanes::Lanes;
 use prism_sampling::lanes::real::{Reals, V3};
+use prism_sampling::mis::{power_heuristic, power_heuristic_of};
 use prism_sampling::warp::{
     cosine_direction, cosine_hemisphere, solid_angle, spherical_triangle,
     spherical_triangle_sample, spherical_triangle_solid_angle,
@@ -36,7 +37,59 @@ fn unit() -> impl Strategy<Value = f32> {
     ]
 }
 
+/// The power heuristic as it was written before it went over `Real` (Veach's thesis,
+/// section 9.2, with branches): the oracle of the branch-free form.
+fn power_heuristic_branching(f: f32, g: f32) -> f32 {
+    if f.is_infinite() {
+        return 1.0;
+    }
+    let scale = f.max(g);
+    if scale.is_nan() || scale <= 0.0 {
+        return 0.0;
+    }
+    let (f, g) = (f / scale, g / scale);
+    let (f, g) = (f * f, g * g);
+    if f.is_infinite() {
+        return 1.0;
+    }
+    if g.is_infinite() {
+        return 0.0;
+    }
+    let sum = f + g;
+    if sum > 0.0 && f.is_finite() {
+        (f / sum).clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+fn density() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        0.0f32..10.0,
+        Just(0.0f32),
+        Just(-0.0f32),
+        Just(f32::INFINITY),
+        Just(f32::NEG_INFINITY),
+        Just(f32::NAN),
+        Just(f32::MAX),
+        Just(f32::MIN_POSITIVE / 4.0),
+        Just(-1.0f32),
+        1e18f32..1e38,
+    ]
+}
+
 proptest! {
+    #[test]
+    fn power_heuristic_lanes_are_the_scalar_weight(pairs in prop::array::uniform8((density(), density()))) {
+        let w = power_heuristic_of(lanes(pairs.map(|p| p.0)), lanes(pairs.map(|p| p.1)));
+        for (i, &(f, g)) in pairs.iter().enumerate() {
+            let scalar = power_heuristic(1, f, 1, g);
+            let oracle = power_heuristic_branching(f, g);
+            prop_assert_eq!(scalar.to_bits(), oracle.to_bits(), "{} {}", f, g);
+            prop_assert_eq!(w.lane(i).to_bits(), scalar.to_bits(), "{} {}", f, g);
+        }
+    }
+
     #[test]
     fn cosine_lanes_are_the_scalar_warp(u in prop::array::uniform8((unit(), unit()))) {
         let dirs = cosine_direction([lanes(u.map(|p| p.0)), lanes(u.map(|p| p.1))]);

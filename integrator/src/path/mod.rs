@@ -21,6 +21,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 pub(crate) use clock::Clock;
 pub(crate) use footprint::Footprint;
 use walk::Walk;
+pub(crate) use walk::roulette;
 
 use crate::reuse::{First, Record};
 use crate::throughput::{Carried, Throughput, Vertex};
@@ -56,10 +57,10 @@ pub(crate) struct Tracer<'a> {
 /// The sample-stream dimensions: the wavelength and the film position first, then a fixed
 /// block per bounce so that bounce k always draws from the same dimensions.
 pub(crate) const FIRST_BOUNCE_DIMENSION: u64 = 3;
-const DIMENSIONS_PER_BOUNCE: u64 = 8;
+pub(crate) const DIMENSIONS_PER_BOUNCE: u64 = 8;
 
 /// The first bounce at which Russian roulette may end a path.
-const ROULETTE_DEPTH: u32 = 3;
+pub(crate) const ROULETTE_DEPTH: u32 = 3;
 
 /// The throughput below which Russian roulette puts a path at risk: it survives with
 /// probability min(0.95, throughput / ROULETTE_THROUGHPUT), so survivors carry at least

@@ -2,6 +2,7 @@
 //! bounce moves it on, and Russian roulette.
 
 use glam::Vec3;
+use prism_sampling::lanes::real::Real;
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::bsdf::BsdfSample;
 use prism_scene::geometry::Ray;
@@ -150,12 +151,22 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
     #[inline(always)]
     pub fn survives_roulette(&mut self, u: f32) -> bool {
         if self.depth >= ROULETTE_DEPTH {
-            let q = (self.beta.max_value() * self.eta_scale / ROULETTE_THROUGHPUT).min(0.95);
-            if q.is_nan() || q <= 0.0 || u >= q {
+            let (survives, q) = roulette(self.beta.max_value() * self.eta_scale, u);
+            if !survives {
                 return false;
             }
             self.beta.scale_uniform(1.0 / q);
         }
         true
     }
+}
+
+/// Russian roulette for one path or lanes of them: whether a path of `throughput` survives
+/// the draw `u`, and its survival probability q = min(0.95, throughput /
+/// ROULETTE_THROUGHPUT), by which a survivor's throughput is divided (a NaN or
+/// non-positive q ends it).
+#[inline(always)]
+pub(crate) fn roulette<R: Real>(throughput: R, u: R) -> (R::Mask, R) {
+    let q = (throughput / R::splat(ROULETTE_THROUGHPUT)).min(R::splat(0.95));
+    (q.gt(R::splat(0.0)) & !q.le(u), q)
 }

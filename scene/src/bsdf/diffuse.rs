@@ -1,10 +1,11 @@
-use std::f32::consts::FRAC_1_PI;
+use std::f32::consts::{FRAC_1_PI, PI};
 
 use glam::{Vec2, Vec3};
-use prism_sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
+use prism_sampling::lanes::real::{Real, V3};
+use prism_sampling::warp::cosine_direction;
 use prism_spectrum::SampledSpectrum;
 
-use super::{BsdfSample, cos_theta, same_hemisphere};
+use super::{BsdfSample, same_hemisphere};
 
 /// Lambertian reflection: f = R / pi in the hemisphere of `wo`, sampled with density
 /// cos(theta) / pi, so a sample's weight f cos / pdf is exactly R.
@@ -33,23 +34,40 @@ impl<const N: usize> Diffuse<N> {
 
     /// A cosine-distributed direction on `wo`'s side.
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample<N>> {
-        let mut wi = cosine_hemisphere(u);
-        if wo.z < 0.0 {
-            wi.z = -wi.z;
-        }
-        let pdf = cosine_hemisphere_pdf(Vec3::new(wi.x, wi.y, wi.z.abs()));
-        if pdf == 0.0 || cos_theta(wo) == 0.0 {
+        let (wi, pdf, exists) = lambertian_sample(wo.z, [u.x, u.y]);
+        if !exists {
             return None;
         }
+        let wi = Vec3::from(wi);
         Some(BsdfSample::smooth(wi, self.f(wo, wi), [pdf; N]))
     }
 
     /// The density of [`Diffuse::sample`] returning `wi` given `wo`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if same_hemisphere(wo, wi) {
-            cosine_hemisphere_pdf(Vec3::new(wi.x, wi.y, wi.z.abs()))
-        } else {
-            0.0
-        }
+        lambertian_pdf(wo.z, wi.z)
     }
+}
+
+/// [`Diffuse::sample`]'s direction for one path or for lanes of them (`wo_z` the cosine of
+/// the outgoing direction in the shading frame): a cosine-distributed direction on
+/// `wo_z`'s side, its density, and where it exists (not at a grazing `wo` or a direction
+/// of density zero). One implementation for the path tracer and the batch tracer.
+#[inline(always)]
+pub fn lambertian_sample<R: Real>(wo_z: R, u: [R; 2]) -> (V3<R>, R, R::Mask) {
+    let zero = R::splat(0.0);
+    let mut wi = cosine_direction(u);
+    wi.z = R::select(wo_z.lt(zero), -wi.z, wi.z);
+    let pdf = wi.z.abs().max(zero) / R::splat(PI);
+    (wi, pdf, pdf.ne(zero) & wo_z.ne(zero))
+}
+
+/// [`Diffuse::pdf`] of the cosines `wo_z` and `wi_z`, for one path or lanes of them.
+#[inline(always)]
+pub fn lambertian_pdf<R: Real>(wo_z: R, wi_z: R) -> R {
+    let zero = R::splat(0.0);
+    R::select(
+        (wo_z * wi_z).gt(zero),
+        wi_z.abs().max(zero) / R::splat(PI),
+        zero,
+    )
 }

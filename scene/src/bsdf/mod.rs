@@ -27,7 +27,7 @@ pub use clearcoat::{CLEARCOAT_IOR, Clearcoat, clearcoat_albedo};
 pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
-pub use diffuse::Diffuse;
+pub use diffuse::{Diffuse, lambertian_pdf, lambertian_sample};
 pub use fluorescent::{
     FluorescentDiffuse, FluorescentSample, fluorescence_matrix, reradiation_matrix,
 };

@@ -7,7 +7,7 @@ mod ray;
 mod triangle;
 
 pub use bvh::{Bvh, BvhQuality, NodeLanes, SurfaceHit};
-pub use frame::Frame;
+pub use frame::{Frame, Frames};
 pub use offset::{offset_ray_origin, offset_ray_origin_to_side, triangle_point_error};
 pub use ray::Ray;
 pub(crate) use triangle::unit_or_zero;

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use prism_integrator::{
-    CameraResponse, Filter, LambdaSampler, RenderSettings, Reuse, SpectralBands, Splits,
+    CameraResponse, Filter, LambdaSampler, RenderSettings, Reuse, SpectralBands, Splits, Tracing,
 };
 use prism_spectrum::Readable;
 use prism_spectrum::color::RgbSpaceId;
@@ -64,6 +64,7 @@ pub(super) fn render_settings(
         .max_depth(args.max_depth)
         .splits(args.splits.parse::<Splits>()?)
         .reuse(args.reuse.parse::<Reuse>()?)
+        .tracing(args.tracer.parse::<Tracing>()?)
         .wavelengths(args.wavelengths)
         .lambda_sampler(image.lambda_sampler)
         .threads(args.threads)
