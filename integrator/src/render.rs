@@ -12,6 +12,7 @@ use prism_scene::world::{EmissionCache, Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
+use crate::batch::row_tracer;
 use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
@@ -125,7 +126,7 @@ impl<'a> Renderer<'a> {
             reuse: 1,
         };
         if let Tracing::Lanes(_) = settings.tracing {
-            (renderer.splits, renderer.reuse) = lanes_modes(scene, settings)?;
+            (renderer.splits, renderer.reuse) = lanes_modes(settings)?;
             return Ok(renderer);
         }
         let shareable = crate::reuse::supported(
@@ -250,7 +251,13 @@ impl<'a> Renderer<'a> {
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let mut pass = Film::for_settings(settings);
         let trace = match settings.tracing {
-            Tracing::Lanes(width) => batch_row(settings.wavelengths, width),
+            Tracing::Lanes(width) => match settings.wavelengths {
+                // `lanes_modes` refuses 1 and 2 (their instances took LLVM's optimizer
+                // tens of minutes, under fat LTO, in rustc 1.95).
+                4 => row_tracer::<4>(width),
+                8 => row_tracer::<8>(width),
+                _ => row_tracer::<16>(width),
+            },
             Tracing::Paths => specialized!(self, trace_row),
         };
         let rows = self.rows(settings.seed, samples.clone());
@@ -362,32 +369,23 @@ pub(crate) struct Rows {
 }
 
 /// The splits and the tile of path reuse of a render by the batch tracer, which traces
-/// unsplit paths without reuse (1, 1): an error where it cannot render the scene with the
-/// settings.
-fn lanes_modes(scene: &Scene, settings: &RenderSettings) -> Result<(u32, u32), RenderError> {
+/// unsplit paths without reuse (1, 1): an error where the settings ask for more.
+fn lanes_modes(settings: &RenderSettings) -> Result<(u32, u32), RenderError> {
     let refuse = |why: &str| {
         Err(RenderError::Setting(format!(
             "the batch tracer cannot render this: {why}"
         )))
     };
-    if let Some(why) = crate::batch::unsupported(scene, settings) {
-        return refuse(&why);
+    if settings.is_polarized() {
+        return refuse("it does not carry polarization");
+    }
+    if settings.wavelengths < 4 {
+        return refuse("it carries 4, 8 or 16 wavelengths per path");
     }
     match (settings.splits, settings.reuse) {
         (Splits::Fixed(k), _) if k > 1 => refuse("it traces unsplit paths (splits 1)"),
         (_, Reuse::Fixed(t)) if t > 1 => refuse("it does not reuse paths (reuse 1)"),
         _ => Ok((1, 1)),
-    }
-}
-
-/// The batch tracer's row for packages of `wavelengths`, `width` lanes wide.
-fn batch_row(wavelengths: usize, width: Option<usize>) -> crate::batch::RowTracer {
-    match wavelengths {
-        1 => crate::batch::row_tracer::<1>(width),
-        2 => crate::batch::row_tracer::<2>(width),
-        4 => crate::batch::row_tracer::<4>(width),
-        8 => crate::batch::row_tracer::<8>(width),
-        _ => crate::batch::row_tracer::<16>(width),
     }
 }
 

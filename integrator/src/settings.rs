@@ -289,7 +289,8 @@ pub enum Tracing {
     /// The batch tracer: the paths of neighbouring pixels in lanes, bounce by bounce, so
     /// many lanes wide (4, 8 or 16; None: the CPU's vector width, 16 with AVX-512, 8 with
     /// AVX2, else 4). Images are the path tracer's, byte for byte, at any width. It serves
-    /// Lambertian scenes, unpolarized, in the steady state, unsplit, without path reuse.
+    /// every scene, unpolarized, with 4, 8 or 16 wavelengths per path, unsplit, without
+    /// path reuse (slower than the path tracer on the measured scenes: docs/trade-offs.md).
     Lanes(Option<usize>),
 }
 

@@ -1,13 +1,14 @@
 //! The batch tracer (`Tracing::Lanes`, issue 30): neighbouring pixels' paths in lanes
 //! render the path tracer's image to the bit, at every lane width and with every setting
-//! it serves, stay unbiased where the answer is known in closed form, and refuse what they
-//! do not serve with an error rather than a different image.
+//! and material it serves (Lambertian vertices lane-wide; glass, metals, the glTF
+//! materials, fluorescence, phosphors lane by lane), stay unbiased where the answer is
+//! known in closed form, and refuse what they do not serve with an error rather than a
+//! different image.
 
 mod common;
 
-use common::{assert_image_mean, cornell, furnace, furnace_scene, icosphere};
+use common::{assert_image_mean, cornell, furnace_scene, repository_scene};
 use prism_integrator::{RenderSettings, Renderer, Reuse, Splits, Tracing, render};
-use prism_scene::world::{Material, SceneSpectrum};
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::Constant;
 
@@ -32,15 +33,41 @@ fn lanes_render_the_path_tracers_image() {
         ("depth 2", settings(37, 23, 2).max_depth(Some(2))),
         ("depth 0", settings(37, 23, 1).max_depth(Some(0))),
         ("4 wavelengths", settings(37, 23, 2).wavelengths(4)),
-        ("1 wavelength", settings(37, 23, 2).wavelengths(1)),
+        ("16 wavelengths", settings(37, 23, 2).wavelengths(16)),
         ("energy", settings(37, 23, 2).energy(true)),
         ("samples 5..7", settings(37, 23, 0).samples(5..7).seed(11)),
     ];
+    assert_lanes_match(&scene, variants);
+}
+
+/// The effects stage (dispersive glass, metals, a fluorescent and a phosphorescent
+/// material, glTF materials, light paths for its caustics): the vertices the lanes handle
+/// alone, a package of wavelengths split at dispersion, re-radiated wavelengths, an
+/// instant and an exposure on the scene's clock.
+#[test]
+fn lanes_render_the_path_tracers_effects_stage() {
+    let scene = repository_scene("effects.gltf", |_| {});
+    assert_lanes_match(
+        &scene,
+        vec![
+            ("effects", settings(32, 24, 6)),
+            ("effects at 0.5 s", settings(21, 15, 1).at(Some(0.5))),
+            (
+                "effects, shutter",
+                settings(21, 15, 1).shutter(Some((0.0, 2.0))),
+            ),
+        ],
+    );
+}
+
+/// Renders each of `variants` with the path tracer and with the lanes at every width,
+/// asserting equal films to the bit and equal counts.
+fn assert_lanes_match(scene: &prism_scene::world::Scene, variants: Vec<(&str, RenderSettings)>) {
     for (what, paths) in variants {
-        let (reference, reference_stats) = render(&scene, &paths).unwrap();
+        let (reference, reference_stats) = render(scene, &paths).unwrap();
         for width in [None, Some(4), Some(8), Some(16)] {
             let lanes = paths.clone().tracing(Tracing::Lanes(width));
-            let (film, stats) = render(&scene, &lanes).unwrap();
+            let (film, stats) = render(scene, &lanes).unwrap();
             let bits = |f: &prism_integrator::Film| -> Vec<[u64; 3]> {
                 f.sums().iter().map(|s| s.map(f64::to_bits)).collect()
             };
@@ -79,25 +106,13 @@ fn lanes_refuse_what_they_do_not_serve() {
         Err(e) => e.to_string(),
     };
     let lanes = settings(8, 8, 1).tracing(Tracing::Lanes(None));
-    let triangles = icosphere(1);
-    let glass = furnace(
-        triangles.clone(),
-        vec![0; triangles.len()],
-        vec![Material::Dielectric {
-            ior: SceneSpectrum::Constant(1.5),
-            roughness: 0.0,
-            absorption: None,
-        }],
-        0.6,
-    );
-    assert!(refusal(&glass, &lanes).contains("glass"));
     let scene = cornell();
     let split = lanes.clone().splits(Splits::Fixed(2));
     assert!(refusal(&scene, &split).contains("unsplit"));
     let reuse = lanes.clone().reuse(Reuse::Fixed(2));
     assert!(refusal(&scene, &reuse).contains("reuse"));
     assert!(refusal(&scene, &lanes.clone().polarized(true)).contains("polarization"));
-    assert!(refusal(&scene, &lanes.clone().at(Some(0.5))).contains("steady state"));
+    assert!(refusal(&scene, &lanes.clone().wavelengths(2)).contains("4, 8 or 16"));
     let odd = lanes.clone().tracing(Tracing::Lanes(Some(5)));
     assert!(refusal(&scene, &odd).contains("4, 8 or 16"));
     // Left to choose, splitting and reuse are off: the render is the unsplit one.

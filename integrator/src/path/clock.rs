@@ -43,7 +43,7 @@ impl Clock {
 
 impl Tracer<'_> {
     /// Darkens the lanes of `le`, light `light`'s, whose time finds it off.
-    pub(super) fn gate<const N: usize>(
+    pub(crate) fn gate<const N: usize>(
         &self,
         light: Option<u32>,
         times: &[f64; N],

@@ -17,7 +17,7 @@ impl Tracer<'_> {
     /// ([`Tracer::delay`]), and the walk carries on with those wavelengths and weights. The
     /// surface is Lambertian either way: its BSDF, or None where no wavelength is left.
     #[inline]
-    pub(super) fn fluoresce<const N: usize, T: Throughput<N>>(
+    pub(crate) fn fluoresce<const N: usize, T: Throughput<N>>(
         &self,
         hit: &Hit,
         reflectance: &SceneSpectrum,

@@ -13,7 +13,7 @@ impl Tracer<'_> {
     /// Adds the light of the environment a ray that left the scene arrives from, weighed by
     /// MIS against light sampling after a bounce.
     #[inline(always)]
-    pub(super) fn add_escaped<const N: usize, T: Throughput<N>>(
+    pub(crate) fn add_escaped<const N: usize, T: Throughput<N>>(
         &self,
         walk: &mut Walk<N, T>,
         emission: &mut EmissionCache<N>,
@@ -36,7 +36,7 @@ impl Tracer<'_> {
     /// Adds the light `hit` emits towards `wo_world`, weighed by MIS against light
     /// sampling after a bounce.
     #[inline(always)]
-    pub(super) fn add_hit_emission<const N: usize, T: Throughput<N>>(
+    pub(crate) fn add_hit_emission<const N: usize, T: Throughput<N>>(
         &self,
         hit: &Hit,
         wo_world: Vec3,
@@ -65,7 +65,7 @@ impl Tracer<'_> {
     /// arrives added to the walk's radiance with the power heuristic against BSDF sampling. Returns
     /// the rays traced.
     #[inline(always)]
-    pub(super) fn next_event<const N: usize, T: Throughput<N>>(
+    pub(crate) fn next_event<const N: usize, T: Throughput<N>>(
         &self,
         hit: &Hit,
         vertex: &Vertex<'_, '_, N>,

@@ -20,7 +20,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 pub(crate) use clock::Clock;
 pub(crate) use footprint::Footprint;
-use walk::Walk;
+pub(crate) use walk::Walk;
 pub(crate) use walk::roulette;
 
 use crate::reuse::{First, Record};

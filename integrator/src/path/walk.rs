@@ -14,7 +14,7 @@ use crate::reuse::{Record, Second};
 use crate::throughput::{CameraFrame, Throughput, Vertex};
 
 /// A path between bounces: `T` is what it carries (a spectrum, or Mueller matrices).
-pub(super) struct Walk<const N: usize, T: Throughput<N>> {
+pub(crate) struct Walk<const N: usize, T: Throughput<N>> {
     /// The package of wavelengths, whose secondaries a dispersive bounce ends.
     pub package: WavelengthPackage<N>,
     /// The film's wavelengths, whose densities weigh the estimate.
@@ -129,17 +129,32 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
                 self.transport = self.lambdas;
             }
         }
+        let wi_world = vertex.frame.to_world(sample.wi);
+        self.advance(hit, sample.delta, pdf, wi_world, caustic_start);
+        true
+    }
+
+    /// The rest of a bounce from `hit` once the throughput has scattered: whether the path
+    /// is a caustic light paths carry (`caustic_start` as in [`Walk::follow`]), the bounce's
+    /// density `pdf` for MIS unless it was a `delta`, the ray towards `wi_world`, the depth.
+    #[inline(always)]
+    pub fn advance(
+        &mut self,
+        hit: &Hit,
+        delta: bool,
+        pdf: f32,
+        wi_world: Vec3,
+        caustic_start: bool,
+    ) {
         if self.depth == 0 {
-            self.caustic_prefix = caustic_start && !sample.delta;
+            self.caustic_prefix = caustic_start && !delta;
         } else {
-            self.caustic_prefix &= sample.delta;
+            self.caustic_prefix &= delta;
             self.light_caustic = self.caustic_prefix;
         }
-        self.previous = (!sample.delta).then_some((pdf, hit.p));
-        let wi_world = vertex.frame.to_world(sample.wi);
+        self.previous = (!delta).then_some((pdf, hit.p));
         self.ray = hit.spawn(wi_world);
         self.depth += 1;
-        true
     }
 
     /// Russian roulette on the throughput, from the third bounce, with `u`: survivors are
