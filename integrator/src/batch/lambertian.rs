@@ -7,7 +7,6 @@
 use std::f32::consts::FRAC_1_PI;
 
 use glam::Vec3;
-use prism_sampling::lanes::Lanes;
 use prism_sampling::lanes::real::{LaneMask, Real, Reals, V3};
 use prism_sampling::mis::power_heuristic_of;
 use prism_scene::bsdf::{lambertian_pdf, lambertian_sample};
@@ -150,7 +149,7 @@ fn scatter<const N: usize, const W: usize>(
     }
     let towards = V3::from_fn(|i| lights[i].map_or(Vec3::Z, |l| l.wi));
     let light_pdf = Exact::from_fn(|i| lights[i].map_or(1.0, |l| l.pdf));
-    let delta = mask(|i| lights[i].is_some_and(|l| l.delta));
+    let delta = LaneMask::from_fn(|i| lights[i].is_some_and(|l| l.delta));
     let mut arriving: Spectra<N, W> = [zero; N];
     for (i, light) in lights.iter().enumerate() {
         if let Some(light) = light {
@@ -177,7 +176,7 @@ fn scatter<const N: usize, const W: usize>(
             .scene
             .occluded(&at.hit.spawn_to(light.wi, light.distance));
     }
-    let lit = mask(|i| lit[i]);
+    let lit = LaneMask::from_fn(|i| lit[i]);
     for j in 0..N {
         let added = beta[j] * f_light[j] * arriving[j] * weight;
         radiance[j] = Exact::select(lit, radiance[j] + added, radiance[j]);
@@ -215,7 +214,7 @@ fn scatter<const N: usize, const W: usize>(
         .fold(Exact::splat(f32::NEG_INFINITY), |m, b| m.max(*b));
     let u = Exact::from_fn(|i| at[i].as_ref().map_or(0.0, |a| a.u_roulette));
     let (survives, q) = roulette(largest * Exact::from_fn(|i| eta_scale[i]), u);
-    let at_risk = mask(|i| at_risk[i]);
+    let at_risk = LaneMask::from_fn(|i| at_risk[i]);
     let survival = Exact::splat(1.0) / q;
     for b in &mut beta {
         *b = Exact::select(at_risk & survives, *b * survival, *b);
@@ -248,9 +247,4 @@ fn set_lane<const N: usize, const W: usize>(
 /// Lane `i` of `lanes`.
 fn lane_of<const N: usize, const W: usize>(lanes: &Spectra<N, W>, i: usize) -> SampledSpectrum<N> {
     SampledSpectrum::from_fn(|j| lanes[j].lane(i))
-}
-
-/// The mask of lanes where `f` holds.
-fn mask<const W: usize>(f: impl Fn(usize) -> bool) -> LaneMask<W> {
-    LaneMask(Lanes::from_fn(|i| if f(i) { u32::MAX } else { 0 }))
 }

@@ -135,8 +135,9 @@ impl Real for f32 {
 pub struct LaneMask<const W: usize>(pub Lanes<u32, W>);
 
 impl<const W: usize> LaneMask<W> {
+    /// Lane `i` holds where `f(i)` is true.
     #[inline(always)]
-    fn from_fn(mut f: impl FnMut(usize) -> bool) -> Self {
+    pub fn from_fn(mut f: impl FnMut(usize) -> bool) -> Self {
         Self(Lanes::from_fn(|i| if f(i) { u32::MAX } else { 0 }))
     }
 
