@@ -78,6 +78,7 @@ mod error;
 pub mod geometry;
 #[cfg(feature = "gltf")]
 pub mod load;
+pub mod medium;
 pub mod polarization;
 #[cfg(feature = "gltf")]
 pub mod spectral;

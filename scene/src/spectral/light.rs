@@ -88,6 +88,9 @@ pub struct SpectralScene {
     pub camera_response: Option<[SceneSpectrum; 3]>,
     /// When the environment shines (None: always).
     pub environment_on: Option<crate::world::Schedule>,
+    /// The medium filling the world outside every boundary (fog), in which the camera
+    /// starts.
+    pub medium: Option<crate::medium::Medium>,
 }
 
 /// Parses the root's description: `{"environment": S, "camera_response": {"r": S, "g":
@@ -96,7 +99,10 @@ pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String
     let map = value
         .as_object()
         .ok_or("PRISM_spectral on the root must be an object")?;
-    only_keys(map, &["environment", "camera_response", "environment_on"])?;
+    only_keys(
+        map,
+        &["environment", "camera_response", "environment_on", "medium"],
+    )?;
     let camera_response = match map.get("camera_response") {
         None => None,
         Some(v) => {
@@ -127,6 +133,10 @@ pub(crate) fn scene(value: &Value, cx: &Context) -> Result<SpectralScene, String
             .map(|e| environment(e, cx).map_err(|e| format!("environment: {e}")))
             .transpose()?,
         camera_response,
+        medium: map
+            .get("medium")
+            .map(|m| super::medium::medium(m, cx).map_err(|e| format!("medium: {e}")))
+            .transpose()?,
     })
 }
 

@@ -11,7 +11,8 @@ use crate::bsdf::fluorescence_matrix;
 use crate::world::{Material, SceneSpectrum};
 
 /// The material types a description may give.
-pub const MATERIAL_TYPES: &str = "diffuse, dielectric, conductor, fluorescent, polarizer, retarder";
+pub const MATERIAL_TYPES: &str =
+    "diffuse, dielectric, conductor, fluorescent, polarizer, retarder, interface";
 
 /// The default range and bin width of fluorescence matrices: from the near UV that
 /// blacklights emit to the end of the visible.
@@ -37,6 +38,9 @@ pub struct SpectralMaterial {
     /// A fluorescent material's decay law, making it phosphorescent (None: its
     /// re-emission is instantaneous).
     pub decay: Option<prism_sampling::decay::Decay>,
+    /// The participating medium inside the material's closed surface (an interface, a
+    /// dielectric, or glTF glass), if any.
+    pub medium: Option<crate::medium::Medium>,
 }
 
 /// Parses a material's description.
@@ -52,7 +56,24 @@ pub(crate) fn material(value: &Value, cx: &Context) -> Result<SpectralMaterial, 
         .map(|v| schedule(&v).map_err(|e| format!("on: {e}")))
         .transpose()?;
     let decay = decay(map.remove("lifetime"), map.remove("lifetimes"))?;
+    let medium = map
+        .remove("medium")
+        .map(|v| super::medium::medium(&v, cx).map_err(|e| format!("medium: {e}")))
+        .transpose()?;
+    let interface = map.get("type").and_then(Value::as_str) == Some("interface");
+    if interface && medium.is_none() {
+        return Err("an interface needs 'medium' (what is inside it)".into());
+    }
+    if let Some(kind) = map.get("type").and_then(Value::as_str)
+        && medium.is_some()
+        && !matches!(kind, "interface" | "dielectric")
+    {
+        return Err(format!(
+            "a medium needs a boundary light crosses: type {kind} cannot hold one (use \"interface\" or \"dielectric\")"
+        ));
+    }
     let mut description = surface_and_emission(&map, cx)?;
+    description.medium = medium;
     if on.is_some() && description.emission.is_none() {
         return Err("'on' schedules an emission, and the material has none".into());
     }
@@ -146,6 +167,10 @@ fn surface_and_emission(
             }
         }
         Some("fluorescent") => fluorescent(map, cx)?,
+        Some("interface") => {
+            only_keys(map, &["type"])?;
+            Material::Interface
+        }
         Some("polarizer") => {
             only_keys(map, &["type", "emission", "axis", "transmittance"])?;
             Material::Polarizer {

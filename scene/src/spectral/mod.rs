@@ -10,6 +10,7 @@
 
 mod light;
 mod material;
+mod medium;
 mod overlay;
 mod value;
 

@@ -203,6 +203,7 @@ impl Scene {
         let normal_maps = normal_maps(&loaded, materials.len());
         let alpha = alpha_coverage(&loaded, &triangle_material, materials.len());
         let camera = loaded.camera(options.camera.as_deref())?;
+        let media = media_of(&loaded, &materials)?;
         Scene::new(SceneParts {
             triangles: loaded.triangles,
             attributes: super::VertexAttributes {
@@ -231,9 +232,45 @@ impl Scene {
             if timeline.is_timed() {
                 scene.set_timeline(timeline)?;
             }
+            if let Some(media) = media {
+                scene.set_media(media)?;
+            }
             Ok(scene)
         })
     }
+}
+
+/// The media of a loaded file: each material's medium inside and the root's fog (None:
+/// the file has none). A medium on a material that cannot hold one is an error naming
+/// the material.
+fn media_of(
+    loaded: &LoadedGeometry,
+    materials: &[Material],
+) -> Result<Option<crate::medium::Media>, crate::LoadError> {
+    let mut media = Vec::new();
+    let mut inside = vec![None; loaded.materials.len()];
+    for (m, desc) in loaded.materials.iter().enumerate() {
+        if let Some(medium) = desc.spectral.as_ref().and_then(|s| s.medium.clone()) {
+            if !materials.get(m).is_some_and(Material::can_hold_medium) {
+                return Err(crate::LoadError::Spectral(format!(
+                    "material {}: medium: needs a boundary light crosses (an interface, a dielectric, or glTF glass that is not thin-walled)",
+                    desc.name
+                )));
+            }
+            inside[m] = Some(media.len() as u32);
+            media.push(medium);
+        }
+    }
+    let world = loaded.spectral.medium.clone().map(|medium| {
+        media.push(medium);
+        (media.len() - 1) as u32
+    });
+    if media.is_empty() {
+        return Ok(None);
+    }
+    crate::medium::Media::new(media, inside, world)
+        .map(Some)
+        .map_err(crate::LoadError::Scene)
 }
 
 /// The lights of a loaded file's descriptions (an emissive instance's triangles each a

@@ -89,6 +89,10 @@ pub enum Material {
         /// The delay in waves (0.25: a quarter-wave plate) per wavelength.
         retardance: SceneSpectrum,
     },
+    /// The boundary of a medium that light crosses unchanged (no reflection, no bending):
+    /// what is inside it is the medium's, not a surface's. The volumetric path tracer
+    /// passes through it; anything else sees an ideal clear sheet.
+    Interface,
 }
 
 impl Material {
@@ -116,7 +120,10 @@ impl Material {
     pub fn transmissive(&self) -> bool {
         matches!(
             self,
-            Material::Dielectric { .. } | Material::Polarizer { .. } | Material::Retarder { .. }
+            Material::Dielectric { .. }
+                | Material::Polarizer { .. }
+                | Material::Retarder { .. }
+                | Material::Interface
         ) || self.transmission().is_some()
             || self.diffuse_transmission().is_some()
     }
@@ -202,6 +209,20 @@ impl Material {
     /// polarized renders show.
     pub fn polarizing_element(&self) -> bool {
         matches!(self, Material::Polarizer { .. } | Material::Retarder { .. })
+    }
+
+    /// Whether it is an interface (a medium's boundary light crosses unchanged).
+    pub fn interface(&self) -> bool {
+        matches!(self, Material::Interface)
+    }
+
+    /// Whether a medium can be inside it: an interface, or a boundary light refracts
+    /// through (a dielectric, or glTF glass that is not thin-walled).
+    pub fn can_hold_medium(&self) -> bool {
+        match self {
+            Material::Interface | Material::Dielectric { .. } => true,
+            _ => self.transmission().is_some_and(|t| !t.thin),
+        }
     }
 
     /// Whether the material re-radiates (fluorescence).
@@ -352,6 +373,12 @@ impl Material {
                     transmittance: SampledSpectrum::splat(1.0),
                 })
             }
+            // A clear sheet: a retarder that delays nothing.
+            Material::Interface => Bsdf::Sheet(Sheet {
+                element: SheetElement::Retarder([0.0; N]),
+                axis: glam::Vec3::X,
+                transmittance: SampledSpectrum::splat(1.0),
+            }),
         }
     }
 }

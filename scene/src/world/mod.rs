@@ -66,6 +66,9 @@ pub struct Features {
     /// A material with a delta lobe (smooth glass or metal): caustics, which the
     /// integrator traces from the lights.
     pub specular: bool,
+    /// A participating medium (fog, or one inside a boundary) or an interface boundary:
+    /// paths are traced by the volumetric path tracer.
+    pub media: bool,
 }
 
 /// Everything a [`Scene`] is made of, for building scenes in code (tests, procedural
@@ -208,6 +211,8 @@ pub struct Scene {
     light_polarization: Vec<Option<crate::polarization::LinearPolarization>>,
     /// When its lights shine and how long its phosphors glow (empty: steady light).
     timeline: Timeline,
+    /// Its participating media and where they are (empty: a vacuum).
+    media: crate::medium::Media,
 }
 
 impl Scene {
@@ -313,6 +318,7 @@ impl Scene {
             fluorescence: materials.iter().any(Material::fluorescent),
             transmission: materials.iter().any(Material::transmissive),
             specular: materials.iter().any(Material::specular),
+            media: materials.iter().any(Material::interface),
         };
         // Lights are chosen by their power where the scene can see it: the visible
         // range, widened to the fluorescent materials' range (ultraviolet light shows
@@ -361,7 +367,41 @@ impl Scene {
             oriented_materials,
             light_polarization: Vec::new(),
             timeline: Timeline::default(),
+            media: crate::medium::Media::default(),
         })
+    }
+
+    /// Fills the scene's volumes: `media` says which material holds which medium inside
+    /// and which fills the world. A medium inside a material that cannot hold one (an
+    /// opaque surface light cannot enter) is an error naming the material.
+    pub fn set_media(&mut self, media: crate::medium::Media) -> Result<(), crate::LoadError> {
+        for (m, material) in self.materials.iter().enumerate() {
+            if media.bounds_medium(m as u32) && !material.can_hold_medium() {
+                return Err(crate::LoadError::Scene(format!(
+                    "material {m}: a medium needs a boundary light crosses (an interface or a dielectric)"
+                )));
+            }
+        }
+        self.features.media = !media.is_empty() || self.materials.iter().any(Material::interface);
+        self.media = media;
+        Ok(())
+    }
+
+    /// The scene's participating media.
+    pub fn media(&self) -> &crate::medium::Media {
+        &self.media
+    }
+
+    /// The medium inside the boundary `hit` is on, if it holds one.
+    pub fn medium_inside(&self, hit: &Hit) -> Option<u32> {
+        self.media
+            .inside(self.triangle_material[hit.triangle as usize])
+    }
+
+    /// Whether `hit` is on an interface: a boundary of a medium that light crosses
+    /// unchanged (rays pass through it as if it were not there).
+    pub fn is_interface(&self, hit: &Hit) -> bool {
+        matches!(self.material(hit), Material::Interface)
     }
 
     /// Gives the scene its timing: schedules by light index, decay laws by material

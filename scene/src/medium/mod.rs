@@ -1,0 +1,214 @@
+//! Participating media: what fills a volume (fog, milk, smoke, a glowing gas), described
+//! per wavelength, and how far light travels in it before it meets a particle.
+//!
+//! A medium is its absorption and scattering coefficients sigma_a and sigma_s (per unit
+//! of scene length, m^-1 in a scene in metres), a phase function, and optionally an
+//! emission coefficient (radiance added per unit length). Light crossing a distance d
+//! keeps exp(-sigma_t d) of itself, sigma_t = sigma_a + sigma_s, at each wavelength.
+//!
+//! Where media are: a material may bound one (the medium inside its closed surface:
+//! [`Media::inside`]), and the scene may be filled by one (fog: [`Media::world`]), which is
+//! what a ray is in outside every boundary and where the camera starts.
+//!
+//! Distances are drawn by tracking against a majorant ([`track`]), the null-scattering
+//! formulation of Miller, Georgiev and Jarosz (SIGGRAPH 2019), which the integrator's
+//! volumetric path tracer builds on.
+
+mod phase;
+pub mod track;
+
+pub use phase::{MAX_ABS_G, Phase, PhaseSample};
+
+use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+
+use crate::world::SceneSpectrum;
+
+/// A homogeneous participating medium.
+#[derive(Debug, Clone)]
+pub struct Medium {
+    sigma_a: SceneSpectrum,
+    sigma_s: SceneSpectrum,
+    phase: Phase,
+    emission: Option<SceneSpectrum>,
+    /// The least majorant of an emissive medium (per unit length): emission is gathered
+    /// where tracking stops, so it must stop somewhere even where the medium barely
+    /// absorbs or scatters.
+    emissive_floor: f32,
+}
+
+/// The coefficients of a medium at a point, at a package's wavelengths.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MediumPoint<const N: usize> {
+    /// Absorption coefficient per lane.
+    pub sigma_a: SampledSpectrum<N>,
+    /// Scattering coefficient per lane.
+    pub sigma_s: SampledSpectrum<N>,
+    /// Emission coefficient per lane (radiance per unit length), 0 where none.
+    pub emission: SampledSpectrum<N>,
+}
+
+/// The least emissive floor: below it the collision estimator's variance is needlessly
+/// high for no saving (one unit: a scene in metres collides once per metre).
+const EMISSIVE_FLOOR: f64 = 1.0;
+
+impl Medium {
+    /// A homogeneous medium. The spectra must be finite and non-negative (the scene
+    /// format's parser checks them; spectra from code are checked here over 360-830 nm).
+    pub fn new(
+        sigma_a: SceneSpectrum,
+        sigma_s: SceneSpectrum,
+        phase: Phase,
+        emission: Option<SceneSpectrum>,
+    ) -> Result<Self, String> {
+        for (name, s) in [("sigma_a", Some(&sigma_a)), ("sigma_s", Some(&sigma_s))]
+            .into_iter()
+            .chain(std::iter::once(("emission", emission.as_ref())))
+        {
+            let Some(s) = s else { continue };
+            for nm in (360..=830).step_by(5) {
+                let v = s.evaluate(f64::from(nm));
+                if !(v.is_finite() && v >= 0.0) {
+                    return Err(format!("{name} is {v} at {nm} nm (must be finite and >= 0)"));
+                }
+            }
+        }
+        let mean_t = sigma_a.mean_visible() + sigma_s.mean_visible();
+        let emissive_floor = if emission.is_some() {
+            mean_t.max(EMISSIVE_FLOOR) as f32
+        } else {
+            0.0
+        };
+        Ok(Self {
+            sigma_a,
+            sigma_s,
+            phase,
+            emission,
+            emissive_floor,
+        })
+    }
+
+    /// The phase function.
+    pub fn phase(&self) -> &Phase {
+        &self.phase
+    }
+
+    /// The absorption coefficient.
+    pub fn sigma_a(&self) -> &SceneSpectrum {
+        &self.sigma_a
+    }
+
+    /// The scattering coefficient.
+    pub fn sigma_s(&self) -> &SceneSpectrum {
+        &self.sigma_s
+    }
+
+    /// The emission coefficient, if the medium glows.
+    pub fn emission(&self) -> Option<&SceneSpectrum> {
+        self.emission.as_ref()
+    }
+
+    /// Whether the medium emits light.
+    pub fn emissive(&self) -> bool {
+        self.emission.is_some()
+    }
+
+    /// The coefficients at `wavelengths` (the same everywhere in a homogeneous medium).
+    pub fn at<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> MediumPoint<N> {
+        MediumPoint {
+            sigma_a: self.sigma_a.at(wavelengths),
+            sigma_s: self.sigma_s.at(wavelengths),
+            emission: self
+                .emission
+                .as_ref()
+                .map_or(SampledSpectrum::splat(0.0), |e| e.at(wavelengths)),
+        }
+    }
+
+    /// The majorant per lane for a point whose coefficients are `point`: sigma_t, raised
+    /// to the emissive floor in a medium that glows.
+    pub fn majorant<const N: usize>(&self, point: &MediumPoint<N>) -> SampledSpectrum<N> {
+        let t = point.sigma_a + point.sigma_s;
+        if self.emission.is_some() {
+            t.map(|s| s.max(self.emissive_floor))
+        } else {
+            t
+        }
+    }
+}
+
+/// The media of a scene and where they are.
+#[derive(Debug, Clone, Default)]
+pub struct Media {
+    media: Vec<Medium>,
+    /// Per material, the medium its closed surface holds (empty: none does).
+    inside: Vec<Option<u32>>,
+    /// The medium filling the world outside every boundary (fog), if any.
+    world: Option<u32>,
+}
+
+impl Media {
+    /// Media `media`, material `m`'s inside being `inside[m]` (the list may be shorter
+    /// than the materials: the rest hold none), the world filled by `world`. Indices must
+    /// name media in the list.
+    pub fn new(
+        media: Vec<Medium>,
+        inside: Vec<Option<u32>>,
+        world: Option<u32>,
+    ) -> Result<Self, String> {
+        let count = media.len();
+        for (m, i) in inside.iter().enumerate() {
+            if let Some(i) = i
+                && *i as usize >= count
+            {
+                return Err(format!("material {m} holds medium {i}, of {count}"));
+            }
+        }
+        if let Some(w) = world
+            && w as usize >= count
+        {
+            return Err(format!("the world's medium {w} is not one of {count}"));
+        }
+        Ok(Self {
+            media,
+            inside,
+            world,
+        })
+    }
+
+    /// Whether the scene has any medium.
+    pub fn is_empty(&self) -> bool {
+        self.media.is_empty()
+    }
+
+    /// The media.
+    pub fn all(&self) -> &[Medium] {
+        &self.media
+    }
+
+    /// Medium `i`.
+    pub fn get(&self, i: u32) -> &Medium {
+        &self.media[i as usize]
+    }
+
+    /// The medium material `material` holds inside, if any.
+    pub fn inside(&self, material: u32) -> Option<u32> {
+        self.inside.get(material as usize).copied().flatten()
+    }
+
+    /// Whether material `material` bounds a medium.
+    pub fn bounds_medium(&self, material: u32) -> bool {
+        self.inside(material).is_some()
+    }
+
+    /// The medium outside every boundary, if any.
+    pub fn world(&self) -> Option<u32> {
+        self.world
+    }
+
+    /// Whether a medium scatters or emits with a polarizing phase function (Rayleigh).
+    pub fn has_rayleigh(&self) -> bool {
+        self.media
+            .iter()
+            .any(|m| matches!(m.phase, Phase::Rayleigh))
+    }
+}

@@ -1,0 +1,73 @@
+//! `"medium"` in a description: a participating medium, on an `interface` or `dielectric`
+//! material (the medium inside it), on a glTF glass material (`PRISM_spectral` without a
+//! `type`), or on the root (fog filling the world).
+
+use serde_json::Value;
+
+use super::value::{Context, Role, number, only_keys, spectrum};
+use crate::medium::{Medium, Phase};
+
+/// The keys a medium may have.
+const KEYS: &[&str] = &["sigma_a", "sigma_s", "g", "phase", "emission"];
+
+/// Keys of media prism does not render yet, each with what to do instead.
+const NOT_YET: &[(&str, &str)] = &[
+    ("density", "heterogeneous (grid) media are not supported yet"),
+    ("temperature", "temperature grids are not supported yet"),
+    ("fluorescence", "fluorescent media are not supported yet"),
+];
+
+/// Parses `{"sigma_a": S, "sigma_s": S, "g": G | "phase": "rayleigh" |
+/// "henyey-greenstein", "emission": S}`: coefficients per unit of scene length (m^-1 in a
+/// scene in metres), each defaulting to 0, and the emission coefficient in W m^-2 sr^-1
+/// nm^-1 per unit length.
+pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
+    let map = value
+        .as_object()
+        .ok_or("a medium must be an object {\"sigma_a\": .., \"sigma_s\": .., \"g\": ..}")?;
+    for (key, why) in NOT_YET {
+        if map.contains_key(*key) {
+            return Err(format!("'{key}': {why}"));
+        }
+    }
+    only_keys(map, KEYS)?;
+    let coefficient = |key: &str| match map.get(key) {
+        None => Ok(crate::world::SceneSpectrum::Constant(0.0)),
+        Some(v) => spectrum(v, Role::Plain, cx).map_err(|e| format!("{key}: {e}")),
+    };
+    let sigma_a = coefficient("sigma_a")?;
+    let sigma_s = coefficient("sigma_s")?;
+    if !map.contains_key("sigma_a") && !map.contains_key("sigma_s") && !map.contains_key("emission")
+    {
+        return Err("a medium needs 'sigma_a', 'sigma_s' or 'emission'".into());
+    }
+    let phase = match (map.get("phase"), map.get("g")) {
+        (Some(_), Some(_)) if map.get("phase").and_then(Value::as_str) == Some("rayleigh") => {
+            return Err("'g' is Henyey-Greenstein's; the Rayleigh phase function has none".into());
+        }
+        (Some(p), g) => match p.as_str() {
+            Some("rayleigh") => Phase::Rayleigh,
+            Some("henyey-greenstein") => hg(g)?,
+            _ => {
+                return Err(format!(
+                    "phase {p} is not one of \"henyey-greenstein\", \"rayleigh\""
+                ));
+            }
+        },
+        (None, g) => hg(g)?,
+    };
+    let emission = map
+        .get("emission")
+        .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("emission: {e}")))
+        .transpose()?;
+    Medium::new(sigma_a, sigma_s, phase, emission)
+}
+
+/// Henyey-Greenstein with `g` (default 0, isotropic).
+fn hg(g: Option<&Value>) -> Result<Phase, String> {
+    let g = match g {
+        None => 0.0,
+        Some(v) => number(v, "g")?,
+    };
+    Phase::henyey_greenstein(g)
+}
