@@ -68,7 +68,9 @@ impl Medium {
             for nm in (360..=830).step_by(5) {
                 let v = s.evaluate(f64::from(nm));
                 if !(v.is_finite() && v >= 0.0) {
-                    return Err(format!("{name} is {v} at {nm} nm (must be finite and >= 0)"));
+                    return Err(format!(
+                        "{name} is {v} at {nm} nm (must be finite and >= 0)"
+                    ));
                 }
             }
         }

@@ -84,7 +84,9 @@ impl Phase {
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
         let phi = std::f32::consts::TAU * u.y;
         let local = Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta);
-        let outgoing = Frame::from_normal(incoming).to_world(local).normalize_or(incoming);
+        let outgoing = Frame::from_normal(incoming)
+            .to_world(local)
+            .normalize_or(incoming);
         let p = self.p(cos_theta);
         PhaseSample {
             outgoing,

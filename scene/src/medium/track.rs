@@ -80,14 +80,22 @@ pub fn sample_majorant<const N: usize>(
 pub fn transmittance<const N: usize>(sigma: &SampledSpectrum<N>, d: f32) -> SampledSpectrum<N> {
     SampledSpectrum::from_fn(|i| {
         let x = sigma[i] * d;
-        if x.is_nan() { if sigma[i] > 0.0 { 0.0 } else { 1.0 } } else { (-x).exp() }
+        if x.is_nan() {
+            if sigma[i] > 0.0 { 0.0 } else { 1.0 }
+        } else {
+            (-x).exp()
+        }
     })
 }
 
 /// A distance distributed as sigma exp(-sigma t), from `u` in [0, 1).
 #[inline]
 fn exponential(u: f32, sigma: f32) -> f32 {
-    let u = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0 - f32::EPSILON) };
+    let u = if u.is_nan() {
+        0.0
+    } else {
+        u.clamp(0.0, 1.0 - f32::EPSILON)
+    };
     -(1.0 - u).ln() / sigma
 }
 

@@ -12,7 +12,10 @@ const KEYS: &[&str] = &["sigma_a", "sigma_s", "g", "phase", "emission"];
 
 /// Keys of media prism does not render yet, each with what to do instead.
 const NOT_YET: &[(&str, &str)] = &[
-    ("density", "heterogeneous (grid) media are not supported yet"),
+    (
+        "density",
+        "heterogeneous (grid) media are not supported yet",
+    ),
     ("temperature", "temperature grids are not supported yet"),
     ("fluorescence", "fluorescent media are not supported yet"),
 ];
