@@ -66,6 +66,7 @@ mod sample_value;
 mod settings;
 mod splits;
 mod throughput;
+mod volume;
 
 /// glam, whose types appear in this crate's and prism-scene's public APIs.
 pub use glam;

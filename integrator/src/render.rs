@@ -24,6 +24,7 @@ use crate::sample_value::{Outputs, SampleValue};
 use crate::settings::{Reuse, Splits, Tracing};
 use crate::splits::{mode_pilot, pilot};
 use crate::throughput::{CameraFrame, Polarized, Throughput};
+use crate::volume::FlightNumbers;
 use crate::{Film, RenderError, RenderSettings};
 use prism_spectrum::SampledSpectrum;
 
@@ -125,6 +126,10 @@ impl<'a> Renderer<'a> {
             splits: 1,
             reuse: 1,
         };
+        if scene.features().media {
+            crate::volume::check_settings(settings)?;
+            return Ok(renderer);
+        }
         if let Tracing::Lanes(_) = settings.tracing {
             (renderer.splits, renderer.reuse) = lanes_modes(settings)?;
             return Ok(renderer);
@@ -221,6 +226,7 @@ impl<'a> Renderer<'a> {
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
             && self.scene.features().specular
+            && !self.scene.features().media
             && matches!(
                 self.scene.camera().projection,
                 prism_scene::camera::Projection::Perspective { .. }
@@ -592,6 +598,19 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
     let mut sink = |radiance: &T::Radiance, lambdas: &_| {
         value.add(tracer, settings.outputs, radiance, lambdas)
     };
+    if tracer.scene.features().media {
+        let pixel = u64::from(y) * u64::from(w) + u64::from(x);
+        return tracer.trace_volume::<N, FLUORESCENCE, T>(
+            &mut stream,
+            FIRST_BOUNCE_DIMENSION,
+            &tracer.package(u_lambda),
+            film,
+            aspect,
+            &mut sink,
+            &mut EmissionCache::new(),
+            &mut FlightNumbers::new(settings.seed, pixel, s),
+        );
+    }
     // Unsplit renders run a path tracer compiled without the splitting code.
     let trace = if tracer.splits > 1 {
         Tracer::trace::<N, FLUORESCENCE, true, false, T>

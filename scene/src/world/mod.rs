@@ -398,6 +398,13 @@ impl Scene {
             .inside(self.triangle_material[hit.triangle as usize])
     }
 
+    /// Whether `hit` is on a boundary of a volume, one that paths crossing it enter or
+    /// leave (an interface, a dielectric, a glTF transmission that is not thin-walled):
+    /// the medium within is [`Scene::medium_inside`], vacuum if none.
+    pub fn bounds_volume(&self, hit: &Hit) -> bool {
+        self.material(hit).can_hold_medium()
+    }
+
     /// Whether `hit` is on an interface: a boundary of a medium that light crosses
     /// unchanged (rays pass through it as if it were not there).
     pub fn is_interface(&self, hit: &Hit) -> bool {
@@ -906,5 +913,16 @@ impl Scene {
     ) -> Option<LightSample<N>> {
         self.lights
             .sample(hit.p, u, wavelengths, &self.emission, cache)
+    }
+
+    /// [`Scene::sample_light`] from a point `p` that is on no surface (in a medium).
+    pub fn sample_light_at<const N: usize>(
+        &self,
+        p: Vec3,
+        u: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        cache: &mut EmissionCache<N>,
+    ) -> Option<LightSample<N>> {
+        self.lights.sample(p, u, wavelengths, &self.emission, cache)
     }
 }

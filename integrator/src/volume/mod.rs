@@ -1,0 +1,333 @@
+//! The volumetric path tracer: a camera path through participating media and surfaces
+//! alike, for scenes that have media (fog, media inside interfaces and dielectrics).
+//!
+//! It follows the null-scattering path integral of Miller, Georgiev and Jarosz ("A
+//! null-scattering path integral formulation of light transport", SIGGRAPH 2019, §4-5) as
+//! pbrt-v4's `VolPathIntegrator` does (*PBR* 4th ed. §14.2.3): free-flight distances drawn
+//! against a majorant, absorption, real scattering and null collisions chosen by the
+//! hero's probabilities (`segment`), every lane's density kept as a ratio to the hero's
+//! (`ratios`) so that the balance heuristic over every lane as hero and over unidirectional
+//! and light sampling weighs each contribution (`light`); next-event estimation through
+//! media by ratio tracking (`shadow`); and the nesting of volumes a path is in (`stack`).
+//! No lane is ever terminated by a chromatic medium: the package is what makes a medium
+//! whose extinction varies with wavelength converge.
+//!
+//! Scenes without media never reach this module: the renderer runs the path tracer of
+//! `crate::path`, compiled without any of it.
+
+mod light;
+mod ratios;
+mod segment;
+mod shadow;
+mod stack;
+
+pub(crate) use segment::FlightNumbers;
+
+use glam::Vec2;
+use prism_sampling::distribution::positive_finite;
+use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_sampling::wavelength::WavelengthPackage;
+use prism_scene::bsdf::TransportMode;
+use prism_scene::geometry::Ray;
+use prism_scene::world::{EmissionCache, Material};
+use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+
+use crate::path::{DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk};
+use crate::path::{absorb, roulette, wavelengths};
+use crate::settings::{Reuse, Splits, Tracing};
+use crate::throughput::{Throughput, Vertex};
+use crate::{RenderError, RenderSettings};
+use light::{Scatterer, Scattering};
+use ratios::{Ratios, spectral_weight};
+use segment::{Flight, fly};
+use stack::MediumStack;
+
+/// Checks that `settings` ask for nothing the volumetric path tracer does not do: one
+/// clear error for each (light paths for caustics are left off quietly: camera paths find
+/// the same light, so the image is the same, with more noise).
+pub(crate) fn check_settings(settings: &RenderSettings) -> Result<(), RenderError> {
+    let refuse = |why: &str| {
+        Err(RenderError::Setting(format!(
+            "scenes with participating media cannot be rendered {why}"
+        )))
+    };
+    if settings.is_polarized() {
+        return refuse("polarized yet (render without --polarized)");
+    }
+    if let Tracing::Lanes(_) = settings.tracing {
+        return refuse("by the batch tracer (use --tracer paths)");
+    }
+    match (settings.splits, settings.reuse) {
+        (Splits::Fixed(k), _) if k > 1 => refuse("with splitting (use --splits 1 or auto)"),
+        (_, Reuse::Fixed(t)) if t > 1 => refuse("with path reuse (use --reuse 1 or auto)"),
+        _ => Ok(()),
+    }
+}
+
+/// Interfaces a path crosses between two vertices at most (coplanar or degenerate
+/// boundaries would otherwise hold it forever).
+const MAX_INTERFACES: u32 = 256;
+
+impl<'a> Tracer<'a> {
+    /// Traces the path of sample `stream` through film point `film` in a scene with media,
+    /// as [`Tracer::trace`] does in a vacuum (unsplit, without reuse or light paths); the
+    /// flights through media draw from `numbers`.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn trace_volume<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+        &self,
+        stream: &mut SobolStream,
+        sample_base: u64,
+        first_package: &WavelengthPackage<N>,
+        film: Vec2,
+        aspect: f32,
+        sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
+        emission: &mut EmissionCache<N>,
+        numbers: &mut FlightNumbers,
+    ) -> PathResult {
+        let Some(first_lambdas) = wavelengths(first_package) else {
+            return PathResult {
+                valid: false,
+                rays: 0,
+                covered: false,
+            };
+        };
+        let times = self.clock.map(|clock| [clock.time(stream); N]);
+        let camera_ray: Ray = self.scene.camera().generate_ray(film, aspect);
+        let mut walk = Walk::<N, T>::new(
+            *first_package,
+            first_lambdas,
+            times,
+            camera_ray,
+            &self.camera_frame,
+        );
+        let mut ratios = Ratios::<N>::one();
+        let mut media = MediumStack::new(self.scene.media().world());
+        let (mut rays, mut covered, mut interfaces) = (0u64, false, 0u32);
+        loop {
+            rays += 1;
+            let hit = self.scene.intersect(&walk.ray);
+            if walk.depth == 0 && interfaces == 0 {
+                covered = hit.is_some();
+            }
+            let direction = walk.ray.direction.normalize();
+            if let Some(m) = media.current() {
+                let length = hit.map_or(f32::INFINITY, |h| h.t * walk.ray.direction.length());
+                let emits = walk.depth < self.max_depth;
+                let medium = self.scene.media().get(m);
+                let origin = walk.ray.origin;
+                match fly(
+                    medium,
+                    origin,
+                    direction,
+                    length,
+                    emits,
+                    &mut walk,
+                    &mut ratios,
+                    numbers,
+                ) {
+                    Flight::Ended => break,
+                    Flight::Scattered(p) => {
+                        if walk.depth >= self.max_depth {
+                            break;
+                        }
+                        interfaces = 0;
+                        rays += self.scatter_in_medium(
+                            p,
+                            direction,
+                            m,
+                            &media,
+                            stream,
+                            sample_base,
+                            &mut walk,
+                            &mut ratios,
+                            numbers,
+                            emission,
+                        );
+                        if !self.survives(&mut walk, &ratios, stream) {
+                            break;
+                        }
+                        continue;
+                    }
+                    Flight::Through => {}
+                }
+            }
+            let Some(hit) = hit else {
+                if walk.depth > 0 || !self.transparent {
+                    self.add_volume_escaped(&mut walk, &ratios, emission);
+                }
+                break;
+            };
+            let wo_world = -direction;
+            self.add_volume_hit_emission(&hit, wo_world, &mut walk, &ratios, emission);
+            if self.scene.is_interface(&hit) {
+                // Light crosses unchanged: the path goes on into the next medium, at the
+                // same bounce, its last vertex still the one light sampling left from.
+                interfaces += 1;
+                if interfaces > MAX_INTERFACES {
+                    break;
+                }
+                media.cross(self.scene, &hit, direction);
+                walk.ray = hit.spawn(direction);
+                continue;
+            }
+            interfaces = 0;
+            absorb(self.scene, &walk.ray, &hit, &walk.transport, &mut walk.beta);
+            if walk.depth >= self.max_depth {
+                break;
+            }
+            let here = &mut *stream;
+            here.set_dimension(sample_base + u64::from(walk.depth) * DIMENSIONS_PER_BOUNCE);
+            let u_light = here.next_2d();
+            let u_lobe = here.next_1d();
+            let u_bsdf = here.next_2d();
+            let u_roulette = here.next_1d();
+            let material = self.scene.material(&hit);
+            let bsdf = match material {
+                Material::Fluorescent {
+                    reflectance,
+                    reradiation,
+                } if FLUORESCENCE => {
+                    match self.fluoresce(&hit, reflectance, reradiation, here, &mut walk) {
+                        Some(bsdf) => bsdf,
+                        None => break,
+                    }
+                }
+                _ => {
+                    self.scene
+                        .bsdf_cached(&hit, &walk.transport, TransportMode::Radiance, emission)
+                }
+            };
+            let frame = Frame::from_normal(hit.shading_normal);
+            let wo = frame.to_local(wo_world);
+            let vertex = Vertex {
+                bsdf: &bsdf,
+                frame: &frame,
+                wo,
+            };
+            if !bsdf.is_delta() {
+                rays += self.volume_next_event(
+                    Scatterer::Surface(&hit),
+                    |wi| media.after(self.scene, &hit, direction, wi),
+                    |wi| {
+                        let local = frame.to_local(wi);
+                        Scattering {
+                            f: bsdf.f(wo, local) * local.z.abs(),
+                            pdf: bsdf.pdf(wo, local),
+                        }
+                    },
+                    u_light,
+                    &mut walk,
+                    &ratios,
+                    numbers,
+                    emission,
+                );
+            }
+            let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {
+                break;
+            };
+            let pdf = sample.pdf[0];
+            if !positive_finite(pdf) {
+                break;
+            }
+            if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, false, sink) {
+                break;
+            }
+            // Light sampling's density of this direction is the light's, known only where
+            // a light is met; its ratio so far is the unidirectional one over the bounce's.
+            ratios.r_l = ratios.r_u / pdf;
+            media = media.after(self.scene, &hit, direction, frame.to_world(sample.wi));
+            if !self.survives_at(&mut walk, &ratios, u_roulette) {
+                break;
+            }
+        }
+        sink(&walk.radiance, &walk.lambdas);
+        PathResult {
+            valid: true,
+            rays,
+            covered,
+        }
+    }
+
+    /// Scatters the path at particle `p` of medium `m` (it arrived along unit `incoming`,
+    /// inside `media`): next-event estimation, then a direction drawn from the phase
+    /// function. Returns the rays traced.
+    #[allow(clippy::too_many_arguments)]
+    fn scatter_in_medium<const N: usize, T: Throughput<N>>(
+        &self,
+        p: glam::Vec3,
+        incoming: glam::Vec3,
+        m: u32,
+        media: &MediumStack,
+        stream: &mut SobolStream,
+        sample_base: u64,
+        walk: &mut Walk<N, T>,
+        ratios: &mut Ratios<N>,
+        numbers: &mut FlightNumbers,
+        emission: &mut EmissionCache<N>,
+    ) -> u64 {
+        let phase = *self.scene.media().get(m).phase();
+        stream.set_dimension(sample_base + u64::from(walk.depth) * DIMENSIONS_PER_BOUNCE);
+        let u_light = stream.next_2d();
+        let u_phase = stream.next_2d();
+        let rays = self.volume_next_event(
+            Scatterer::Particle(p),
+            |_| *media,
+            |wi| {
+                let p = phase.eval(incoming, wi);
+                Scattering {
+                    f: SampledSpectrum::splat(p),
+                    pdf: p,
+                }
+            },
+            u_light,
+            walk,
+            ratios,
+            numbers,
+            emission,
+        );
+        // Both phase functions are sampled exactly: p / pdf = 1 at every wavelength.
+        let sample = phase.sample(incoming, u_phase);
+        ratios.r_l = ratios.r_u / sample.pdf;
+        walk.previous = Some((sample.pdf, p));
+        walk.ray = Ray::new(p, sample.outgoing, f32::INFINITY);
+        walk.depth += 1;
+        rays
+    }
+
+    /// Russian roulette after a scattering in a medium, drawing from the bounce's
+    /// dimensions.
+    fn survives<const N: usize, T: Throughput<N>>(
+        &self,
+        walk: &mut Walk<N, T>,
+        ratios: &Ratios<N>,
+        stream: &mut SobolStream,
+    ) -> bool {
+        let u = stream.next_1d();
+        self.survives_at(walk, ratios, u)
+    }
+
+    /// Russian roulette on what the path would add per unit of light (its throughput under
+    /// the lanes' MIS weights, without the refractions' 1 / eta^2), with `u`; as the path
+    /// tracer's from its third bounce.
+    fn survives_at<const N: usize, T: Throughput<N>>(
+        &self,
+        walk: &mut Walk<N, T>,
+        ratios: &Ratios<N>,
+        u: f32,
+    ) -> bool {
+        if walk.beta.max_value() <= 0.0 {
+            return false;
+        }
+        if walk.depth < ROULETTE_DEPTH {
+            return true;
+        }
+        let weight = spectral_weight(&walk.package, &ratios.r_u).max_value();
+        let (survives, q) = roulette(walk.beta.max_value() * weight * walk.eta_scale, u);
+        if !survives {
+            return false;
+        }
+        walk.beta.scale_uniform(1.0 / q);
+        true
+    }
+}

@@ -1,0 +1,62 @@
+//! Which medium a path is in: the world's (fog, or vacuum), and on top of it the medium of
+//! each volume boundary it has entered and not yet left, so that a medium inside a glass
+//! inside fog is left for the fog again.
+
+use glam::Vec3;
+use prism_scene::world::{Hit, Scene};
+
+/// Nested boundaries deeper than this replace the innermost (a path inside eight
+/// volumes at once is already a malformed scene's: overlapping closed surfaces).
+const DEPTH: usize = 8;
+
+/// The media a path is inside, innermost last; `None` entries are volumes of vacuum
+/// (a dielectric without a medium).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MediumStack {
+    entries: [Option<u32>; DEPTH],
+    /// Entries in use; the first is the world's and is never left.
+    len: usize,
+}
+
+impl MediumStack {
+    /// A path starting outside every boundary, in the world's medium (if any).
+    pub(crate) fn new(world: Option<u32>) -> Self {
+        let mut entries = [None; DEPTH];
+        entries[0] = world;
+        Self { entries, len: 1 }
+    }
+
+    /// The medium the path is in now.
+    #[inline]
+    pub(crate) fn current(&self) -> Option<u32> {
+        self.entries[self.len - 1]
+    }
+
+    /// Crosses the volume boundary `hit` (where [`Scene::bounds_volume`]) towards unit
+    /// `direction`: against the outward geometric normal it enters the boundary's
+    /// medium, along it it leaves the innermost one.
+    #[inline]
+    pub(crate) fn cross(&mut self, scene: &Scene, hit: &Hit, direction: Vec3) {
+        if direction.dot(hit.normal) < 0.0 {
+            let inside = scene.medium_inside(hit);
+            if self.len < DEPTH {
+                self.len += 1;
+            }
+            self.entries[self.len - 1] = inside;
+        } else if self.len > 1 {
+            self.len -= 1;
+        }
+    }
+
+    /// The media a path is in after scattering at `hit` from `incoming` to `outgoing`
+    /// (unit directions of travel): crossed where the path goes on through a volume's
+    /// boundary ([`Scene::bounds_volume`]), the same where it turns back.
+    #[inline]
+    pub(crate) fn after(&self, scene: &Scene, hit: &Hit, incoming: Vec3, outgoing: Vec3) -> Self {
+        let mut next = *self;
+        if incoming.dot(hit.normal) * outgoing.dot(hit.normal) > 0.0 && scene.bounds_volume(hit) {
+            next.cross(scene, hit, outgoing);
+        }
+        next
+    }
+}

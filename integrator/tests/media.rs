@@ -1,0 +1,365 @@
+//! The volumetric path tracer against closed forms: Beer-Lambert per band through a
+//! chromatic absorbing slab, the radiance of an emissive slab, white furnaces of
+//! scattering media (chromatic sigma_s, forward, isotropic and backward scattering, and
+//! inside a dielectric boundary), single scattering of a thin medium, and the settings it
+//! refuses with one clear error.
+
+mod common;
+
+use common::{assert_image_mean, furnace, icosphere, ortho_camera, square_z0};
+use glam::Vec3;
+use prism_integrator::{LambdaSampler, RenderSettings, SpectralBands, render};
+use prism_scene::medium::{Media, Medium, Phase};
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_spectrum::colorimetry::{Observer, emission_xyz};
+use prism_spectrum::spectra::{Constant, Extrapolation, PiecewiseLinear};
+
+/// sigma rising linearly from `lo` at 400 nm to `hi` at 700 nm (clamped beyond).
+fn linear(lo: f64, hi: f64) -> SceneSpectrum {
+    SceneSpectrum::Table(std::sync::Arc::new(
+        PiecewiseLinear::new(vec![400.0, 700.0], vec![lo, hi], Extrapolation::Clamp).unwrap(),
+    ))
+}
+
+fn linear_at(lo: f64, hi: f64, nm: f64) -> f64 {
+    lo + (hi - lo) * ((nm - 400.0) / 300.0).clamp(0.0, 1.0)
+}
+
+fn constant_xyz(value: f64) -> [f64; 3] {
+    emission_xyz(&Constant::new(value).unwrap(), Observer::Cie1931).to_array()
+}
+
+/// The closed box [-h, h]^2 x [z0, z1], outward winding.
+fn slab(h: f32, z0: f32, z1: f32) -> Vec<[Vec3; 3]> {
+    let c = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    let quad = |a: Vec3, b: Vec3, cc: Vec3, d: Vec3| [[a, b, cc], [a, cc, d]];
+    let mut t = vec![];
+    // Top (+z), bottom (-z), then the four sides.
+    t.extend(quad(c(-h, -h, z1), c(h, -h, z1), c(h, h, z1), c(-h, h, z1)));
+    t.extend(quad(c(-h, -h, z0), c(-h, h, z0), c(h, h, z0), c(h, -h, z0)));
+    t.extend(quad(
+        c(-h, -h, z0),
+        c(h, -h, z0),
+        c(h, -h, z1),
+        c(-h, -h, z1),
+    ));
+    t.extend(quad(c(h, h, z0), c(-h, h, z0), c(-h, h, z1), c(h, h, z1)));
+    t.extend(quad(c(h, -h, z0), c(h, h, z0), c(h, h, z1), c(h, -h, z1)));
+    t.extend(quad(
+        c(-h, h, z0),
+        c(-h, -h, z0),
+        c(-h, -h, z1),
+        c(-h, h, z1),
+    ));
+    t
+}
+
+/// An emitter of radiance `emission` filling the view of an orthographic camera at z = 1
+/// looking down, behind an interface slab from z = 0.2 to 0.2 + `d` holding `medium`.
+fn emitter_behind_slab(emission: f64, medium: Medium, d: f32) -> Scene {
+    let lights = (0..2)
+        .map(|t| Light::Triangle {
+            triangle: t,
+            emission: 0,
+            two_sided: false,
+        })
+        .collect();
+    slab_scene(emission, lights, medium, d)
+}
+
+/// [`emitter_behind_slab`] lit by `lights` as well.
+fn slab_scene(emission: f64, lights: Vec<Light>, medium: Medium, d: f32) -> Scene {
+    let mut triangles = square_z0(2.0);
+    let mut triangle_material = vec![0, 0];
+    let box_ = slab(3.0, 0.2, 0.2 + d);
+    triangle_material.extend(vec![1; box_.len()]);
+    triangles.extend(box_);
+    let mut scene = Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangles,
+        triangle_material,
+        materials: vec![
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.0),
+            },
+            Material::Interface,
+        ],
+        emission: vec![SceneSpectrum::Constant(emission)],
+        lights,
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 1.0), 0.5),
+        quality: prism_scene::geometry::BvhQuality::Medium,
+    })
+    .unwrap();
+    scene
+        .set_media(Media::new(vec![medium], vec![None, Some(0)], None).unwrap())
+        .unwrap();
+    scene
+}
+
+fn settings(size: u32, spp: u64, wavelengths: usize) -> RenderSettings {
+    RenderSettings::default()
+        .width(size)
+        .height(size)
+        .samples(0..spp)
+        .wavelengths(wavelengths)
+        .lambda_sampler(LambdaSampler::Uniform)
+}
+
+/// A chromatic absorber in front of an emitter: each spectral band is the band's mean of
+/// L exp(-sigma_a(lambda) d), with every lane kept through the medium.
+#[test]
+fn absorbing_slab_is_beer_lambert_per_band() {
+    let (lo, hi, d) = (0.5, 4.0, 0.5f32);
+    let medium = Medium::new(
+        linear(lo, hi),
+        SceneSpectrum::Constant(0.0),
+        Phase::henyey_greenstein(0.0).unwrap(),
+        None,
+    )
+    .unwrap();
+    let scene = emitter_behind_slab(2.0, medium, d);
+    let bands = SpectralBands::new(400.0, 700.0, 6).unwrap();
+    for wavelengths in [1, 4, 8] {
+        let (film, stats) =
+            render(&scene, &settings(8, 256, wavelengths).bands(Some(bands))).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        for b in 0..bands.count() {
+            let (mean, error) = band_mean(&film, b);
+            let centre = bands.center(b);
+            let expected = (0..64)
+                .map(|k| {
+                    let nm = centre - 0.5 * bands.width() + (k as f64 + 0.5) / 64.0 * bands.width();
+                    2.0 * (-linear_at(lo, hi, nm) * f64::from(d)).exp()
+                })
+                .sum::<f64>()
+                / 64.0;
+            assert!(
+                (mean - expected).abs() < 5.0 * error + 2e-3 * expected,
+                "{wavelengths} wavelengths, band {b} ({centre} nm): {mean} vs {expected} (+-{error})"
+            );
+        }
+    }
+}
+
+/// Single scattering: a slab of chromatic, absorbing, forward-scattering medium lit by a
+/// sun at 40 degrees from its normal, seen face on with one bounce allowed. Light reaching
+/// depth z has crossed z / mu_l of medium and leaves along z more, so per wavelength
+/// L = E sigma_s p(-mu_l) (1 - exp(-sigma_t d (1 + 1/mu_l))) / (sigma_t (1 + 1/mu_l)).
+#[test]
+fn single_scattering_matches_its_closed_form() {
+    let (a_lo, a_hi, s_lo, s_hi, g, d) = (0.2, 1.0, 1.5, 0.3, 0.4, 0.6f32);
+    let theta = 40f32.to_radians();
+    let sun = Light::Directional {
+        direction: Vec3::new(theta.sin(), 0.0, -theta.cos()),
+        irradiance: SceneSpectrum::Constant(3.0),
+    };
+    let medium = Medium::new(
+        linear(a_lo, a_hi),
+        linear(s_lo, s_hi),
+        Phase::henyey_greenstein(g).unwrap(),
+        None,
+    )
+    .unwrap();
+    let phase = Phase::henyey_greenstein(g).unwrap();
+    let scene = slab_scene(0.0, vec![sun], medium, d);
+    let bands = SpectralBands::new(400.0, 700.0, 5).unwrap();
+    let mu = f64::from(theta.cos());
+    let p = f64::from(phase.p(-theta.cos()));
+    for wavelengths in [1, 4] {
+        let settings = settings(16, 4096, wavelengths)
+            .bands(Some(bands))
+            .max_depth(Some(1));
+        let (film, stats) = render(&scene, &settings).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        for b in 0..bands.count() {
+            let (mean, error) = band_mean(&film, b);
+            let centre = bands.center(b);
+            let expected = (0..64)
+                .map(|k| {
+                    let nm = centre - 0.5 * bands.width() + (k as f64 + 0.5) / 64.0 * bands.width();
+                    let sigma_s = linear_at(s_lo, s_hi, nm);
+                    let sigma_t = linear_at(a_lo, a_hi, nm) + sigma_s;
+                    let k = sigma_t * (1.0 + 1.0 / mu);
+                    3.0 * sigma_s * p * (1.0 - (-k * f64::from(d)).exp()) / k
+                })
+                .sum::<f64>()
+                / 64.0;
+            assert!(
+                (mean - expected).abs() < 5.0 * error + 2e-3 * expected,
+                "{wavelengths} wavelengths, band {b} ({centre} nm): {mean} vs {expected} (+-{error})"
+            );
+        }
+    }
+}
+
+/// The mean over a film's pixels of band `b`, and its standard error.
+fn band_mean(film: &prism_integrator::Film, b: usize) -> (f64, f64) {
+    let values: Vec<f64> = (0..film.height())
+        .flat_map(|y| (0..film.width()).map(move |x| (x, y)))
+        .map(|(x, y)| film.spectrum(x, y).unwrap()[b])
+        .collect();
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+/// A slab that only absorbs and emits, seen face on against black: L = epsilon (1 -
+/// exp(-sigma_a d)) / sigma_a, and epsilon d where it does not absorb.
+#[test]
+fn emissive_slab_matches_its_closed_form() {
+    for (sigma_a, epsilon, d) in [(2.0, 1.5, 0.3f32), (0.0, 0.8, 0.25), (30.0, 0.5, 0.4)] {
+        let medium = Medium::new(
+            SceneSpectrum::Constant(sigma_a),
+            SceneSpectrum::Constant(0.0),
+            Phase::henyey_greenstein(0.0).unwrap(),
+            Some(SceneSpectrum::Constant(epsilon)),
+        )
+        .unwrap();
+        let scene = emitter_behind_slab(0.0, medium, d);
+        let expected = if sigma_a > 0.0 {
+            epsilon * (1.0 - (-sigma_a * f64::from(d)).exp()) / sigma_a
+        } else {
+            epsilon * f64::from(d)
+        };
+        let (film, stats) = render(&scene, &settings(8, 128, 4)).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        assert_image_mean(
+            &film,
+            constant_xyz(expected),
+            &format!("sigma_a {sigma_a}, epsilon {epsilon}, d {d}"),
+        );
+    }
+}
+
+/// A sphere of medium of albedo 1 in a uniform environment of radiance 1 is invisible:
+/// every pixel sees 1 at every wavelength, whatever the phase function, with sigma_s
+/// varying tenfold across the spectrum, bounded by an interface or by glass.
+#[test]
+fn scattering_furnace_returns_the_environment() {
+    let sphere = icosphere(3);
+    let ids = vec![0; sphere.len()];
+    let boundaries = [
+        ("interface", Material::Interface),
+        (
+            "glass",
+            Material::Dielectric {
+                ior: SceneSpectrum::Constant(1.5),
+                roughness: 0.0,
+                absorption: None,
+            },
+        ),
+    ];
+    let expected = constant_xyz(1.0);
+    for (boundary, material) in boundaries {
+        for g in [-0.7, 0.0, 0.9] {
+            let medium = Medium::new(
+                SceneSpectrum::Constant(0.0),
+                linear(0.5, 5.0),
+                Phase::henyey_greenstein(g).unwrap(),
+                None,
+            )
+            .unwrap();
+            let mut scene = furnace(sphere.clone(), ids.clone(), vec![material.clone()], 1.2);
+            scene
+                .set_media(Media::new(vec![medium], vec![Some(0)], None).unwrap())
+                .unwrap();
+            let (film, stats) = render(&scene, &settings(12, 48, 4)).unwrap();
+            assert_eq!(stats.nonfinite, 0);
+            assert_image_mean(&film, expected, &format!("{boundary}, g {g}"));
+        }
+    }
+}
+
+/// Fog filling the world, scattering by Rayleigh's phase function with sigma_s rising
+/// eightfold across the spectrum, with a sphere of another medium in it, inside a closed
+/// black room whose walls glow with radiance 1: without absorption the radiance is 1
+/// everywhere and in every direction. Light reaches every vertex through fog both ways,
+/// by next-event estimation and by hitting the walls, weighed against each other.
+#[test]
+fn fog_in_a_glowing_room_returns_the_walls() {
+    let sphere = icosphere(2);
+    let mut triangles: Vec<[Vec3; 3]> = icosphere(2)
+        .into_iter()
+        .map(|[a, b, c]| [a * 4.0, c * 4.0, b * 4.0])
+        .collect();
+    let walls = triangles.len() as u32;
+    let mut triangle_material = vec![0; triangles.len()];
+    triangle_material.extend(vec![1; sphere.len()]);
+    triangles.extend(sphere);
+    let mut scene = Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangles,
+        triangle_material,
+        materials: vec![
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.0),
+            },
+            Material::Interface,
+        ],
+        emission: vec![SceneSpectrum::Constant(1.0)],
+        lights: (0..walls)
+            .map(|t| Light::Triangle {
+                triangle: t,
+                emission: 0,
+                two_sided: false,
+            })
+            .collect(),
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 3.0), 1.2),
+        quality: prism_scene::geometry::BvhQuality::Medium,
+    })
+    .unwrap();
+    let fog = Medium::new(
+        SceneSpectrum::Constant(0.0),
+        linear(0.05, 0.4),
+        Phase::Rayleigh,
+        None,
+    )
+    .unwrap();
+    let inner = Medium::new(
+        SceneSpectrum::Constant(0.0),
+        SceneSpectrum::Constant(3.0),
+        Phase::henyey_greenstein(0.5).unwrap(),
+        None,
+    )
+    .unwrap();
+    scene
+        .set_media(Media::new(vec![inner, fog], vec![None, Some(0)], Some(1)).unwrap())
+        .unwrap();
+    let (film, stats) = render(&scene, &settings(12, 48, 4)).unwrap();
+    assert_eq!(stats.nonfinite, 0);
+    assert_image_mean(&film, constant_xyz(1.0), "fog");
+}
+
+/// What the volumetric path tracer does not do is refused with one clear error.
+#[test]
+fn media_refuse_what_they_do_not_support() {
+    let medium = Medium::new(
+        SceneSpectrum::Constant(1.0),
+        SceneSpectrum::Constant(0.0),
+        Phase::Rayleigh,
+        None,
+    )
+    .unwrap();
+    let scene = emitter_behind_slab(1.0, medium, 0.3);
+    for (settings, word) in [
+        (settings(4, 1, 4).polarized(true), "polarized"),
+        (
+            settings(4, 1, 4).splits(prism_integrator::Splits::Fixed(2)),
+            "splitting",
+        ),
+        (
+            settings(4, 1, 4).tracing(prism_integrator::Tracing::Lanes(None)),
+            "batch",
+        ),
+    ] {
+        let e = render(&scene, &settings)
+            .err()
+            .expect("refused")
+            .to_string();
+        assert!(
+            e.contains(word) && e.contains("media") && !e.contains('\n'),
+            "{e}"
+        );
+    }
+}
