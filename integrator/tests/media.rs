@@ -353,10 +353,10 @@ fn media_refuse_what_they_do_not_support() {
             "batch",
         ),
     ] {
-        let e = render(&scene, &settings)
-            .err()
-            .expect("refused")
-            .to_string();
+        let Err(e) = render(&scene, &settings) else {
+            panic!("{word}: accepted");
+        };
+        let e = e.to_string();
         assert!(
             e.contains(word) && e.contains("media") && !e.contains('\n'),
             "{e}"

@@ -8,6 +8,7 @@ use chi_square::{chi_square_directions, chi_square_p_value};
 
 use glam::{Vec2, Vec3};
 use prism_sampling::stream::{IndependentStream, SampleStream};
+use prism_scene::geometry::Ray;
 use prism_scene::medium::track::{sample_majorant, transmittance};
 use prism_scene::medium::{Media, Medium, Phase};
 use prism_scene::world::SceneSpectrum;
@@ -170,9 +171,7 @@ fn tracking_estimates_transmittance_without_bias() {
             let mut kinds = IndependentStream::new(13, 0, i);
             let tail = sample_majorant(
                 &medium,
-                Vec3::ZERO,
-                Vec3::Z,
-                d,
+                &Ray::new(Vec3::ZERO, Vec3::Z, d),
                 u,
                 &mut || numbers.next_1d(),
                 &lambdas,
@@ -193,9 +192,7 @@ fn tracking_estimates_transmittance_without_bias() {
             let u = stream.next_1d();
             let tail = sample_majorant(
                 &medium,
-                Vec3::ZERO,
-                Vec3::Z,
-                d,
+                &Ray::new(Vec3::ZERO, Vec3::Z, d),
                 u,
                 &mut || stream.next_1d(),
                 &lambdas,
@@ -303,7 +300,7 @@ proptest! {
         let lambdas = wavelengths();
         let mut stream = IndependentStream::new(1, 2, 3);
         let mut collisions = 0u32;
-        let tail = sample_majorant(&medium, Vec3::ZERO, Vec3::X, d, u, &mut || stream.next_1d(), &lambdas, |c| {
+        let tail = sample_majorant(&medium, &Ray::new(Vec3::ZERO, Vec3::X, d), u, &mut || stream.next_1d(), &lambdas, |c| {
             collisions += 1;
             assert!(c.t.is_finite() && c.t >= 0.0);
             assert!(c.t_maj.0.iter().all(|t| (0.0..=1.0).contains(t)));

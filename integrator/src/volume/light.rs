@@ -5,6 +5,7 @@
 //! emitted light and `SampleLd`).
 
 use glam::{Vec2, Vec3};
+use prism_sampling::distribution::positive_finite;
 use prism_scene::geometry::Ray;
 use prism_scene::world::{EmissionCache, Hit};
 use prism_spectrum::SampledSpectrum;
@@ -145,7 +146,7 @@ impl Tracer<'_> {
             self.gate(Some(light.light), times, &mut light.radiance);
         }
         let Scattering { f, pdf } = scattering(light.wi);
-        if f.is_black() || light.radiance.is_black() || !(light.pdf > 0.0) {
+        if f.is_black() || light.radiance.is_black() || !positive_finite(light.pdf) {
             return 0;
         }
         let ray = at.shadow_ray(light.wi, light.distance);

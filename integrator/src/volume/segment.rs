@@ -7,7 +7,9 @@
 //! probability from the hero alone, with no ratio to correct the other lanes).
 
 use glam::Vec3;
+use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{IndependentStream, SampleStream};
+use prism_scene::geometry::Ray;
 use prism_scene::medium::Medium;
 use prism_scene::medium::track::{Collision, sample_majorant};
 use prism_spectrum::SampledSpectrum;
@@ -77,9 +79,7 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     let FlightNumbers { distances, kinds } = numbers;
     let t_maj = sample_majorant(
         medium,
-        origin,
-        direction,
-        length,
+        &Ray::new(origin, direction, length),
         u,
         &mut || distances.next_1d(),
         &wavelengths,
@@ -134,7 +134,7 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     );
     if flight == Flight::Through {
         // The stretch from the last collision to the end, crossed by both strategies.
-        if !(t_maj[0] > 0.0) {
+        if !positive_finite(t_maj[0]) {
             return Flight::Ended;
         }
         let factor = t_maj / t_maj[0];

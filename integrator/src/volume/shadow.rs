@@ -4,6 +4,7 @@
 //! (*PBR* 4th ed. §14.2.3 `SampleLd`; Novák, Selle and Jarosz 2014 for ratio tracking),
 //! and Russian roulette where little is left.
 
+use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::SampleStream;
 use prism_scene::geometry::Ray;
 use prism_scene::medium::track::sample_majorant;
@@ -58,9 +59,7 @@ impl Tracer<'_> {
                 let FlightNumbers { distances, kinds } = numbers;
                 let t_maj = sample_majorant(
                     medium,
-                    ray.origin,
-                    direction,
-                    length,
+                    &Ray::new(ray.origin, direction, length),
                     u,
                     &mut || distances.next_1d(),
                     wavelengths,
@@ -82,13 +81,13 @@ impl Tracer<'_> {
                         transmittance.max_value() > 0.0
                     },
                 );
-                if !(t_maj[0] > 0.0) {
+                if !positive_finite(t_maj[0]) {
                     return (None, rays);
                 }
                 let factor = t_maj / t_maj[0];
                 transmittance *= factor;
                 ratios.scale(&factor);
-                if !(transmittance.max_value() > 0.0) {
+                if !positive_finite(transmittance.max_value()) {
                     return (None, rays);
                 }
             }

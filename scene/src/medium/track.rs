@@ -10,6 +10,8 @@
 //! densities to the hero's: that is the caller's spectral MIS.
 
 use glam::Vec3;
+
+use crate::geometry::Ray;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::{Medium, MediumPoint};
@@ -29,22 +31,21 @@ pub struct Collision<const N: usize> {
     pub t_maj: SampledSpectrum<N>,
 }
 
-/// Tracks from `origin` along unit `direction` for `t_max` (may be infinite) through
-/// `medium` at `wavelengths`: distances drawn with `u` first, then numbers from `next_u`,
-/// every collision handed to `collide`, which returns whether to go on. Returns the
-/// majorant transmittance from the last collision to `t_max` if tracking reached it, or
-/// ones if `collide` stopped it (as pbrt-v4 does, so that the caller's weights are left as
+/// Tracks along `ray` (unit direction; `t_max` may be infinite) through `medium` at
+/// `wavelengths`: distances drawn with `u` first, then numbers from `next_u`, every
+/// collision handed to `collide`, which returns whether to go on. Returns the majorant
+/// transmittance from the last collision to `t_max` if tracking reached it, or ones if
+/// `collide` stopped it (as pbrt-v4 does, so that the caller's weights are left as
 /// `collide` set them).
 pub fn sample_majorant<const N: usize>(
     medium: &Medium,
-    origin: Vec3,
-    direction: Vec3,
-    t_max: f32,
+    ray: &Ray,
     mut u: f32,
     next_u: &mut impl FnMut() -> f32,
     wavelengths: &SampledWavelengths<N>,
     mut collide: impl FnMut(&Collision<N>) -> bool,
 ) -> SampledSpectrum<N> {
+    let (origin, direction, t_max) = (ray.origin, ray.direction, ray.t_max);
     let point = medium.at(wavelengths);
     let sigma_maj = medium.majorant(&point);
     let t_max = if t_max.is_nan() { 0.0 } else { t_max.max(0.0) };
@@ -55,7 +56,7 @@ pub fn sample_majorant<const N: usize>(
     loop {
         let t = t_min + exponential(u, sigma_maj[0]);
         u = next_u();
-        if !(t < t_max) {
+        if t.is_nan() || t >= t_max {
             return transmittance(&sigma_maj, t_max - t_min);
         }
         let t_maj = transmittance(&sigma_maj, t - t_min);
