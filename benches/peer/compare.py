@@ -24,7 +24,8 @@ With one, each renderer's relative MSE is reported (prism compare's: the mean of
 prism's: how much sooner prism reaches the same error.
 
 The Mitsuba side is ../shared/scenes/peer/mitsuba_peer.py (the same Cornell box and bunny box
-as the glTF files). Prints one JSON object. Region agreement: the image is cut into a
+as the glTF files), and for `media` (scenes/cornell-medium.gltf, the box's large block a
+chromatic scattering medium) benches/peer/mitsuba_media.py with Mitsuba's `volpathmis`. Prints one JSON object. Region agreement: the image is cut into a
 GRID x GRID grid; for each region and channel the relative difference of the means
 is reported (max and mean over regions with enough signal).
 """
@@ -33,8 +34,8 @@ import argparse, json, os, subprocess, sys, tempfile
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
-SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf"}
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from peers import SCENES, script as peer_script  # noqa: E402
 
 
 def read_exr(path):
@@ -122,9 +123,7 @@ def main():
     variants = a.variants.split(",")
 
     def run_peer(variant, exr):
-        script = (os.path.join(ROOT, "benches", "peer", "narrow_peer.py") if a.narrow_peers
-                  else os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"))
-        peer = subprocess.run([sys.executable, script, variant,
+        peer = subprocess.run([sys.executable, peer_script(a.scene, a.narrow_peers), variant,
                                a.scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
                               check=True, capture_output=True, text=True)
         return json.loads(peer.stdout.strip().splitlines()[-1])

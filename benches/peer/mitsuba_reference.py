@@ -6,7 +6,7 @@ LLVM variant).
   DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \
     python3 benches/peer/mitsuba_reference.py box --width 256 --spp 8192 --out ref-box.exr
 
-Uses ../shared/scenes/peer/mitsuba_peer.py for the scene, so the reference is the same
+Uses the Mitsuba script peers.py names for the scene, so the reference is the same
 Mitsuba scene the timed renders use. Depth as there (-1: unbounded).
 """
 import argparse, os, subprocess, sys, tempfile
@@ -14,12 +14,13 @@ import argparse, os, subprocess, sys, tempfile
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from peers import SCENES, script as peer_script  # noqa: E402
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("scene", choices=["box", "bunny"])
+    ap.add_argument("scene", choices=SCENES)
     ap.add_argument("--width", type=int, default=256)
     ap.add_argument("--spp", type=int, default=8192)
     ap.add_argument("--pass-spp", type=int, default=256)
@@ -34,7 +35,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(passes):
             exr = os.path.join(tmp, "pass.exr")
-            subprocess.run([sys.executable, os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py"), a.variant,
+            subprocess.run([sys.executable, peer_script(a.scene), a.variant,
                             a.scene, str(a.pass_spp), "--depth", str(a.depth), "--width", str(a.width),
                             "--seed", str(1000 + k), "--out", exr], check=True, capture_output=True)
             img = np.array(mi.Bitmap(exr), dtype=np.float64)[..., :3]

@@ -8,6 +8,9 @@ reference test (integrator/tests/reference.rs).
   python3 ../shared/scenes/peer/mitsuba_peer.py scalar_spectral bunny 2048 --width 256 --out /tmp/bunny.exr
   python3 benches/peer/reference_regions.py /tmp/bunny.exr --spp 2048 --scene bunny \
       --out integrator/tests/data/cornell-bunny-mitsuba-regions.json
+  python3 benches/peer/mitsuba_media.py scalar_spectral media 2048 --width 128 --out /tmp/media.exr
+  python3 benches/peer/reference_regions.py /tmp/media.exr --spp 2048 --scene media \
+      --out integrator/tests/data/cornell-medium-mitsuba-regions.json
 
 With a box pixel filter the mean of a region of the film is the integral of radiance over
 that part of the film, whatever the resolution, so prism can be compared at a lower one.
@@ -15,6 +18,16 @@ that part of the film, whatever the resolution, so prism can be compared at a lo
 import argparse, json, sys
 
 import numpy as np
+
+
+# How each scene was made, after its name in the provenance.
+SOURCES = {
+    "box": "; rendered by ../shared/scenes/peer/mitsuba_peer.py",
+    "bunny": "; boxes replaced by ../shared/scenes/peer/cornell-bunny.obj, diffuse rgb (0.8, 0.55, 0.2)"
+             "; rendered by ../shared/scenes/peer/mitsuba_peer.py",
+    "media": "; the large box a null BSDF holding scenes/cornell-medium.gltf's homogeneous medium"
+             ", integrator volpathmis; rendered by benches/peer/mitsuba_media.py",
+}
 
 
 def main():
@@ -33,10 +46,7 @@ def main():
     means = [[img[i * h // g:(i + 1) * h // g, j * w // g:(j + 1) * w // g].mean(axis=(0, 1)).tolist()
               for j in range(g)] for i in range(g)]
     doc = {
-        "provenance": f"Mitsuba {mi.__version__} scalar_spectral, mitsuba.cornell_box() ({a.scene}"
-                      + ("; boxes replaced by ../shared/scenes/peer/cornell-bunny.obj, diffuse rgb (0.8, 0.55, 0.2)"
-                         if a.scene == "bunny" else "")
-                      + "; rendered by ../shared/scenes/peer/mitsuba_peer.py), "
+        "provenance": f"Mitsuba {mi.__version__} scalar_spectral, mitsuba.cornell_box() ({a.scene}{SOURCES.get(a.scene, SOURCES['box'])}), "
                       f"{w}x{h}, {a.spp} spp, unbounded depth, box filter; linear sRGB region means "
                       f"(rows top to bottom), made by benches/peer/reference_regions.py",
         "grid": g, "width": w, "height": h, "spp": a.spp,

@@ -14,22 +14,31 @@
 //! formulation of Miller, Georgiev and Jarosz (SIGGRAPH 2019), which the integrator's
 //! volumetric path tracer builds on.
 
+mod grid;
 mod phase;
 pub mod track;
+mod vol;
 
+pub use grid::{Grid, Span};
 pub use phase::{MAX_ABS_G, Phase, PhaseSample};
+pub use vol::{read_vol, write_vol};
+
+use std::sync::Arc;
 
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 
 use crate::world::SceneSpectrum;
 
-/// A homogeneous participating medium.
+/// A participating medium: homogeneous, or its coefficients scaled by a density grid.
 #[derive(Debug, Clone)]
 pub struct Medium {
     sigma_a: SceneSpectrum,
     sigma_s: SceneSpectrum,
     phase: Phase,
     emission: Option<SceneSpectrum>,
+    /// The density that scales sigma_a, sigma_s and the emission at each point (None:
+    /// 1 everywhere).
+    density: Option<Arc<Grid>>,
     /// The least majorant of an emissive medium (per unit length): emission is gathered
     /// where tracking stops, so it must stop somewhere even where the medium barely
     /// absorbs or scatters.
@@ -86,7 +95,20 @@ impl Medium {
             phase,
             emission,
             emissive_floor,
+            density: None,
         })
+    }
+
+    /// The same medium with its coefficients (and emission) scaled at each point by
+    /// `density`'s field there: a heterogeneous medium, 0 outside the grid's box.
+    pub fn with_density(mut self, density: Grid) -> Self {
+        self.density = Some(Arc::new(density));
+        self
+    }
+
+    /// The density grid, if the medium is heterogeneous.
+    pub fn density(&self) -> Option<&Grid> {
+        self.density.as_deref()
     }
 
     /// The phase function.
@@ -114,7 +136,8 @@ impl Medium {
         self.emission.is_some()
     }
 
-    /// The coefficients at `wavelengths` (the same everywhere in a homogeneous medium).
+    /// The coefficients at `wavelengths` where the density is 1 (everywhere in a
+    /// homogeneous medium).
     pub fn at<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> MediumPoint<N> {
         MediumPoint {
             sigma_a: self.sigma_a.at(wavelengths),
@@ -126,12 +149,35 @@ impl Medium {
         }
     }
 
-    /// The majorant per lane for a point whose coefficients are `point`: sigma_t, raised
-    /// to the emissive floor in a medium that glows.
-    pub fn majorant<const N: usize>(&self, point: &MediumPoint<N>) -> SampledSpectrum<N> {
-        let t = point.sigma_a + point.sigma_s;
+    /// The coefficients at point `p`, `base` being [`Medium::at`]'s.
+    #[inline]
+    pub fn point<const N: usize>(&self, base: &MediumPoint<N>, p: glam::Vec3) -> MediumPoint<N> {
+        match &self.density {
+            None => *base,
+            Some(grid) => {
+                let d = grid.lookup(p);
+                MediumPoint {
+                    sigma_a: base.sigma_a * d,
+                    sigma_s: base.sigma_s * d,
+                    emission: base.emission * d,
+                }
+            }
+        }
+    }
+
+    /// The majorant per lane where the density is at most `bound`, `base` being
+    /// [`Medium::at`]'s: sigma_t times the bound, raised in a medium that glows to its
+    /// emissive floor (times the bound) so that tracking stops where it emits.
+    #[inline]
+    pub fn majorant_over<const N: usize>(
+        &self,
+        base: &MediumPoint<N>,
+        bound: f32,
+    ) -> SampledSpectrum<N> {
+        let t = (base.sigma_a + base.sigma_s) * bound;
         if self.emission.is_some() {
-            t.map(|s| s.max(self.emissive_floor))
+            let floor = self.emissive_floor * bound;
+            t.map(|s| s.max(floor))
         } else {
             t
         }

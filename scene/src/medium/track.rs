@@ -14,6 +14,7 @@ use glam::Vec3;
 use crate::geometry::Ray;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
+use super::grid::Span;
 use super::{Medium, MediumPoint};
 
 /// A tentative collision along the ray.
@@ -45,34 +46,63 @@ pub fn sample_majorant<const N: usize>(
     wavelengths: &SampledWavelengths<N>,
     mut collide: impl FnMut(&Collision<N>) -> bool,
 ) -> SampledSpectrum<N> {
-    let (origin, direction, t_max) = (ray.origin, ray.direction, ray.t_max);
-    let point = medium.at(wavelengths);
-    let sigma_maj = medium.majorant(&point);
-    let t_max = if t_max.is_nan() { 0.0 } else { t_max.max(0.0) };
-    if sigma_maj[0] <= 0.0 {
-        return transmittance(&sigma_maj, t_max);
+    let (origin, direction) = (ray.origin, ray.direction);
+    let t_max = if ray.t_max.is_nan() {
+        0.0
+    } else {
+        ray.t_max.max(0.0)
+    };
+    let base = medium.at(wavelengths);
+    // The majorant transmittance since the last collision, and whether `collide` stopped.
+    let mut t_maj = SampledSpectrum::splat(1.0);
+    let mut stopped = false;
+    let mut span = |span: Span| -> bool {
+        let sigma_maj = medium.majorant_over(&base, span.bound);
+        if sigma_maj[0] <= 0.0 {
+            t_maj *= transmittance(&sigma_maj, span.t1 - span.t0);
+            return true;
+        }
+        let mut t_min = span.t0;
+        loop {
+            let t = t_min + exponential(u, sigma_maj[0]);
+            u = next_u();
+            if t.is_nan() || t >= span.t1 {
+                t_maj *= transmittance(&sigma_maj, span.t1 - t_min);
+                return true;
+            }
+            t_maj *= transmittance(&sigma_maj, t - t_min);
+            let p = origin + direction * t;
+            let collision = Collision {
+                t,
+                p,
+                point: medium.point(&base, p),
+                sigma_maj,
+                t_maj,
+            };
+            if !collide(&collision) {
+                stopped = true;
+                return false;
+            }
+            t_maj = SampledSpectrum::splat(1.0);
+            // A collision so close to the last one that f32 cannot tell them apart still
+            // advances (a majorant of 1e8 per unit in a scene of size 1e2).
+            t_min = if t > t_min { t } else { next_after(t_min) };
+        }
+    };
+    match medium.density() {
+        None => {
+            span(Span {
+                t0: 0.0,
+                t1: t_max,
+                bound: 1.0,
+            });
+        }
+        Some(grid) => grid.spans(origin, direction, t_max, span),
     }
-    let mut t_min = 0.0f32;
-    loop {
-        let t = t_min + exponential(u, sigma_maj[0]);
-        u = next_u();
-        if t.is_nan() || t >= t_max {
-            return transmittance(&sigma_maj, t_max - t_min);
-        }
-        let t_maj = transmittance(&sigma_maj, t - t_min);
-        let collision = Collision {
-            t,
-            p: origin + direction * t,
-            point,
-            sigma_maj,
-            t_maj,
-        };
-        if !collide(&collision) {
-            return SampledSpectrum::splat(1.0);
-        }
-        // A collision so close to the last one that f32 cannot tell them apart still
-        // advances (a majorant of 1e8 per unit in a scene of size 1e2).
-        t_min = if t > t_min { t } else { next_after(t_min) };
+    if stopped {
+        SampledSpectrum::splat(1.0)
+    } else {
+        t_maj
     }
 }
 

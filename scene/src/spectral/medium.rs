@@ -5,17 +5,13 @@
 use serde_json::Value;
 
 use super::value::{Context, Role, number, only_keys, spectrum};
-use crate::medium::{Medium, Phase};
+use crate::medium::{Grid, Medium, Phase, read_vol};
 
 /// The keys a medium may have.
-const KEYS: &[&str] = &["sigma_a", "sigma_s", "g", "phase", "emission"];
+const KEYS: &[&str] = &["sigma_a", "sigma_s", "g", "phase", "emission", "density"];
 
 /// Keys of media prism does not render yet, each with what to do instead.
 const NOT_YET: &[(&str, &str)] = &[
-    (
-        "density",
-        "heterogeneous (grid) media are not supported yet",
-    ),
     ("temperature", "temperature grids are not supported yet"),
     ("fluorescence", "fluorescent media are not supported yet"),
 ];
@@ -63,7 +59,68 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
         .get("emission")
         .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("emission: {e}")))
         .transpose()?;
-    Medium::new(sigma_a, sigma_s, phase, emission)
+    let medium = Medium::new(sigma_a, sigma_s, phase, emission)?;
+    match map.get("density") {
+        None => Ok(medium),
+        Some(d) => Ok(medium.with_density(density(d, cx).map_err(|e| format!("density: {e}"))?)),
+    }
+}
+
+/// Parses `{"file": "smoke.vol", "grid": "density", "scale": S, "bounds": [[x, y, z],
+/// [x, y, z]]}`: the density grid in the file (Mitsuba's `.vol`; `grid` names the grid of
+/// a file that holds several), times `scale` (default 1), on the file's own box unless
+/// `bounds` gives another (in world units).
+fn density(value: &Value, cx: &Context) -> Result<Grid, String> {
+    let map = value
+        .as_object()
+        .ok_or("must be an object {\"file\": .., \"scale\": ..}")?;
+    only_keys(map, &["file", "grid", "scale", "bounds"])?;
+    let file = map
+        .get("file")
+        .and_then(Value::as_str)
+        .ok_or("needs 'file', the grid's file name")?;
+    let bytes = (cx.resolve)(file).map_err(|e| format!("{file}: {e}"))?;
+    let extension = file.rsplit('.').next().unwrap_or("").to_ascii_lowercase();
+    let mut grid = match extension.as_str() {
+        "vol" => {
+            if let Some(name) = map.get("grid").and_then(Value::as_str)
+                && name != "density"
+            {
+                return Err(format!(
+                    "{file}: a .vol file holds one grid; 'grid' {name:?} names another"
+                ));
+            }
+            read_vol(&bytes).map_err(|e| format!("{file}: {e}"))?
+        }
+        "vdb" => {
+            return Err(format!(
+                "{file}: OpenVDB files are not read yet; write the grid as Mitsuba's .vol"
+            ));
+        }
+        _ => return Err(format!("{file}: not a grid file prism reads (.vol)")),
+    };
+    if let Some(scale) = map.get("scale") {
+        grid = grid.scaled(number(scale, "scale")? as f32)?;
+    }
+    if let Some(bounds) = map.get("bounds") {
+        let corner = |v: Option<&Value>| -> Result<glam::Vec3, String> {
+            let a = v
+                .and_then(Value::as_array)
+                .filter(|a| a.len() == 3)
+                .ok_or("bounds must be [[min x, y, z], [max x, y, z]]")?;
+            let mut c = [0.0f32; 3];
+            for (k, x) in a.iter().enumerate() {
+                c[k] = number(x, "bounds")? as f32;
+            }
+            Ok(glam::Vec3::from(c))
+        };
+        let b = bounds
+            .as_array()
+            .filter(|b| b.len() == 2)
+            .ok_or("bounds must be [[min x, y, z], [max x, y, z]]")?;
+        grid = grid.placed(corner(b.first())?, corner(b.get(1))?)?;
+    }
+    Ok(grid)
 }
 
 /// Henyey-Greenstein with `g` (default 0, isotropic).

@@ -1,0 +1,22 @@
+"""Which Mitsuba 3 script renders which comparison scene: the shared Cornell box and bunny box
+(../shared/scenes/peer/mitsuba_peer.py) and the repository's volume scene
+(mitsuba_media.py). Both take VARIANT SCENE SPP [--depth D] [--width W] [--seed S] [--out F].
+"""
+import os
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
+
+# prism's scene file for each comparison scene, under scenes/.
+SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf", "media": "cornell-medium.gltf"}
+
+
+def script(scene, narrow=False):
+    """The Mitsuba script that renders `scene` (narrow: as on a host without AVX-512)."""
+    if narrow:
+        if scene == "media":
+            raise SystemExit("--narrow-peers has no media scene")
+        return os.path.join(ROOT, "benches", "peer", "narrow_peer.py")
+    if scene == "media":
+        return os.path.join(ROOT, "benches", "peer", "mitsuba_media.py")
+    return os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py")
