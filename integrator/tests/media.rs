@@ -363,3 +363,43 @@ fn media_refuse_what_they_do_not_support() {
         );
     }
 }
+
+/// A heterogeneous medium of albedo 1 (a blob of smoke on a grid, chromatic sigma_s,
+/// forward scattering) inside an interface sphere is a furnace too: tracking through the
+/// coarse majorant grid loses and adds nothing.
+#[test]
+fn grid_furnace_returns_the_environment() {
+    let n = 16u32;
+    let values = (0..n * n * n)
+        .map(|i| {
+            let c = glam::UVec3::new(i % n, (i / n) % n, i / (n * n)).as_vec3();
+            let p = (c + 0.5) / n as f32 * 2.0 - 1.0;
+            // A lumpy blob: dense at one side, empty in a corner.
+            (6.0 * (-3.0 * (p - glam::Vec3::new(0.3, 0.2, 0.0)).length_squared()).exp()).max(0.0)
+        })
+        .collect();
+    let grid = prism_scene::medium::Grid::new(
+        glam::UVec3::splat(n),
+        Vec3::splat(-1.0),
+        Vec3::splat(1.0),
+        values,
+    )
+    .unwrap();
+    let medium = Medium::new(
+        SceneSpectrum::Constant(0.0),
+        linear(0.5, 2.0),
+        Phase::henyey_greenstein(0.6).unwrap(),
+        None,
+    )
+    .unwrap()
+    .with_density(grid);
+    let sphere = icosphere(3);
+    let ids = vec![0; sphere.len()];
+    let mut scene = furnace(sphere, ids, vec![Material::Interface], 1.2);
+    scene
+        .set_media(Media::new(vec![medium], vec![Some(0)], None).unwrap())
+        .unwrap();
+    let (film, stats) = render(&scene, &settings(12, 48, 4)).unwrap();
+    assert_eq!(stats.nonfinite, 0);
+    assert_image_mean(&film, constant_xyz(1.0), "grid");
+}

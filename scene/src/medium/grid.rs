@@ -83,8 +83,16 @@ impl Grid {
                 values: vec![0.0],
             },
         };
-        grid.majorants = grid.build_majorants();
+        grid.majorants = grid.build_majorants(MAJORANT_RESOLUTION);
         Ok(grid)
+    }
+
+    /// The same grid with a majorant grid of at most `cells` per axis (at least 1): one
+    /// cell is the single global majorant that tracking without the coarse grid would
+    /// draw against, for measuring what the coarse grid saves.
+    pub fn with_majorant_cells(mut self, cells: u32) -> Self {
+        self.majorants = self.build_majorants(cells.max(1));
+        self
     }
 
     /// The box the field is defined on.
@@ -175,8 +183,8 @@ impl Grid {
 
     /// The coarse grid of maxima: each cell the largest voxel whose trilinear reach (the
     /// voxels either side of every point of the cell) touches it.
-    fn build_majorants(&self) -> Majorants {
-        let resolution = self.resolution.min(UVec3::splat(MAJORANT_RESOLUTION));
+    fn build_majorants(&self, cells: u32) -> Majorants {
+        let resolution = self.resolution.min(UVec3::splat(cells));
         let mut values = Vec::with_capacity(resolution.element_product() as usize);
         let r = self.resolution.as_vec3();
         for cz in 0..resolution.z {

@@ -79,8 +79,8 @@ fn density(value: &Value, cx: &Context) -> Result<Grid, String> {
         .get("file")
         .and_then(Value::as_str)
         .ok_or("needs 'file', the grid's file name")?;
-    let bytes = (cx.resolve)(file).map_err(|e| format!("{file}: {e}"))?;
     let extension = file.rsplit('.').next().unwrap_or("").to_ascii_lowercase();
+    let read = || (cx.resolve)(file).map_err(|e| format!("{file}: {e}"));
     let mut grid = match extension.as_str() {
         "vol" => {
             if let Some(name) = map.get("grid").and_then(Value::as_str)
@@ -90,7 +90,7 @@ fn density(value: &Value, cx: &Context) -> Result<Grid, String> {
                     "{file}: a .vol file holds one grid; 'grid' {name:?} names another"
                 ));
             }
-            read_vol(&bytes).map_err(|e| format!("{file}: {e}"))?
+            read_vol(&read()?).map_err(|e| format!("{file}: {e}"))?
         }
         "vdb" => {
             return Err(format!(

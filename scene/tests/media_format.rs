@@ -1,0 +1,153 @@
+//! Media in the scene format: what loads, and the one-line errors that name the material
+//! and the key for everything that cannot (docs/scene-format.md, "Participating media").
+
+use prism_scene::load::{LoadOptions, load_scene};
+use prism_scene::world::{Scene, SceneOptions};
+use serde_json::{Value, json};
+
+fn scenes_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes")
+}
+
+/// The Cornell box with `white`'s description replaced by `white` (None: unchanged) and
+/// the root's by `root`, loaded into a scene; files resolve in scenes/, and `bad.vol` is
+/// a grid with a NaN voxel.
+fn load(white: Option<Value>, root: Option<Value>) -> Result<Scene, String> {
+    let mut doc: Value =
+        serde_json::from_slice(&std::fs::read(scenes_dir().join("cornell-box.gltf")).unwrap())
+            .unwrap();
+    if let Some(white) = white {
+        for m in doc["materials"].as_array_mut().unwrap() {
+            if m["name"] == "white" {
+                m["extensions"] = json!({ "PRISM_spectral": white });
+            }
+        }
+    }
+    if let Some(root) = root {
+        doc["extensions"] = json!({ "PRISM_spectral": root });
+    }
+    let bytes = serde_json::to_vec(&doc).unwrap();
+    let resolve = |uri: &str| -> std::io::Result<Vec<u8>> {
+        if uri == "bad.vol" {
+            let mut values = vec![0.5f32; 8];
+            values[3] = f32::NAN;
+            return Ok(prism_scene::medium::write_vol(
+                glam::UVec3::splat(2),
+                glam::Vec3::ZERO,
+                glam::Vec3::ONE,
+                &values,
+            ));
+        }
+        std::fs::read(scenes_dir().join(uri))
+    };
+    let loaded =
+        load_scene(&bytes, &resolve, &LoadOptions::default()).map_err(|e| e.to_string())?;
+    Scene::from_loaded(loaded, &SceneOptions::default()).map_err(|e| e.to_string())
+}
+
+#[test]
+fn media_load_into_the_scene() {
+    let scene = load(
+        Some(json!({"type": "interface", "medium": {"sigma_a": 0.1, "sigma_s": 2.0, "g": 0.5}})),
+        None,
+    )
+    .unwrap();
+    assert!(scene.features().media);
+    assert_eq!(scene.media().all().len(), 1);
+    assert_eq!(scene.media().world(), None);
+    let scene = load(
+        Some(json!({"type": "dielectric", "ior": 1.33, "medium": {"sigma_s": 1.0, "phase": "rayleigh",
+            "density": {"file": "smoke.vol", "scale": 2.0, "bounds": [[-1, -1, -1], [1, 1, 1]]}}})),
+        Some(json!({"medium": {"sigma_s": 0.01}})),
+    )
+    .unwrap();
+    let media = scene.media();
+    assert_eq!(media.all().len(), 2);
+    assert!(media.world().is_some());
+    let grid = media.all()[0].density().expect("a grid medium");
+    assert_eq!(
+        grid.bounds(),
+        (glam::Vec3::splat(-1.0), glam::Vec3::splat(1.0))
+    );
+    assert!(
+        (grid.max_value() - 1.2).abs() < 0.01,
+        "{}",
+        grid.max_value()
+    );
+    // A scene without media has none and runs the path tracer without them.
+    let plain = load(None, None).unwrap();
+    assert!(!plain.features().media && plain.media().is_empty());
+}
+
+#[test]
+fn bad_media_are_one_line_errors_naming_material_and_key() {
+    let cases: Vec<(Value, &[&str])> = vec![
+        (
+            json!({"type": "interface", "medium": {"sigma_a": -1.0}}),
+            &["white", "sigma_a"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "g": 1.0}}),
+            &["white", "g"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "g": 0.5, "phase": "rayleigh"}}),
+            &["white", "g"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": "nonsense:3"}}),
+            &["white", "sigma_s"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"g": 0.2}}),
+            &["white", "medium"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "colour": 2}}),
+            &["white", "colour"],
+        ),
+        (json!({"type": "interface"}), &["white", "medium"]),
+        (
+            json!({"type": "diffuse", "reflectance": 0.5, "medium": {"sigma_s": 1.0}}),
+            &["white", "medium"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "missing.vol"}}}),
+            &["white", "density", "missing.vol"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "bad.vol"}}}),
+            &["white", "density", "NaN"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "smoke.vdb"}}}),
+            &["white", "density", "OpenVDB"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "smoke.vol", "scale": -1}}}),
+            &["white", "density", "scale"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "smoke.vol",
+            "bounds": [[0, 0, 0], [0, 1, 1]]}}}),
+            &["white", "density"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "temperature": {"file": "smoke.vol"}}}),
+            &["white", "temperature"],
+        ),
+    ];
+    for (description, words) in cases {
+        let e = load(Some(description.clone()), None)
+            .err()
+            .unwrap_or_else(|| panic!("loaded: {description}"));
+        for w in words {
+            assert!(e.contains(w), "{description}: '{e}' lacks '{w}'");
+        }
+        assert!(!e.contains('\n'), "{e}");
+    }
+    let e = load(None, Some(json!({"medium": {"sigma_a": -2}})))
+        .err()
+        .expect("refused");
+    assert!(e.contains("medium") && e.contains("sigma_a"), "{e}");
+}
