@@ -403,3 +403,53 @@ fn grid_furnace_returns_the_environment() {
     assert_eq!(stats.nonfinite, 0);
     assert_image_mean(&film, constant_xyz(1.0), "grid");
 }
+
+/// Planck's law, W m^-2 sr^-1 nm^-1 at `nm` nanometres and `kelvin` (CODATA 2018 exact
+/// constants), written here apart from the renderer's.
+fn planck_per_nm(nm: f64, kelvin: f64) -> f64 {
+    let (h, c, k) = (6.626_070_15e-34, 299_792_458.0, 1.380_649e-23);
+    let lambda = nm * 1e-9;
+    2.0 * h * c * c / lambda.powi(5) / ((h * c / (lambda * k * kelvin)).exp() - 1.0) * 1e-9
+}
+
+/// A hot absorbing slab (a uniform temperature grid, no scattering) seen face on glows as
+/// Kirchhoff says: L = B_lambda(T) (1 - exp(-sigma_a d)) in every band.
+#[test]
+fn hot_slab_glows_as_a_grey_body() {
+    let (sigma_a, d, kelvin) = (3.0, 0.3f32, 2500.0f32);
+    let temperature = prism_scene::medium::Grid::new(
+        glam::UVec3::splat(2),
+        Vec3::new(-4.0, -4.0, 0.0),
+        Vec3::new(4.0, 4.0, 1.0),
+        vec![kelvin; 8],
+    )
+    .unwrap();
+    let medium = Medium::new(
+        SceneSpectrum::Constant(sigma_a),
+        SceneSpectrum::Constant(0.0),
+        Phase::henyey_greenstein(0.0).unwrap(),
+        None,
+    )
+    .unwrap()
+    .with_temperature(temperature);
+    let scene = emitter_behind_slab(0.0, medium, d);
+    let bands = SpectralBands::new(400.0, 700.0, 6).unwrap();
+    let (film, stats) = render(&scene, &settings(8, 256, 4).bands(Some(bands))).unwrap();
+    assert_eq!(stats.nonfinite, 0);
+    for b in 0..bands.count() {
+        let (mean, error) = band_mean(&film, b);
+        let centre = bands.center(b);
+        let expected = (0..64)
+            .map(|k| {
+                let nm = centre - 0.5 * bands.width() + (k as f64 + 0.5) / 64.0 * bands.width();
+                planck_per_nm(nm, f64::from(kelvin))
+            })
+            .sum::<f64>()
+            / 64.0
+            * (1.0 - (-sigma_a * f64::from(d)).exp());
+        assert!(
+            (mean - expected).abs() < 5.0 * error + 2e-3 * expected,
+            "band {b} ({centre} nm): {mean} vs {expected} (+-{error})"
+        );
+    }
+}

@@ -25,6 +25,7 @@ pub use vol::{read_vol, write_vol};
 
 use std::sync::Arc;
 
+use prism_spectrum::spectra::planck_radiance;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 
 use crate::world::SceneSpectrum;
@@ -39,6 +40,9 @@ pub struct Medium {
     /// The density that scales sigma_a, sigma_s and the emission at each point (None:
     /// 1 everywhere).
     density: Option<Arc<Grid>>,
+    /// Temperatures in kelvin: where the medium absorbs, it also emits as a black body
+    /// at the local temperature (Kirchhoff's law: sigma_a B_lambda(T)), a flame.
+    temperature: Option<Arc<Grid>>,
     /// The least majorant of an emissive medium (per unit length): emission is gathered
     /// where tracking stops, so it must stop somewhere even where the medium barely
     /// absorbs or scatters.
@@ -96,7 +100,21 @@ impl Medium {
             emission,
             emissive_floor,
             density: None,
+            temperature: None,
         })
+    }
+
+    /// The same medium glowing where it absorbs as a black body at `temperature`'s
+    /// field (kelvin): emission sigma_a(lambda, p) B_lambda(T(p)) in W m^-2 sr^-1 nm^-1
+    /// per unit length, added to any `emission` it has. Flames and explosions.
+    pub fn with_temperature(mut self, temperature: Grid) -> Self {
+        self.temperature = Some(Arc::new(temperature));
+        self
+    }
+
+    /// The temperature grid, if the medium glows by its temperature.
+    pub fn temperature(&self) -> Option<&Grid> {
+        self.temperature.as_deref()
     }
 
     /// The same medium with its coefficients (and emission) scaled at each point by
@@ -131,9 +149,9 @@ impl Medium {
         self.emission.as_ref()
     }
 
-    /// Whether the medium emits light.
+    /// Whether the medium emits light (an emission coefficient, or a temperature).
     pub fn emissive(&self) -> bool {
-        self.emission.is_some()
+        self.emission.is_some() || self.temperature.is_some()
     }
 
     /// The coefficients at `wavelengths` where the density is 1 (everywhere in a
@@ -149,10 +167,15 @@ impl Medium {
         }
     }
 
-    /// The coefficients at point `p`, `base` being [`Medium::at`]'s.
+    /// The coefficients at point `p` for `wavelengths`, `base` being [`Medium::at`]'s.
     #[inline]
-    pub fn point<const N: usize>(&self, base: &MediumPoint<N>, p: glam::Vec3) -> MediumPoint<N> {
-        match &self.density {
+    pub fn point<const N: usize>(
+        &self,
+        base: &MediumPoint<N>,
+        p: glam::Vec3,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> MediumPoint<N> {
+        let mut point = match &self.density {
             None => *base,
             Some(grid) => {
                 let d = grid.lookup(p);
@@ -162,7 +185,19 @@ impl Medium {
                     emission: base.emission * d,
                 }
             }
+        };
+        if let Some(grid) = &self.temperature {
+            let kelvin = f64::from(grid.lookup(p));
+            if kelvin > 0.0 && !point.sigma_a.is_black() {
+                // planck_radiance is per metre of wavelength: 1e-9 of it per nanometre.
+                let b = SampledSpectrum::from_fn(|i| {
+                    let nm = f64::from(wavelengths.lambda(i));
+                    (planck_radiance(nm * 1e-9, kelvin) * 1e-9) as f32
+                });
+                point.emission += point.sigma_a * b;
+            }
         }
+        point
     }
 
     /// The majorant per lane where the density is at most `bound`, `base` being

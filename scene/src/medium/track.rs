@@ -75,7 +75,7 @@ pub fn sample_majorant<const N: usize>(
             let collision = Collision {
                 t,
                 p,
-                point: medium.point(&base, p),
+                point: medium.point(&base, p, wavelengths),
                 sigma_maj,
                 t_maj,
             };

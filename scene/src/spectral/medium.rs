@@ -8,13 +8,18 @@ use super::value::{Context, Role, number, only_keys, spectrum};
 use crate::medium::{Grid, Medium, Phase, read_vol};
 
 /// The keys a medium may have.
-const KEYS: &[&str] = &["sigma_a", "sigma_s", "g", "phase", "emission", "density"];
+const KEYS: &[&str] = &[
+    "sigma_a",
+    "sigma_s",
+    "g",
+    "phase",
+    "emission",
+    "density",
+    "temperature",
+];
 
 /// Keys of media prism does not render yet, each with what to do instead.
-const NOT_YET: &[(&str, &str)] = &[
-    ("temperature", "temperature grids are not supported yet"),
-    ("fluorescence", "fluorescent media are not supported yet"),
-];
+const NOT_YET: &[(&str, &str)] = &[("fluorescence", "fluorescent media are not supported yet")];
 
 /// Parses `{"sigma_a": S, "sigma_s": S, "g": G | "phase": "rayleigh" |
 /// "henyey-greenstein", "emission": S}`: coefficients per unit of scene length (m^-1 in a
@@ -59,18 +64,24 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
         .get("emission")
         .map(|e| spectrum(e, Role::Emission, cx).map_err(|e| format!("emission: {e}")))
         .transpose()?;
-    let medium = Medium::new(sigma_a, sigma_s, phase, emission)?;
-    match map.get("density") {
-        None => Ok(medium),
-        Some(d) => Ok(medium.with_density(density(d, cx).map_err(|e| format!("density: {e}"))?)),
+    let mut medium = Medium::new(sigma_a, sigma_s, phase, emission)?;
+    if let Some(d) = map.get("density") {
+        medium = medium.with_density(grid(d, cx).map_err(|e| format!("density: {e}"))?);
     }
+    if let Some(t) = map.get("temperature") {
+        if !map.contains_key("sigma_a") {
+            return Err("temperature: a medium glows by its temperature where it absorbs: it needs 'sigma_a'".into());
+        }
+        medium = medium.with_temperature(grid(t, cx).map_err(|e| format!("temperature: {e}"))?);
+    }
+    Ok(medium)
 }
 
-/// Parses `{"file": "smoke.vol", "grid": "density", "scale": S, "bounds": [[x, y, z],
-/// [x, y, z]]}`: the density grid in the file (Mitsuba's `.vol`; `grid` names the grid of
-/// a file that holds several), times `scale` (default 1), on the file's own box unless
-/// `bounds` gives another (in world units).
-fn density(value: &Value, cx: &Context) -> Result<Grid, String> {
+/// Parses `{"file": "smoke.vol", "grid": NAME, "scale": S, "bounds": [[x, y, z],
+/// [x, y, z]]}`: the grid in the file (Mitsuba's `.vol`; `grid` names the grid of a file
+/// that holds several), times `scale` (default 1), on
+/// the file's own box unless `bounds` gives another (in world units).
+fn grid(value: &Value, cx: &Context) -> Result<Grid, String> {
     let map = value
         .as_object()
         .ok_or("must be an object {\"file\": .., \"scale\": ..}")?;
@@ -82,16 +93,8 @@ fn density(value: &Value, cx: &Context) -> Result<Grid, String> {
     let extension = file.rsplit('.').next().unwrap_or("").to_ascii_lowercase();
     let read = || (cx.resolve)(file).map_err(|e| format!("{file}: {e}"));
     let mut grid = match extension.as_str() {
-        "vol" => {
-            if let Some(name) = map.get("grid").and_then(Value::as_str)
-                && name != "density"
-            {
-                return Err(format!(
-                    "{file}: a .vol file holds one grid; 'grid' {name:?} names another"
-                ));
-            }
-            read_vol(&read()?).map_err(|e| format!("{file}: {e}"))?
-        }
+        // A .vol file holds one unnamed grid, whatever 'grid' calls it.
+        "vol" => read_vol(&read()?).map_err(|e| format!("{file}: {e}"))?,
         "vdb" => {
             return Err(format!(
                 "{file}: OpenVDB files are not read yet; write the grid as Mitsuba's .vol"
