@@ -19,6 +19,7 @@ pub(crate) const READ: &[&str] = &[
     "KHR_materials_transmission",
     "KHR_materials_unlit",
     "KHR_materials_volume",
+    "KHR_materials_volume_scatter",
     "KHR_mesh_quantization",
     "KHR_texture_transform",
     "EXT_texture_webp",

@@ -67,6 +67,10 @@ pub struct MaterialDesc {
     /// -ln(attenuationColor) / attenuationDistance per wavelength; None for thin walls
     /// (thickness 0), an infinite distance or a white attenuation colour.
     pub absorption: Option<SceneSpectrum>,
+    /// `KHR_materials_volume_scatter`: the volume's scattering medium (None without the
+    /// extension, a thickness of 0, or an attenuation of nothing). A `PRISM_spectral`
+    /// medium replaces it.
+    pub medium: Option<crate::medium::Medium>,
     /// The `PRISM_spectral` description, if the material (or an overlay) has one.
     pub spectral: Option<SpectralMaterial>,
     /// Alpha coverage (`alphaMode` MASK or BLEND), None for OPAQUE.
@@ -375,12 +379,28 @@ pub(crate) fn material(
         .map(|v| spectral::material(v, cx))
         .transpose()
         .map_err(|e| LoadError::Spectral(format!("material {name}: {e}")))?;
-    let absorption = match material.volume() {
-        Some(v) if v.thickness_factor() > 0.0 => {
-            volume_absorption(v.attenuation_color(), v.attenuation_distance(), upsampler)
-                .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?
-        }
-        _ => None,
+    // With KHR_materials_volume_scatter the volume's attenuation is a scattering medium's
+    // extinction; without it, Beer-Lambert absorption.
+    let scatter = material.extension_value("KHR_materials_volume_scatter");
+    let (absorption, medium) = match material.volume() {
+        Some(v) if v.thickness_factor() > 0.0 => match scatter {
+            Some(ext) => (
+                None,
+                super::volume_scatter::medium(
+                    ext,
+                    v.attenuation_color(),
+                    v.attenuation_distance(),
+                    upsampler,
+                )
+                .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?,
+            ),
+            None => (
+                volume_absorption(v.attenuation_color(), v.attenuation_distance(), upsampler)
+                    .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?,
+                None,
+            ),
+        },
+        _ => (None, None),
     };
     let base_color_texture = base_texture
         .as_ref()
@@ -451,6 +471,7 @@ pub(crate) fn material(
         normal_texture,
         emissive_texture,
         absorption,
+        medium,
         dispersion,
         spectral,
     };

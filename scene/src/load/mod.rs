@@ -17,6 +17,7 @@ mod summary;
 mod tangents;
 mod tex_coord_sets;
 mod textures;
+mod volume_scatter;
 
 pub use crate::error::{LoadError, Resolver};
 pub(crate) use base64::uri_bytes;

@@ -250,10 +250,15 @@ fn media_of(
     let mut media = Vec::new();
     let mut inside = vec![None; loaded.materials.len()];
     for (m, desc) in loaded.materials.iter().enumerate() {
-        if let Some(medium) = desc.spectral.as_ref().and_then(|s| s.medium.clone()) {
+        let medium = desc
+            .spectral
+            .as_ref()
+            .and_then(|s| s.medium.clone())
+            .or_else(|| desc.medium.clone());
+        if let Some(medium) = medium {
             if !materials.get(m).is_some_and(Material::can_hold_medium) {
                 return Err(crate::LoadError::Spectral(format!(
-                    "material {}: medium: needs a boundary light crosses (an interface, a dielectric, or glTF glass that is not thin-walled)",
+                    "material {}: medium: needs a boundary light crosses (an interface, a dielectric, glTF glass that is not thin-walled, or a diffusely transmitting skin)",
                     desc.name
                 )));
             }

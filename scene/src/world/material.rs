@@ -216,12 +216,15 @@ impl Material {
         matches!(self, Material::Interface)
     }
 
-    /// Whether a medium can be inside it: an interface, or a boundary light refracts
-    /// through (a dielectric, or glTF glass that is not thin-walled).
+    /// Whether a medium can be inside it: an interface, or a boundary light crosses (a
+    /// dielectric, glTF glass that is not thin-walled, or a diffusely transmitting skin).
     pub fn can_hold_medium(&self) -> bool {
         match self {
             Material::Interface | Material::Dielectric { .. } => true,
-            _ => self.transmission().is_some_and(|t| !t.thin),
+            _ => {
+                self.transmission().is_some_and(|t| !t.thin)
+                    || self.diffuse_transmission().is_some()
+            }
         }
     }
 
