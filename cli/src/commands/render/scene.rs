@@ -57,6 +57,12 @@ pub(super) fn prepare(args: &RenderArgs) -> Result<(Scene, Option<CameraResponse
             "prism: note: the scene has schedules or phosphors; without --at every source has always been on (the steady state)"
         );
     }
+    let features = scene.features();
+    if features.media && features.specular {
+        eprintln!(
+            "prism: warning: the scene has participating media, which light paths do not cross yet: caustics that only light paths find (a point, spot or directional light through glass or off a mirror onto a diffuse surface) do not show"
+        );
+    }
     if scene.lit_by_default() {
         eprintln!(
             "prism: the scene has no light source (only glowing surfaces, if any); lighting it with a \
