@@ -8,7 +8,7 @@
   beam's sides, so the column glows blue; what passes straight through has lost its blue,
   and lights a white card behind it orange: a sunset in a glass.
 - Right, a hot plume: the repository's smoke grid (scenes/smoke.vol, from
-  make_smoke.py) as both density and temperature (2400 K where densest), absorbing and
+  make_smoke.py) as both density and temperature (2160 K where densest), absorbing and
   scattering a little; where it absorbs it glows as a black body at its temperature
   (Kirchhoff), so the dense core burns yellow-white and the thin edges dull red, with no
   light source at all.
@@ -46,8 +46,8 @@ def diffuse(doc, name, value):
 
 def main():
     doc = Document("scenes/tools/make_media.py")
-    doc.mesh("floor", facing(quad((-4, 0, -3), (4, 0, -3), (4, 0, 3), (-4, 0, 3)), lambda p: [0, 1, 0]), diffuse(doc, "floor", 0.25))
-    doc.mesh("back wall", facing(quad((-4, 0, -1.2), (4, 0, -1.2), (4, 3, -1.2), (-4, 3, -1.2)), lambda p: [0, 0, 1]), diffuse(doc, "wall", 0.3))
+    doc.mesh("floor", facing(quad((-4, 0, -3), (4, 0, -3), (4, 0, 3), (-4, 0, 3)), lambda p: [0, 1, 0]), diffuse(doc, "floor", 0.15))
+    doc.mesh("back wall", facing(quad((-4, 0, -1.2), (4, 0, -1.2), (4, 3, -1.2), (-4, 3, -1.2)), lambda p: [0, 0, 1]), diffuse(doc, "wall", 0.12))
     card = diffuse(doc, "white card", 0.85)
     # Across the beam, turned half towards the camera so that it shows its lit face.
     doc.mesh("card", facing(quad((-0.2, 0.0, -0.85), (0.3, 0.0, -0.35 + 0.5 * 0.0 + 0.15), (0.3, 0.9, 0.15), (-0.2, 0.9, -0.85)), lambda p: [-1, 0, 0.5]), card)
@@ -67,7 +67,7 @@ def main():
             "sigma_s": 3.0,
             "g": 0.4,
             "density": {"file": "smoke.vol", "bounds": [[0.5, 0.0, -1.0], [1.7, 1.5, 0.2]]},
-            "temperature": {"file": "smoke.vol", "scale": 4000.0, "bounds": [[0.5, 0.0, -1.0], [1.7, 1.5, 0.2]]},
+            "temperature": {"file": "smoke.vol", "scale": 3600.0, "bounds": [[0.5, 0.0, -1.0], [1.7, 1.5, 0.2]]},
         }}},
     )
     doc.mesh("plume box", box((0.49, 0.001, -1.01), (1.71, 1.51, 0.21)), plume)
@@ -76,7 +76,7 @@ def main():
         "beam",
         (-2.6, 0.4, -0.35),
         (1.0, 0.0, 0.0),
-        {"type": "spot", "intensity": 15.0, "spot": {"innerConeAngle": 0.06, "outerConeAngle": 0.1},
+        {"type": "spot", "intensity": 10.0, "spot": {"innerConeAngle": 0.1, "outerConeAngle": 0.13},
          "extensions": {"PRISM_spectral": {"spectrum": "blackbody:5500", "units": "radiometric"}}},
     )
     doc.root_extension["environment"] = {"spectrum": "daylight:6500", "scale": 0.00002}
