@@ -453,3 +453,62 @@ fn hot_slab_glows_as_a_grey_body() {
         );
     }
 }
+
+/// A fluorescent furnace: a dye of quantum yield 1 whose absorption is C e(l) / l (e its
+/// re-emission spectrum) re-emits at every wavelength exactly what it absorbs there when
+/// lit by radiance 1 at every wavelength (in-scattering C e(l_o) / l_o integral of e = its
+/// absorption), so a sphere of it in a uniform environment of 1 is invisible. The path
+/// changes wavelength at every re-emission, and the balance of the two terms only holds
+/// if the dye's events, weights and wavelengths are all right.
+#[test]
+fn fluorescent_furnace_returns_the_environment() {
+    let emission = |nm: f64| (-0.5 * ((nm - 520.0) / 34.0).powi(2)).exp();
+    let nodes: Vec<f64> = (300..=830).step_by(2).map(f64::from).collect();
+    let absorption: Vec<f64> = nodes.iter().map(|&nm| 1500.0 * emission(nm) / nm).collect();
+    let table = |values: Vec<f64>| {
+        SceneSpectrum::Table(std::sync::Arc::new(
+            PiecewiseLinear::new(nodes.clone(), values, Extrapolation::Zero).unwrap(),
+        ))
+    };
+    let reemission: Vec<f64> = nodes.iter().map(|&nm| emission(nm)).collect();
+    let dye = prism_scene::medium::Fluorescence::new(
+        table(absorption),
+        &table(reemission),
+        1.0,
+        prism_sampling::wavelength::WavelengthRange::new(300.0, 830.0).unwrap(),
+        265,
+    )
+    .unwrap();
+    // The dye alone, and with a scattering of albedo 1 that varies with wavelength.
+    for (what, sigma_s) in [
+        ("dye", SceneSpectrum::Constant(0.0)),
+        ("dye and scattering", linear(0.5, 2.0)),
+    ] {
+        let medium = Medium::new(
+            SceneSpectrum::Constant(0.0),
+            sigma_s,
+            Phase::henyey_greenstein(0.5).unwrap(),
+            None,
+        )
+        .unwrap()
+        .with_fluorescence(dye.clone());
+        let sphere = icosphere(3);
+        let ids = vec![0; sphere.len()];
+        let mut scene = furnace(sphere, ids, vec![Material::Interface], 1.2);
+        scene
+            .set_media(Media::new(vec![medium], vec![Some(0)], None).unwrap())
+            .unwrap();
+        assert!(scene.features().fluorescence);
+        let bands = SpectralBands::new(440.0, 620.0, 6).unwrap();
+        let (film, stats) = render(&scene, &settings(12, 512, 4).bands(Some(bands))).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        for b in 0..bands.count() {
+            let (mean, error) = band_mean(&film, b);
+            assert!(
+                (mean - 1.0).abs() < 5.0 * error + 0.01,
+                "{what}, band {b} ({} nm): {mean} (+-{error})",
+                bands.center(b)
+            );
+        }
+    }
+}

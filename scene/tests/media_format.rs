@@ -74,6 +74,17 @@ fn media_load_into_the_scene() {
         "{}",
         grid.max_value()
     );
+    // A fluorescent dye makes the scene fluorescent (paths change wavelength).
+    let scene = load(
+        Some(
+            json!({"type": "interface", "medium": {"sigma_s": 0.5, "fluorescence": {
+            "absorption": {"spectrum": "gaussian:365:30", "scale": 20.0},
+            "reemission": "gaussian:520:40", "quantum_yield": 0.9}}}),
+        ),
+        None,
+    )
+    .unwrap();
+    assert!(scene.features().fluorescence && scene.media().all()[0].fluorescence().is_some());
     // A scene without media has none and runs the path tracer without them.
     let plain = load(None, None).unwrap();
     assert!(!plain.features().media && plain.media().is_empty());
@@ -135,6 +146,15 @@ fn bad_media_are_one_line_errors_naming_material_and_key() {
         (
             json!({"type": "interface", "medium": {"sigma_s": 1.0, "temperature": {"file": "smoke.vol"}}}),
             &["white", "temperature"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"fluorescence": {"matrix": {"rows": [[0.1]]}}}}),
+            &["white", "fluorescence", "matrix"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"fluorescence": {"absorption": 1.0,
+            "reemission": "gaussian:520:40", "quantum_yield": 1.5}}}),
+            &["white", "fluorescence", "quantum"],
         ),
     ];
     for (description, words) in cases {

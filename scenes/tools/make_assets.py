@@ -206,10 +206,10 @@ def uses_unknown():
     a = Asset()
     m = a.material(
         pbrMetallicRoughness={"baseColorFactor": [0.8, 0.7, 0.2, 1.0], "metallicFactor": 0.0},
-        extensions={"KHR_materials_volume_scatter": {"multiscatterColor": [0.5, 0.5, 0.5]}, "VENDOR_made_up": {}},
+        extensions={"KHR_materials_sss": {"scatterDistance": 0.01}, "VENDOR_made_up": {}},
     )
     a.node(mesh=a.mesh([cube_primitive(a, m)]), rotation=[0.2, 0.3, 0.0, math.sqrt(1 - 0.13)])
-    a.doc["extensionsUsed"] = ["KHR_materials_volume_scatter", "VENDOR_made_up"]
+    a.doc["extensionsUsed"] = ["KHR_materials_sss", "VENDOR_made_up"]
     a.write("uses-unknown.gltf")
 
 

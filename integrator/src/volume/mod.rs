@@ -15,6 +15,7 @@
 //! Scenes without media never reach this module: the renderer runs the path tracer of
 //! `crate::path`, compiled without any of it.
 
+mod dye;
 mod light;
 mod ratios;
 mod segment;
@@ -29,6 +30,7 @@ use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::bsdf::TransportMode;
 use prism_scene::geometry::Ray;
+use prism_scene::medium::Phase;
 use prism_scene::world::{EmissionCache, Material};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -116,7 +118,7 @@ impl<'a> Tracer<'a> {
                 let emits = walk.depth < self.max_depth;
                 let medium = self.scene.media().get(m);
                 let origin = walk.ray.origin;
-                match fly(
+                let flight = fly(
                     medium,
                     origin,
                     direction,
@@ -125,31 +127,35 @@ impl<'a> Tracer<'a> {
                     &mut walk,
                     &mut ratios,
                     numbers,
-                ) {
+                );
+                let (p, phase) = match flight {
                     Flight::Ended => break,
-                    Flight::Scattered(p) => {
-                        if walk.depth >= self.max_depth {
-                            break;
-                        }
-                        interfaces = 0;
-                        rays += self.scatter_in_medium(
-                            p,
-                            direction,
-                            m,
-                            &media,
-                            stream,
-                            sample_base,
-                            &mut walk,
-                            &mut ratios,
-                            numbers,
-                            emission,
-                        );
-                        if !self.survives(&mut walk, &ratios, stream) {
-                            break;
-                        }
-                        continue;
+                    Flight::Through => (None, *medium.phase()),
+                    Flight::Scattered(p) => (Some(p), *medium.phase()),
+                    // A dye re-emits alike in every direction.
+                    Flight::Fluoresced(p) => (Some(p), Phase::HenyeyGreenstein { g: 0.0 }),
+                };
+                if let Some(p) = p {
+                    if walk.depth >= self.max_depth {
+                        break;
                     }
-                    Flight::Through => {}
+                    interfaces = 0;
+                    rays += self.scatter_in_medium(
+                        p,
+                        direction,
+                        phase,
+                        &media,
+                        stream,
+                        sample_base,
+                        &mut walk,
+                        &mut ratios,
+                        numbers,
+                        emission,
+                    );
+                    if !self.survives(&mut walk, &ratios, stream) {
+                        break;
+                    }
+                    continue;
                 }
             }
             let Some(hit) = hit else {
@@ -249,7 +255,7 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Scatters the path at particle `p` of medium `m` (it arrived along unit `incoming`,
+    /// Scatters the path at particle `p` by `phase` (it arrived along unit `incoming`,
     /// inside `media`): next-event estimation, then a direction drawn from the phase
     /// function. Returns the rays traced.
     #[allow(clippy::too_many_arguments)]
@@ -257,7 +263,7 @@ impl<'a> Tracer<'a> {
         &self,
         p: glam::Vec3,
         incoming: glam::Vec3,
-        m: u32,
+        phase: Phase,
         media: &MediumStack,
         stream: &mut SobolStream,
         sample_base: u64,
@@ -266,7 +272,6 @@ impl<'a> Tracer<'a> {
         numbers: &mut FlightNumbers,
         emission: &mut EmissionCache<N>,
     ) -> u64 {
-        let phase = *self.scene.media().get(m).phase();
         stream.set_dimension(sample_base + u64::from(walk.depth) * DIMENSIONS_PER_BOUNCE);
         let u_light = stream.next_2d();
         let u_phase = stream.next_2d();

@@ -25,6 +25,9 @@ pub(crate) enum Flight {
     Through,
     /// The path scattered at this point.
     Scattered(Vec3),
+    /// The path's light was re-emitted at this point by a fluorescent dye (which emits
+    /// alike in every direction): it goes on at the incident wavelengths it drew.
+    Fluoresced(Vec3),
     /// The path was absorbed, or no lane has weight left.
     Ended,
 }
@@ -94,41 +97,17 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
                 let le = c.point.emission * c.t_maj / hero_density * weight;
                 walk.beta.add_emitted(&mut walk.radiance, &le, 1.0);
             }
-            let (a, s) = (c.point.sigma_a[0], c.point.sigma_s[0]);
-            let n = (c.sigma_maj[0] - a - s).max(0.0);
-            // u over the hero's majorant: [0, a) absorbs, [a, a + s) scatters, the rest
-            // is null. Where rounding leaves no null coefficient, what would be null is
-            // the real collision it is.
-            let u = kinds.next_1d() * c.sigma_maj[0];
-            if u < a || (n <= 0.0 && s <= 0.0) {
-                flight = Flight::Ended;
-                return false;
-            }
-            if u < a + s || n <= 0.0 {
-                let factor = c.t_maj * c.point.sigma_s / (c.t_maj[0] * s);
-                walk.beta.scale(factor);
-                ratios.r_u *= factor;
-                flight = if alive(walk, ratios) {
-                    Flight::Scattered(c.p)
-                } else {
-                    Flight::Ended
-                };
-                return false;
-            }
-            // Both ratios are over the density the hero actually sampled this null
-            // collision with, T_maj[0] sigma_n[0]; light sampling would have crossed it by
-            // ratio tracking, with density T_maj sigma_maj per lane.
-            let sigma_n = null_coefficient(c);
-            let pdf = c.t_maj[0] * n;
-            let factor = c.t_maj * sigma_n / pdf;
-            walk.beta.scale(factor);
-            ratios.r_u *= factor;
-            ratios.r_l *= c.t_maj * c.sigma_maj / pdf;
-            if alive(walk, ratios) {
-                true
-            } else {
-                flight = Flight::Ended;
-                false
+            let u = kinds.next_1d();
+            let decided = match medium.fluorescence() {
+                None => collide(c, u, walk, ratios),
+                Some(dye) => super::dye::collide(c, u, &mut || kinds.next_1d(), dye, walk, ratios),
+            };
+            match decided {
+                Some(end) => {
+                    flight = end;
+                    false
+                }
+                None => true,
             }
         },
     );
@@ -147,10 +126,56 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     flight
 }
 
+/// A tentative collision decided by the hero's probabilities (the analog scheme of
+/// pbrt-v4's VolPath): `u` over the majorant, [0, a) absorbs, [a, a + s) scatters, the
+/// rest is null. None: the path goes straight on; else how its flight ends. Where rounding
+/// leaves no null coefficient, what would be null is the real collision it is.
+#[inline]
+fn collide<const N: usize, T: Throughput<N>>(
+    c: &Collision<N>,
+    u: f32,
+    walk: &mut Walk<N, T>,
+    ratios: &mut Ratios<N>,
+) -> Option<Flight> {
+    let (a, s) = (c.point.sigma_a[0], c.point.sigma_s[0]);
+    let n = (c.sigma_maj[0] - a - s).max(0.0);
+    let u = u * c.sigma_maj[0];
+    if u < a || (n <= 0.0 && s <= 0.0) {
+        return Some(Flight::Ended);
+    }
+    if u < a + s || n <= 0.0 {
+        let factor = c.t_maj * c.point.sigma_s / (c.t_maj[0] * s);
+        walk.beta.scale(factor);
+        ratios.r_u *= factor;
+        return Some(if alive(walk, ratios) {
+            Flight::Scattered(c.p)
+        } else {
+            Flight::Ended
+        });
+    }
+    // Both ratios are over the density the hero actually sampled this null collision
+    // with, T_maj[0] sigma_n[0]; light sampling would have crossed it by ratio tracking,
+    // with density T_maj sigma_maj per lane.
+    let sigma_n = null_coefficient(c);
+    let pdf = c.t_maj[0] * n;
+    let factor = c.t_maj * sigma_n / pdf;
+    walk.beta.scale(factor);
+    ratios.r_u *= factor;
+    ratios.r_l *= c.t_maj * c.sigma_maj / pdf;
+    if alive(walk, ratios) {
+        None
+    } else {
+        Some(Flight::Ended)
+    }
+}
+
 /// Whether a path still carries light: some throughput, and some lane whose
 /// unidirectional strategy could have made it.
 #[inline]
-fn alive<const N: usize, T: Throughput<N>>(walk: &Walk<N, T>, ratios: &Ratios<N>) -> bool {
+pub(crate) fn alive<const N: usize, T: Throughput<N>>(
+    walk: &Walk<N, T>,
+    ratios: &Ratios<N>,
+) -> bool {
     let beta = walk.beta.max_value();
     beta > 0.0 && beta.is_finite() && ratios.r_u.max_value() > 0.0
 }

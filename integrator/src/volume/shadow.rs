@@ -10,6 +10,7 @@ use prism_scene::geometry::Ray;
 use prism_scene::medium::track::sample_majorant;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
+use super::dye::straight_density;
 use super::ratios::Ratios;
 use super::segment::{FlightNumbers, null_coefficient};
 use super::stack::MediumStack;
@@ -54,6 +55,7 @@ impl Tracer<'_> {
             }
             if let Some(m) = media.current() {
                 let medium = self.scene.media().get(m);
+                let dyed = medium.fluorescence().is_some();
                 let length = hit.as_ref().map_or(ray.t_max, |h| h.t);
                 let u = numbers.distances.next_1d();
                 let FlightNumbers { distances, kinds } = numbers;
@@ -68,7 +70,10 @@ impl Tracer<'_> {
                         let hero_density = c.t_maj[0] * c.sigma_maj[0];
                         transmittance *= c.t_maj * sigma_n / hero_density;
                         ratios.r_l *= c.t_maj * c.sigma_maj / hero_density;
-                        ratios.r_u *= c.t_maj * sigma_n / hero_density;
+                        // Unidirectional sampling would have gone straight on here: with
+                        // density T_maj sigma_n, or its share under a dye (`dye`).
+                        let straight = if dyed { straight_density(c) } else { sigma_n };
+                        ratios.r_u *= c.t_maj * straight / hero_density;
                         let estimate =
                             (transmittance / (ratios.r_l + ratios.r_u).average()).max_value();
                         if estimate < ROULETTE_BELOW {

@@ -14,11 +14,13 @@
 //! formulation of Miller, Georgiev and Jarosz (SIGGRAPH 2019), which the integrator's
 //! volumetric path tracer builds on.
 
+mod fluorescence;
 mod grid;
 mod phase;
 pub mod track;
 mod vol;
 
+pub use fluorescence::Fluorescence;
 pub use grid::{Grid, Span};
 pub use phase::{MAX_ABS_G, Phase, PhaseSample};
 pub use vol::{read_vol, write_vol};
@@ -40,6 +42,9 @@ pub struct Medium {
     /// The density that scales sigma_a, sigma_s and the emission at each point (None:
     /// 1 everywhere).
     density: Option<Arc<Grid>>,
+    /// A fluorescent dye: its absorption joins sigma_a, and what it absorbs it re-emits at
+    /// longer wavelengths (None: no dye).
+    fluorescence: Option<Arc<Fluorescence>>,
     /// Temperatures in kelvin: where the medium absorbs, it also emits as a black body
     /// at the local temperature (Kirchhoff's law: sigma_a B_lambda(T)), a flame.
     temperature: Option<Arc<Grid>>,
@@ -58,6 +63,10 @@ pub struct MediumPoint<const N: usize> {
     pub sigma_s: SampledSpectrum<N>,
     /// Emission coefficient per lane (radiance per unit length), 0 where none.
     pub emission: SampledSpectrum<N>,
+    /// Fluorescent in-scattering per lane: what light of every other wavelength adds to
+    /// the lane's per unit length and unit radiance (0 without a dye). It does not
+    /// attenuate: the dye's absorption is part of `sigma_a`.
+    pub sigma_fo: SampledSpectrum<N>,
 }
 
 /// The least emissive floor: below it the collision estimator's variance is needlessly
@@ -101,7 +110,19 @@ impl Medium {
             emissive_floor,
             density: None,
             temperature: None,
+            fluorescence: None,
         })
+    }
+
+    /// The same medium with a fluorescent dye in it.
+    pub fn with_fluorescence(mut self, fluorescence: Fluorescence) -> Self {
+        self.fluorescence = Some(Arc::new(fluorescence));
+        self
+    }
+
+    /// The fluorescent dye, if any.
+    pub fn fluorescence(&self) -> Option<&Fluorescence> {
+        self.fluorescence.as_deref()
     }
 
     /// The same medium glowing where it absorbs as a black body at `temperature`'s
@@ -157,13 +178,20 @@ impl Medium {
     /// The coefficients at `wavelengths` where the density is 1 (everywhere in a
     /// homogeneous medium).
     pub fn at<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> MediumPoint<N> {
+        let mut sigma_a = self.sigma_a.at(wavelengths);
+        let mut sigma_fo = SampledSpectrum::splat(0.0);
+        if let Some(dye) = &self.fluorescence {
+            sigma_a += dye.absorption().at(wavelengths);
+            sigma_fo = SampledSpectrum::from_fn(|i| dye.in_scattering(wavelengths.lambda(i)));
+        }
         MediumPoint {
-            sigma_a: self.sigma_a.at(wavelengths),
+            sigma_a,
             sigma_s: self.sigma_s.at(wavelengths),
             emission: self
                 .emission
                 .as_ref()
                 .map_or(SampledSpectrum::splat(0.0), |e| e.at(wavelengths)),
+            sigma_fo,
         }
     }
 
@@ -183,6 +211,7 @@ impl Medium {
                     sigma_a: base.sigma_a * d,
                     sigma_s: base.sigma_s * d,
                     emission: base.emission * d,
+                    sigma_fo: base.sigma_fo * d,
                 }
             }
         };
@@ -209,7 +238,14 @@ impl Medium {
         base: &MediumPoint<N>,
         bound: f32,
     ) -> SampledSpectrum<N> {
+        // A dye's in-scattering does not attenuate, but tracking must stop where it adds
+        // light even where nothing absorbs or scatters: the majorant is at least it.
         let t = (base.sigma_a + base.sigma_s) * bound;
+        let t = if self.fluorescence.is_some() {
+            SampledSpectrum::from_fn(|i| t[i].max(base.sigma_fo[i] * bound))
+        } else {
+            t
+        };
         if self.emission.is_some() {
             let floor = self.emissive_floor * bound;
             t.map(|s| s.max(floor))

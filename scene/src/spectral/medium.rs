@@ -5,7 +5,9 @@
 use serde_json::Value;
 
 use super::value::{Context, Role, number, only_keys, spectrum};
-use crate::medium::{Grid, Medium, Phase, read_vol};
+use prism_sampling::wavelength::WavelengthRange;
+
+use crate::medium::{Fluorescence, Grid, Medium, Phase, read_vol};
 
 /// The keys a medium may have.
 const KEYS: &[&str] = &[
@@ -16,10 +18,8 @@ const KEYS: &[&str] = &[
     "emission",
     "density",
     "temperature",
+    "fluorescence",
 ];
-
-/// Keys of media prism does not render yet, each with what to do instead.
-const NOT_YET: &[(&str, &str)] = &[("fluorescence", "fluorescent media are not supported yet")];
 
 /// Parses `{"sigma_a": S, "sigma_s": S, "g": G | "phase": "rayleigh" |
 /// "henyey-greenstein", "emission": S}`: coefficients per unit of scene length (m^-1 in a
@@ -29,11 +29,6 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
     let map = value
         .as_object()
         .ok_or("a medium must be an object {\"sigma_a\": .., \"sigma_s\": .., \"g\": ..}")?;
-    for (key, why) in NOT_YET {
-        if map.contains_key(*key) {
-            return Err(format!("'{key}': {why}"));
-        }
-    }
     only_keys(map, KEYS)?;
     let coefficient = |key: &str| match map.get(key) {
         None => Ok(crate::world::SceneSpectrum::Constant(0.0)),
@@ -41,9 +36,11 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
     };
     let sigma_a = coefficient("sigma_a")?;
     let sigma_s = coefficient("sigma_s")?;
-    if !map.contains_key("sigma_a") && !map.contains_key("sigma_s") && !map.contains_key("emission")
+    if !["sigma_a", "sigma_s", "emission", "fluorescence"]
+        .iter()
+        .any(|k| map.contains_key(*k))
     {
-        return Err("a medium needs 'sigma_a', 'sigma_s' or 'emission'".into());
+        return Err("a medium needs 'sigma_a', 'sigma_s', 'emission' or 'fluorescence'".into());
     }
     let phase = match (map.get("phase"), map.get("g")) {
         (Some(_), Some(_)) if map.get("phase").and_then(Value::as_str) == Some("rayleigh") => {
@@ -74,7 +71,61 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
         }
         medium = medium.with_temperature(grid(t, cx).map_err(|e| format!("temperature: {e}"))?);
     }
+    if let Some(f) = map.get("fluorescence") {
+        medium = medium.with_fluorescence(dye(f, cx).map_err(|e| format!("fluorescence: {e}"))?);
+    }
     Ok(medium)
+}
+
+/// Parses a dye, `{"absorption": S, "reemission": S, "quantum_yield": Q, "range": [A, B],
+/// "bins": N}`: the fluorescent material's keys, with `absorption` a coefficient per unit
+/// length (any value >= 0) rather than a fraction.
+fn dye(value: &Value, cx: &Context) -> Result<Fluorescence, String> {
+    let map = value.as_object().ok_or(
+        "must be an object {\"absorption\": .., \"reemission\": .., \"quantum_yield\": ..}",
+    )?;
+    if map.contains_key("matrix") {
+        return Err("a medium's dye is 'absorption', 'reemission' and 'quantum_yield' ('matrix' is a surface's)".into());
+    }
+    only_keys(
+        map,
+        &["absorption", "reemission", "quantum_yield", "range", "bins"],
+    )?;
+    let absorption = spectrum(
+        map.get("absorption").ok_or("needs 'absorption'")?,
+        Role::Plain,
+        cx,
+    )
+    .map_err(|e| format!("absorption: {e}"))?;
+    let reemission = spectrum(
+        map.get("reemission").ok_or("needs 'reemission'")?,
+        Role::Plain,
+        cx,
+    )
+    .map_err(|e| format!("reemission: {e}"))?;
+    let q = number(
+        map.get("quantum_yield").ok_or("needs 'quantum_yield'")?,
+        "quantum_yield",
+    )?;
+    let (lo, hi) = match map.get("range") {
+        None => super::material::FLUORESCENCE_RANGE_NM,
+        Some(r) => match r.as_array().map(Vec::as_slice) {
+            Some([a, b]) => (
+                number(a, "range start")? as f32,
+                number(b, "range end")? as f32,
+            ),
+            _ => return Err("range must be [start_nm, end_nm]".into()),
+        },
+    };
+    let range = WavelengthRange::new(lo, hi).map_err(|e| format!("range: {e}"))?;
+    let bins = match map.get("bins") {
+        None => ((hi - lo) / 2.0).ceil().max(1.0) as usize,
+        Some(b) => match b.as_u64() {
+            Some(n @ 1..=4096) => n as usize,
+            _ => return Err(format!("bins {b} must be a whole number in 1..=4096")),
+        },
+    };
+    Fluorescence::new(absorption, &reemission, q, range, bins)
 }
 
 /// Parses `{"file": "smoke.vol", "grid": NAME, "scale": S, "bounds": [[x, y, z],

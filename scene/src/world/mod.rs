@@ -383,6 +383,8 @@ impl Scene {
             }
         }
         self.features.media = !media.is_empty() || self.materials.iter().any(Material::interface);
+        // A dye changes wavelengths as a fluorescent surface does.
+        self.features.fluorescence |= media.all().iter().any(|m| m.fluorescence().is_some());
         self.media = media;
         Ok(())
     }
