@@ -2,9 +2,9 @@
 //!
 //! A path through media is sampled by its hero wavelength's majorant and collision
 //! probabilities. Its density had another lane been the hero differs wherever the medium's
-//! coefficients differ across the package, so each lane k keeps r_u[k] = q_k / q_0, the
+//! coefficients differ across the package, so each lane k keeps `r_u[k]` = q_k / q_0, the
 //! density of the path sampled unidirectionally with lane k as hero over its density with
-//! the actual hero, and r_l[k], the same for the path's end sampled by next-event
+//! the actual hero, and `r_l[k]`, the same for the path's end sampled by next-event
 //! estimation (light sampling, then ratio tracking), over q_0 as well. These are the r_u /
 //! r_l of pbrt-v4's `VolPathIntegrator` (*PBR* 4th ed. §14.2.3, after Miller, Georgiev and
 //! Jarosz 2019, §5). The balance heuristic over every lane as hero and both strategies then

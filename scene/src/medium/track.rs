@@ -2,7 +2,7 @@
 //! "A null-scattering path integral formulation of light transport", SIGGRAPH 2019, §3-4;
 //! the sampling routine is pbrt-v4's `SampleT_maj`, *PBR* 4th ed. §14.2.1).
 //!
-//! Free-flight distances are drawn by the hero lane's majorant sigma_maj[0]. At every
+//! Free-flight distances are drawn by the hero lane's majorant `sigma_maj[0]`. At every
 //! tentative collision the caller is told the point's coefficients, the majorant per lane
 //! and T_maj, the majorant transmittance per lane since the previous collision; the caller
 //! decides what the collision is (absorption, scattering, or a null collision) and whether
