@@ -512,3 +512,61 @@ fn fluorescent_furnace_returns_the_environment() {
         }
     }
 }
+
+/// A dye lit by an ultraviolet lamp: the lamp, with almost no power in the visible, is
+/// found by light sampling after the path takes the dye's incident wavelengths, and the
+/// dye glows green where nothing else could. Its radiance agrees whether a red lamp it does
+/// not absorb competes in the choice of lights or not.
+#[test]
+fn dye_glows_under_an_ultraviolet_lamp() {
+    let dye = || {
+        prism_scene::medium::Fluorescence::new(
+            SceneSpectrum::Gaussian(
+                prism_spectrum::spectra::Gaussian::new(370.0, 40.0, 20.0).unwrap(),
+            ),
+            &prism_spectrum::spectra::Gaussian::new(520.0, 35.0, 1.0).unwrap(),
+            0.9,
+            prism_sampling::wavelength::WavelengthRange::new(300.0, 830.0).unwrap(),
+            265,
+        )
+        .unwrap()
+    };
+    let mut means = vec![];
+    for with_white_light in [false, true] {
+        let medium = Medium::new(
+            SceneSpectrum::Constant(0.0),
+            SceneSpectrum::Constant(0.0),
+            Phase::henyey_greenstein(0.0).unwrap(),
+            None,
+        )
+        .unwrap()
+        .with_fluorescence(dye());
+        let mut lights = vec![Light::Point {
+            position: Vec3::new(0.0, 0.0, 0.6),
+            intensity: SceneSpectrum::Gaussian(
+                prism_spectrum::spectra::Gaussian::new(365.0, 10.0, 5.0).unwrap(),
+            ),
+        }];
+        if with_white_light {
+            // A red lamp the dye does not absorb, competing in the choice of lights.
+            lights.push(Light::Point {
+                position: Vec3::new(0.0, 0.0, 5.0),
+                intensity: SceneSpectrum::Gaussian(
+                    prism_spectrum::spectra::Gaussian::new(700.0, 30.0, 2.0).unwrap(),
+                ),
+            });
+        }
+        let scene = slab_scene(0.0, lights, medium, 0.3);
+        let bands = SpectralBands::new(490.0, 550.0, 1).unwrap();
+        let (film, stats) = render(&scene, &settings(8, 4096, 4).bands(Some(bands))).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        // The glow falls off away from the lamp, so the pixels' spread is no error bar:
+        // the image's mean, in a band the lamp does not emit in.
+        let (mean, _) = band_mean(&film, 0);
+        eprintln!("dye glow, competing red lamp {with_white_light}: {mean}");
+        means.push(mean);
+    }
+    let (a, b) = (means[0], means[1]);
+    assert!(a > 0.05, "no glow: {a}");
+    assert!((a - b).abs() < 0.03 * a, "{a} vs {b}");
+}

@@ -82,18 +82,19 @@ pub(crate) fn collide<const N: usize, T: Throughput<N>>(
             }
         }
         Flight::Fluoresced(_) => {
-            // Each lane goes on at an incident wavelength drawn from the dye's kernel
-            // exactly (K / pdf = sigma_fo, already in the weight).
+            // Each lane goes on at an incident wavelength drawn from the dye's kernel or
+            // where the lights shine (sigma_fo is in the weight already; the draw's own
+            // weight K / (pdf sigma_fo) is 1 from the kernel alone).
             let u_lambda = f64::from(next_u());
             let mut incident = *walk.transport.lambdas();
-            let mut lost = SampledSpectrum::splat(1.0);
+            let mut weights = SampledSpectrum::splat(0.0);
             for (j, lambda) in incident.iter_mut().enumerate() {
-                match dye.sample_incident(*lambda, u_lambda) {
-                    Some(l) => *lambda = l,
-                    None => lost[j] = 0.0,
+                if let Some((l, w)) = dye.sample_incident(*lambda, u_lambda) {
+                    *lambda = l;
+                    weights[j] = w;
                 }
             }
-            walk.beta.scale(lost);
+            walk.beta.scale(weights);
             match SampledWavelengths::new(incident, *walk.transport.pdfs()) {
                 Ok(w) if alive(walk, ratios) => {
                     walk.transport = w;

@@ -12,6 +12,7 @@
 //! K's column (A. Wilkie et al.'s and ART's fluorescent media; neither pbrt-v4 nor Mitsuba
 //! 3 has them).
 
+use prism_sampling::distribution::PiecewiseConstant1D;
 use prism_sampling::wavelength::{ReradiationSampler, WavelengthRange};
 use prism_spectrum::Spectrum;
 
@@ -26,6 +27,11 @@ pub struct Fluorescence {
     kernel: ReradiationSampler,
     /// The factor that makes `kernel` K (the largest absorption coefficient).
     scale: f64,
+    /// Where the scene's lights put their light, times what the dye re-emits of it, per
+    /// incident wavelength: the second strategy for incident wavelengths, as at
+    /// fluorescent surfaces (None until the scene sets it, or where the lights miss the
+    /// dye's absorption).
+    guide: Option<PiecewiseConstant1D>,
 }
 
 impl Fluorescence {
@@ -68,6 +74,7 @@ impl Fluorescence {
             absorption,
             kernel,
             scale,
+            guide: None,
         })
     }
 
@@ -88,11 +95,40 @@ impl Fluorescence {
         (self.scale * self.kernel.incident_integral(lambda_out)) as f32
     }
 
-    /// An incident wavelength for light leaving at `lambda_out`, drawn from K's column with
-    /// `u` (exactly: K / pdf is sigma_fo(`lambda_out`)); None where nothing re-emits there.
+    /// What the dye re-emits, at every wavelength, of light absorbed at `lambda_in`, per
+    /// unit of the largest absorption coefficient (a guide's weight).
+    pub fn reemitted_fraction(&self, lambda_in: f32) -> f64 {
+        self.kernel.outgoing_integral(lambda_in)
+    }
+
+    /// Sets where the scene's light is for the dye (see [`Fluorescence::sample_incident`]).
+    pub fn set_guide(&mut self, guide: Option<PiecewiseConstant1D>) {
+        self.guide = guide;
+    }
+
+    /// An incident wavelength for light leaving at `lambda_out`, drawn with `u`, and its
+    /// weight K / (pdf sigma_fo(`lambda_out`)): from K's column (weight 1), or where the
+    /// lights shine, by one-sample MIS between the column and the guide with the balance
+    /// heuristic. None where nothing re-emits at `lambda_out`.
     #[inline]
-    pub fn sample_incident(&self, lambda_out: f32, u: f64) -> Option<f32> {
-        self.kernel.sample_incident(lambda_out, u).map(|s| s.lambda)
+    pub fn sample_incident(&self, lambda_out: f32, u: f64) -> Option<(f32, f32)> {
+        let Some(guide) = &self.guide else {
+            return self
+                .kernel
+                .sample_incident(lambda_out, u)
+                .map(|s| (s.lambda, 1.0));
+        };
+        let lambda = if u < 0.5 {
+            self.kernel.sample_incident(lambda_out, 2.0 * u)?.lambda
+        } else {
+            if self.kernel.incident_integral(lambda_out) <= 0.0 {
+                return None;
+            }
+            guide.sample(2.0 * u - 1.0).value as f32
+        };
+        let p_column = self.kernel.pdf_incident(lambda, lambda_out);
+        let p = 0.5 * p_column + 0.5 * guide.pdf(f64::from(lambda)) as f32;
+        Some((lambda, if p > 0.0 { p_column / p } else { 0.0 }))
     }
 }
 

@@ -125,6 +125,11 @@ impl Medium {
         self.fluorescence.as_deref()
     }
 
+    /// The fluorescent dye, to change (the scene sets its guide).
+    pub(crate) fn fluorescence_mut(&mut self) -> Option<&mut Fluorescence> {
+        self.fluorescence.as_mut().map(Arc::make_mut)
+    }
+
     /// The same medium glowing where it absorbs as a black body at `temperature`'s
     /// field (kelvin): emission sigma_a(lambda, p) B_lambda(T(p)) in W m^-2 sr^-1 nm^-1
     /// per unit length, added to any `emission` it has. Flames and explosions.
@@ -302,6 +307,11 @@ impl Media {
     /// The media.
     pub fn all(&self) -> &[Medium] {
         &self.media
+    }
+
+    /// The media, to change.
+    pub(crate) fn all_mut(&mut self) -> &mut [Medium] {
+        &mut self.media
     }
 
     /// Medium `i`.

@@ -29,22 +29,36 @@ pub(crate) fn light_wavelengths(
             let Material::Fluorescent { reradiation, .. } = m else {
                 return None;
             };
-            let (lo, hi) = reradiation.range_nm();
-            let (lo, hi) = (f64::from(lo).floor(), f64::from(hi).ceil());
-            let bins = (hi - lo).max(1.0) as usize;
-            let values: Vec<f64> = (0..bins)
-                .map(|k| {
-                    let nm = lo + k as f64 + 0.5;
-                    let flux: f64 = lights
-                        .iter()
-                        .zip(extents)
-                        .map(|(l, &e)| e * light_spectrum(l, emission).evaluate(nm).max(0.0))
-                        .filter(|f| f.is_finite())
-                        .sum();
-                    flux * reradiation.outgoing_integral(nm as f32)
-                })
-                .collect();
-            PiecewiseConstant1D::new(&values, lo, hi).ok()
+            guide(reradiation.range_nm(), lights, extents, emission, |nm| {
+                reradiation.outgoing_integral(nm)
+            })
         })
         .collect()
+}
+
+/// The density, at 1 nm over `range`, of the lights' spectral flux (each light's spectrum
+/// times its extent) times `reradiated`: what a re-radiating surface or dye re-emits of
+/// each incident wavelength. None where the product is zero everywhere.
+pub(crate) fn guide(
+    range: (f32, f32),
+    lights: &[Light],
+    extents: &[f64],
+    emission: &[SceneSpectrum],
+    reradiated: impl Fn(f32) -> f64,
+) -> Option<PiecewiseConstant1D> {
+    let (lo, hi) = (f64::from(range.0).floor(), f64::from(range.1).ceil());
+    let bins = (hi - lo).max(1.0) as usize;
+    let values: Vec<f64> = (0..bins)
+        .map(|k| {
+            let nm = lo + k as f64 + 0.5;
+            let flux: f64 = lights
+                .iter()
+                .zip(extents)
+                .map(|(l, &e)| e * light_spectrum(l, emission).evaluate(nm).max(0.0))
+                .filter(|f| f.is_finite())
+                .sum();
+            flux * reradiated(nm as f32)
+        })
+        .collect();
+    PiecewiseConstant1D::new(&values, lo, hi).ok()
 }

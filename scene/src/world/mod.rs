@@ -323,31 +323,29 @@ impl Scene {
         // Lights are chosen by their power where the scene can see it: the visible
         // range, widened to the fluorescent materials' range (ultraviolet light shows
         // only through them).
-        let power_range = materials
-            .iter()
-            .filter_map(|m| match m {
-                Material::Fluorescent { reradiation, .. } => Some(reradiation.range_nm()),
-                _ => None,
-            })
-            .fold((360.0f64, 830.0f64), |(lo, hi), (a, b)| {
-                (lo.min(f64::from(a)), hi.max(f64::from(b)))
-            });
-        let extent: Vec<f64> = lights
-            .iter()
-            .map(|l| {
-                light::light_extent(l, &triangles, radius)
-                    * light::texture_coverage(l, &attributes, &emission)
-            })
-            .collect();
-        let power: Vec<f64> = lights
-            .iter()
-            .zip(&extent)
-            .map(|(l, x)| {
-                x * light::light_spectrum(l, &emission).mean_over(power_range.0, power_range.1)
-            })
-            .collect();
-        let light_wavelengths = guide::light_wavelengths(&materials, &lights, &extent, &emission);
-        let lights = Lights::new(lights, &power, &extent, &emission, &triangles, &attributes);
+        let fluorescent_ranges = materials.iter().filter_map(|m| match m {
+            Material::Fluorescent { reradiation, .. } => Some(reradiation.range_nm()),
+            _ => None,
+        });
+        let light_wavelengths = guide::light_wavelengths(
+            &materials,
+            &lights,
+            &{
+                lights
+                    .iter()
+                    .map(|l| light_extent_of(l, &triangles, &attributes, &emission, radius))
+                    .collect::<Vec<_>>()
+            },
+            &emission,
+        );
+        let lights = choose_lights(
+            lights,
+            fluorescent_ranges,
+            &triangles,
+            &attributes,
+            &emission,
+            radius,
+        );
         Ok(Self {
             bvh,
             normals: triangles.iter().map(|&t| triangle_normal(t)).collect(),
@@ -374,7 +372,7 @@ impl Scene {
     /// Fills the scene's volumes: `media` says which material holds which medium inside
     /// and which fills the world. A medium inside a material that cannot hold one (an
     /// opaque surface light cannot enter) is an error naming the material.
-    pub fn set_media(&mut self, media: crate::medium::Media) -> Result<(), crate::LoadError> {
+    pub fn set_media(&mut self, mut media: crate::medium::Media) -> Result<(), crate::LoadError> {
         for (m, material) in self.materials.iter().enumerate() {
             if media.bounds_medium(m as u32) && !material.can_hold_medium() {
                 return Err(crate::LoadError::Scene(format!(
@@ -383,8 +381,53 @@ impl Scene {
             }
         }
         self.features.media = !media.is_empty() || self.materials.iter().any(Material::interface);
-        // A dye changes wavelengths as a fluorescent surface does.
-        self.features.fluorescence |= media.all().iter().any(|m| m.fluorescence().is_some());
+        // A dye changes wavelengths as a fluorescent surface does, and the lights are
+        // chosen by their power over its range too (a UV lamp lights it).
+        let dyes: Vec<(f32, f32)> = media
+            .all()
+            .iter()
+            .filter_map(|m| m.fluorescence().map(crate::medium::Fluorescence::range_nm))
+            .collect();
+        if !dyes.is_empty() {
+            self.features.fluorescence = true;
+            let ranges = self
+                .materials
+                .iter()
+                .filter_map(|m| match m {
+                    Material::Fluorescent { reradiation, .. } => Some(reradiation.range_nm()),
+                    _ => None,
+                })
+                .chain(dyes);
+            self.lights = choose_lights(
+                self.lights.all().to_vec(),
+                ranges,
+                &self.triangles,
+                &self.attributes,
+                &self.emission,
+                self.radius,
+            );
+            let lights = self.lights.all();
+            let extents: Vec<f64> = lights
+                .iter()
+                .map(|l| {
+                    light_extent_of(
+                        l,
+                        &self.triangles,
+                        &self.attributes,
+                        &self.emission,
+                        self.radius,
+                    )
+                })
+                .collect();
+            for medium in media.all_mut() {
+                if let Some(dye) = medium.fluorescence_mut() {
+                    let g = guide::guide(dye.range_nm(), lights, &extents, &self.emission, |nm| {
+                        dye.reemitted_fraction(nm)
+                    });
+                    dye.set_guide(g);
+                }
+            }
+        }
         self.media = media;
         Ok(())
     }
@@ -927,4 +970,45 @@ impl Scene {
     ) -> Option<LightSample<N>> {
         self.lights.sample(p, u, wavelengths, &self.emission, cache)
     }
+}
+
+/// A light's extent (the solid angle or area that scales its power) times how much of it
+/// its texture covers.
+fn light_extent_of(
+    light: &Light,
+    triangles: &[[Vec3; 3]],
+    attributes: &VertexAttributes,
+    emission: &[SceneSpectrum],
+    radius: f32,
+) -> f64 {
+    light::light_extent(light, triangles, radius)
+        * light::texture_coverage(light, attributes, emission)
+}
+
+/// The lights, chosen by their power over the visible range widened to every range in
+/// `fluorescent` (the fluorescent materials' and dyes': ultraviolet light shows only
+/// through them).
+fn choose_lights(
+    lights: Vec<Light>,
+    fluorescent: impl Iterator<Item = (f32, f32)>,
+    triangles: &[[Vec3; 3]],
+    attributes: &VertexAttributes,
+    emission: &[SceneSpectrum],
+    radius: f32,
+) -> Lights {
+    let power_range = fluorescent.fold((360.0f64, 830.0f64), |(lo, hi), (a, b)| {
+        (lo.min(f64::from(a)), hi.max(f64::from(b)))
+    });
+    let extent: Vec<f64> = lights
+        .iter()
+        .map(|l| light_extent_of(l, triangles, attributes, emission, radius))
+        .collect();
+    let power: Vec<f64> = lights
+        .iter()
+        .zip(&extent)
+        .map(|(l, x)| {
+            x * light::light_spectrum(l, emission).mean_over(power_range.0, power_range.1)
+        })
+        .collect();
+    Lights::new(lights, &power, &extent, emission, triangles, attributes)
 }
