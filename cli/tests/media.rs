@@ -63,14 +63,11 @@ fn unsupported_settings_for_media_are_one_line_errors() {
             .chain(extra.iter().copied())
             .collect()
     };
-    let polarized = with(&["--polarized"]);
     let splits = with(&["--splits", "2"]);
     let lanes = with(&["--tracer", "lanes"]);
-    assert_one_line_errors(&[
-        (&polarized, "polarized"),
-        (&splits, "splitting"),
-        (&lanes, "batch tracer"),
-    ]);
+    assert_one_line_errors(&[(&splits, "splitting"), (&lanes, "batch tracer")]);
+    // Polarized renders of media work (Rayleigh particles polarize).
+    prism_ok(&[&with(&["--polarized"])]);
 }
 
 /// A medium with glass in the scene: the caustics light paths would carry are missing,

@@ -15,8 +15,9 @@
 
 use glam::{Mat4, Vec3, Vec4};
 use prism_scene::geometry::Frame;
+use prism_scene::medium::Phase;
 use prism_scene::polarization::{
-    Interaction, Mueller, Stokes, interactions, polarizes, rotate_frame,
+    Interaction, Mueller, Stokes, interactions, phase_interaction, polarizes, rotate_frame,
 };
 use prism_scene::world::Bsdf;
 use prism_spectrum::SampledSpectrum;
@@ -124,6 +125,22 @@ pub(crate) trait Throughput<const N: usize>: Carried<N> + Sized {
         delta: bool,
         weight: f32,
     );
+    /// Continues the path, which arrived along unit `d`, at a medium's particle scattering
+    /// by `phase` towards world direction `wi`, each lane times `weight` over the phase
+    /// function (the direction's weight p / pdf is `weight`).
+    fn scatter_phase(&mut self, phase: &Phase, d: Vec3, wi: Vec3, weight: f32);
+    /// Adds light `light` (per lane, already weighed) arriving at a particle of `phase`
+    /// from world direction `wi` and scattered towards the path, which arrived along `d`;
+    /// `polarization` gives the light's Stokes vector and frame where it is polarized.
+    fn add_phase_scattered(
+        &self,
+        radiance: &mut Self::Radiance,
+        phase: &Phase,
+        d: Vec3,
+        wi: Vec3,
+        light: &SampledSpectrum<N>,
+        polarization: impl FnOnce() -> Option<(Stokes, Vec3)>,
+    );
 }
 
 impl<const N: usize> Carried<N> for SampledSpectrum<N> {
@@ -176,6 +193,22 @@ impl<const N: usize> Throughput<N> for SampledSpectrum<N> {
         weight: f32,
     ) {
         *self *= *f * weight;
+    }
+    #[inline]
+    fn scatter_phase(&mut self, _: &Phase, _: Vec3, _: Vec3, weight: f32) {
+        *self *= weight;
+    }
+    #[inline]
+    fn add_phase_scattered(
+        &self,
+        radiance: &mut Self::Radiance,
+        phase: &Phase,
+        d: Vec3,
+        wi: Vec3,
+        light: &SampledSpectrum<N>,
+        _: impl FnOnce() -> Option<(Stokes, Vec3)>,
+    ) {
+        *radiance += *self * *light * phase.eval(d, wi);
     }
 }
 
@@ -320,6 +353,55 @@ impl<const N: usize> Throughput<N> for Polarized<N> {
         let lanes = interactions(vertex.bsdf, vertex.wo, wi, f, delta);
         *self = self.compose(vertex, &lanes);
         self.scale_uniform(weight);
+    }
+    fn scatter_phase(&mut self, phase: &Phase, d: Vec3, wi: Vec3, weight: f32) {
+        match phase_interaction(phase, -wi, -d) {
+            None => {
+                // A depolarizer: T's first column, as at a diffuse surface.
+                for m in &mut self.mueller {
+                    *m = Mat4::from_cols(m.x_axis * weight, Vec4::ZERO, Vec4::ZERO, Vec4::ZERO);
+                }
+                self.basis = wi.any_orthonormal_vector();
+            }
+            Some((mueller, basis)) => {
+                // T R(basis -> T's basis, along the light leaving towards the camera) M,
+                // over p (what the direction's weight already holds): M / p per lane.
+                let p = mueller.rows()[0][0];
+                let turn = rotate_frame(-d, basis, self.basis).matrix();
+                let step = turn * mueller.matrix() * (weight / p);
+                for m in &mut self.mueller {
+                    *m *= step;
+                }
+                self.basis = basis;
+            }
+        }
+    }
+    fn add_phase_scattered(
+        &self,
+        radiance: &mut Self::Radiance,
+        phase: &Phase,
+        d: Vec3,
+        wi: Vec3,
+        light: &SampledSpectrum<N>,
+        polarization: impl FnOnce() -> Option<(Stokes, Vec3)>,
+    ) {
+        let Some((mueller, basis)) = phase_interaction(phase, -wi, -d) else {
+            let p = phase.eval(d, wi);
+            for (lane, m) in self.mueller.iter().enumerate() {
+                radiance.add(lane, m.x_axis * (light[lane] * p));
+            }
+            return;
+        };
+        let through = rotate_frame(-d, basis, self.basis).matrix() * mueller.matrix();
+        // The light's Stokes vector in the particle's frame (unpolarized: (1, 0, 0, 0)).
+        let arriving = match polarization() {
+            Some((stokes, light_basis)) => rotate_frame(-wi, light_basis, basis).apply(stokes).0,
+            None => Vec4::X,
+        };
+        let s = through * arriving;
+        for (lane, m) in self.mueller.iter().enumerate() {
+            radiance.add(lane, *m * s * light[lane]);
+        }
     }
 }
 

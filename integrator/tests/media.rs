@@ -343,7 +343,6 @@ fn media_refuse_what_they_do_not_support() {
     .unwrap();
     let scene = emitter_behind_slab(1.0, medium, 0.3);
     for (settings, word) in [
-        (settings(4, 1, 4).polarized(true), "polarized"),
         (
             settings(4, 1, 4).splits(prism_integrator::Splits::Fixed(2)),
             "splitting",
@@ -569,4 +568,80 @@ fn dye_glows_under_an_ultraviolet_lamp() {
     let (a, b) = (means[0], means[1]);
     assert!(a > 0.05, "no glow: {a}");
     assert!((a - b).abs() < 0.03 * a, "{a} vs {b}");
+}
+
+/// The image's mean Stokes vector (luminance channel).
+fn mean_stokes(film: &prism_integrator::Film) -> [f64; 4] {
+    let mut sum = [0.0; 4];
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            let s = film.stokes(x, y).expect("a polarized film");
+            for (acc, c) in sum.iter_mut().zip(s) {
+                *acc += c[1];
+            }
+        }
+    }
+    sum.map(|v| v / f64::from(film.width() * film.height()))
+}
+
+/// Polarized renders of media: a furnace of Rayleigh or Henyey-Greenstein scattering under
+/// an unpolarized uniform environment is invisible and unpolarized (the radiance field is
+/// isotropic, so nothing singles out a plane), as in unpolarized renders.
+#[test]
+fn polarized_furnace_stays_unpolarized() {
+    for phase in [Phase::Rayleigh, Phase::henyey_greenstein(0.6).unwrap()] {
+        let medium =
+            Medium::new(SceneSpectrum::Constant(0.0), linear(0.5, 3.0), phase, None).unwrap();
+        let sphere = icosphere(3);
+        let ids = vec![0; sphere.len()];
+        let mut scene = furnace(sphere, ids, vec![Material::Interface], 1.2);
+        scene
+            .set_media(Media::new(vec![medium], vec![Some(0)], None).unwrap())
+            .unwrap();
+        let (film, stats) = render(&scene, &settings(12, 64, 4).polarized(true)).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        assert_image_mean(&film, constant_xyz(1.0), &format!("polarized {phase:?}"));
+        let [s0, s1, s2, s3] = mean_stokes(&film);
+        for (k, s) in [s1, s2, s3].into_iter().enumerate() {
+            assert!(s.abs() < 0.01 * s0, "{phase:?}: S{} = {s} of {s0}", k + 1);
+        }
+    }
+}
+
+/// Single scattering of sunlight by Rayleigh particles, seen face on: every path scatters
+/// once at the same angle (140 degrees), so the light is linearly polarized by (1 - c^2) /
+/// (1 + c^2) (c = cos 140 degrees), perpendicular to the scattering plane (the image's
+/// columns here: S1 < 0 against its rows), as the blue sky is; with Henyey-Greenstein
+/// particles it stays unpolarized.
+#[test]
+fn rayleigh_single_scattering_polarizes_the_sky() {
+    let theta = 40f32.to_radians();
+    let c = -f64::from(theta.cos());
+    let expected = -(1.0 - c * c) / (1.0 + c * c);
+    for (phase, dolp) in [
+        (Phase::Rayleigh, expected),
+        (Phase::henyey_greenstein(0.3).unwrap(), 0.0),
+    ] {
+        let sun = Light::Directional {
+            direction: Vec3::new(theta.sin(), 0.0, -theta.cos()),
+            irradiance: SceneSpectrum::Constant(3.0),
+        };
+        let medium =
+            Medium::new(SceneSpectrum::Constant(0.2), linear(1.5, 0.3), phase, None).unwrap();
+        let scene = slab_scene(0.0, vec![sun], medium, 0.6);
+        let settings = settings(8, 64, 4).polarized(true).max_depth(Some(1));
+        let (film, stats) = render(&scene, &settings).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        let [s0, s1, s2, s3] = mean_stokes(&film);
+        assert!(s0 > 0.0);
+        assert!(
+            (s1 / s0 - dolp).abs() < 2e-3,
+            "{phase:?}: S1/S0 {} but {dolp}",
+            s1 / s0
+        );
+        assert!(
+            s2.abs() < 1e-3 * s0 && s3.abs() < 1e-3 * s0,
+            "{s2} {s3} of {s0}"
+        );
+    }
 }

@@ -7,6 +7,7 @@
 use glam::{Vec2, Vec3};
 use prism_sampling::distribution::positive_finite;
 use prism_scene::geometry::Ray;
+use prism_scene::medium::Phase;
 use prism_scene::world::{EmissionCache, Hit};
 use prism_spectrum::SampledSpectrum;
 
@@ -14,35 +15,47 @@ use super::ratios::{Ratios, spectral_weight};
 use super::segment::FlightNumbers;
 use super::stack::MediumStack;
 use crate::path::{Tracer, Walk};
-use crate::throughput::Throughput;
+use crate::throughput::{Arrival, Throughput, Vertex};
 
-/// Where a path scatters: on a surface, or at a particle of a medium.
+/// Where a path scatters: on a surface (its hit and BSDF vertex), or at a particle of a
+/// medium (where, its phase function, and the direction the path arrived along).
 #[derive(Clone, Copy)]
-pub(crate) enum Scatterer<'h> {
-    Surface(&'h Hit),
-    Particle(Vec3),
+pub(crate) enum Scatterer<'h, 'v, 'b, const N: usize> {
+    Surface(&'h Hit, &'h Vertex<'v, 'b, N>),
+    Particle(Vec3, Phase, Vec3),
 }
 
-/// What the scattering there does to light arriving along a world direction (towards the
-/// light): f times the cosine for a surface, p for a particle, and the density with which
-/// the path's own sampling would have chosen that direction.
-pub(crate) struct Scattering<N> {
-    pub f: N,
-    pub pdf: f32,
-}
-
-impl Scatterer<'_> {
+impl<const N: usize> Scatterer<'_, '_, '_, N> {
     /// The shadow ray towards unit `wi`, stopping just short of `distance`.
     fn shadow_ray(&self, wi: Vec3, distance: f32) -> Ray {
         match self {
-            Scatterer::Surface(hit) => hit.spawn_to(wi, distance),
-            Scatterer::Particle(p) => {
+            Scatterer::Surface(hit, _) => hit.spawn_to(wi, distance),
+            Scatterer::Particle(p, ..) => {
                 let t_max = if distance.is_finite() {
                     distance * (1.0 - 1e-4)
                 } else {
                     f32::INFINITY
                 };
                 Ray::new(*p, wi, t_max)
+            }
+        }
+    }
+
+    /// What the scattering does to light arriving from world direction `wi` (towards the
+    /// light): f times the cosine for a surface, p for a particle, and the density with
+    /// which the path's own sampling would have chosen that direction.
+    fn towards(&self, wi: Vec3) -> (SampledSpectrum<N>, f32) {
+        match self {
+            Scatterer::Surface(_, vertex) => {
+                let local = vertex.frame.to_local(wi);
+                (
+                    vertex.bsdf.f(vertex.wo, local) * local.z.abs(),
+                    vertex.bsdf.pdf(vertex.wo, local),
+                )
+            }
+            Scatterer::Particle(_, phase, d) => {
+                let p = phase.eval(*d, wi);
+                (SampledSpectrum::splat(p), p)
             }
         }
     }
@@ -114,15 +127,15 @@ impl Tracer<'_> {
     }
 
     /// Next-event estimation at `at` inside `media` (the media a ray leaving towards the
-    /// light starts in): a light sampled with `u_light`, `scattering` evaluated towards it,
-    /// the transmittance to it estimated by ratio tracking, and the light added with the
-    /// balance heuristic over lanes and strategies. Returns the rays traced.
+    /// light starts in): a light sampled with `u_light`, the scattering evaluated towards
+    /// it, the transmittance to it estimated by ratio tracking, and the light added with the
+    /// balance heuristic over lanes and strategies (through the surface's or the particle's
+    /// polarization in polarized renders). Returns the rays traced.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn volume_next_event<const N: usize, T: Throughput<N>>(
         &self,
-        at: Scatterer<'_>,
+        at: Scatterer<'_, '_, '_, N>,
         media: impl Fn(Vec3) -> MediumStack,
-        scattering: impl Fn(Vec3) -> Scattering<SampledSpectrum<N>>,
         u_light: Vec2,
         walk: &mut Walk<N, T>,
         ratios: &Ratios<N>,
@@ -130,11 +143,11 @@ impl Tracer<'_> {
         emission: &mut EmissionCache<N>,
     ) -> u64 {
         let light = match at {
-            Scatterer::Surface(hit) => {
+            Scatterer::Surface(hit, _) => {
                 self.scene
                     .sample_light(hit, u_light, &walk.transport, emission)
             }
-            Scatterer::Particle(p) => {
+            Scatterer::Particle(p, ..) => {
                 self.scene
                     .sample_light_at(p, u_light, &walk.transport, emission)
             }
@@ -145,7 +158,7 @@ impl Tracer<'_> {
         if let Some(times) = &walk.times {
             self.gate(Some(light.light), times, &mut light.radiance);
         }
-        let Scattering { f, pdf } = scattering(light.wi);
+        let (f, pdf) = at.towards(light.wi);
         if f.is_black() || light.radiance.is_black() || !positive_finite(light.pdf) {
             return 0;
         }
@@ -163,8 +176,33 @@ impl Tracer<'_> {
         } else {
             r_l + shadow.ratios.r_u * ratios.r_u * pdf
         };
-        let le = f * shadow.transmittance * light.radiance * spectral_weight(&walk.package, &r);
-        walk.beta.add_emitted(&mut walk.radiance, &le, 1.0);
+        let arriving = shadow.transmittance * light.radiance * spectral_weight(&walk.package, &r);
+        let polarization = || {
+            let p = self.scene.light_polarization(light.light)?;
+            Some(p.stokes(-light.wi))
+        };
+        match at {
+            Scatterer::Surface(_, vertex) => {
+                let arrival = Arrival {
+                    wi: vertex.frame.to_local(light.wi),
+                    f: &f,
+                    radiance: &arriving,
+                    weight: 1.0,
+                };
+                walk.beta
+                    .add_scattered(&mut walk.radiance, vertex, arrival, polarization);
+            }
+            Scatterer::Particle(_, phase, d) => {
+                walk.beta.add_phase_scattered(
+                    &mut walk.radiance,
+                    &phase,
+                    d,
+                    light.wi,
+                    &arriving,
+                    polarization,
+                );
+            }
+        }
         rays
     }
 }

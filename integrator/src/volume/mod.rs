@@ -32,14 +32,14 @@ use prism_scene::bsdf::TransportMode;
 use prism_scene::geometry::Ray;
 use prism_scene::medium::Phase;
 use prism_scene::world::{EmissionCache, Material};
-use prism_spectrum::{SampledSpectrum, SampledWavelengths};
+use prism_spectrum::SampledWavelengths;
 
 use crate::path::{DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk};
 use crate::path::{absorb, roulette, wavelengths};
 use crate::settings::{Reuse, Splits, Tracing};
 use crate::throughput::{Throughput, Vertex};
 use crate::{RenderError, RenderSettings};
-use light::{Scatterer, Scattering};
+use light::Scatterer;
 use ratios::{Ratios, spectral_weight};
 use segment::{Flight, fly};
 use stack::MediumStack;
@@ -53,9 +53,6 @@ pub(crate) fn check_settings(settings: &RenderSettings) -> Result<(), RenderErro
             "scenes with participating media cannot be rendered {why}"
         )))
     };
-    if settings.is_polarized() {
-        return refuse("polarized yet (render without --polarized)");
-    }
     if let Tracing::Lanes(_) = settings.tracing {
         return refuse("by the batch tracer (use --tracer paths)");
     }
@@ -213,15 +210,8 @@ impl<'a> Tracer<'a> {
             };
             if !bsdf.is_delta() {
                 rays += self.volume_next_event(
-                    Scatterer::Surface(&hit),
+                    Scatterer::Surface(&hit, &vertex),
                     |wi| media.after(self.scene, &hit, direction, wi),
-                    |wi| {
-                        let local = frame.to_local(wi);
-                        Scattering {
-                            f: bsdf.f(wo, local) * local.z.abs(),
-                            pdf: bsdf.pdf(wo, local),
-                        }
-                    },
                     u_light,
                     &mut walk,
                     &ratios,
@@ -276,23 +266,19 @@ impl<'a> Tracer<'a> {
         let u_light = stream.next_2d();
         let u_phase = stream.next_2d();
         let rays = self.volume_next_event(
-            Scatterer::Particle(p),
+            Scatterer::Particle(p, phase, incoming),
             |_| *media,
-            |wi| {
-                let p = phase.eval(incoming, wi);
-                Scattering {
-                    f: SampledSpectrum::splat(p),
-                    pdf: p,
-                }
-            },
             u_light,
             walk,
             ratios,
             numbers,
             emission,
         );
-        // Both phase functions are sampled exactly: p / pdf = 1 at every wavelength.
+        // Both phase functions are sampled exactly: p / pdf = 1 at every wavelength (and
+        // in polarized renders what remains is Rayleigh's Mueller matrix over p).
         let sample = phase.sample(incoming, u_phase);
+        walk.beta
+            .scatter_phase(&phase, incoming, sample.outgoing, sample.p / sample.pdf);
         ratios.r_l = ratios.r_u / sample.pdf;
         walk.previous = Some((sample.pdf, p));
         walk.ray = Ray::new(p, sample.outgoing, f32::INFINITY);

@@ -28,6 +28,7 @@ mod bsdf;
 mod fresnel;
 mod light;
 mod mueller;
+mod phase;
 mod stokes;
 mod surface;
 
@@ -35,5 +36,6 @@ pub use bsdf::{interactions, polarizes};
 pub use fresnel::{FresnelAmplitudes, fresnel_amplitudes};
 pub use light::LinearPolarization;
 pub use mueller::Mueller;
+pub use phase::phase_interaction;
 pub use stokes::{Stokes, rotate_frame};
 pub use surface::{Interaction, s_axis};
