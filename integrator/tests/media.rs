@@ -645,3 +645,36 @@ fn rayleigh_single_scattering_polarizes_the_sky() {
         );
     }
 }
+
+/// Media keep the scene's clock (`--at`): an emitter that shone from 0 to 1 s, seen
+/// through an absorbing slab, is there at 0.5 s (as in the steady state) and gone at 2 s.
+#[test]
+fn media_render_instants_of_the_clock() {
+    use prism_scene::world::{Schedule, Timeline};
+    let medium = || {
+        Medium::new(
+            SceneSpectrum::Constant(2.0),
+            SceneSpectrum::Constant(0.0),
+            Phase::henyey_greenstein(0.0).unwrap(),
+            None,
+        )
+        .unwrap()
+    };
+    let mut scene = emitter_behind_slab(1.0, medium(), 0.3);
+    let schedule = std::sync::Arc::new(Schedule::new(vec![(0.0, 1.0)]).unwrap());
+    scene
+        .set_timeline(Timeline::new(
+            2,
+            vec![(0, schedule.clone()), (1, schedule)],
+            vec![],
+        ))
+        .unwrap();
+    let steady = constant_xyz((-2.0f64 * 0.3).exp());
+    let (film, _) = render(&scene, &settings(8, 32, 4)).unwrap();
+    assert_image_mean(&film, steady, "steady");
+    let (film, _) = render(&scene, &settings(8, 32, 4).at(Some(0.5))).unwrap();
+    assert_image_mean(&film, steady, "at 0.5 s");
+    let (film, _) = render(&scene, &settings(8, 32, 4).at(Some(2.0))).unwrap();
+    let dark = (0..8).all(|y| (0..8).all(|x| film.xyz(x, y).to_array() == [0.0; 3]));
+    assert!(dark, "the emitter shows at 2 s");
+}
