@@ -95,3 +95,30 @@ fn missing_caustics_are_warned_of() {
     );
     std::fs::remove_file(out).ok();
 }
+
+/// `prism info` says what media a scene has, and that a scene without them has none.
+#[test]
+fn info_lists_the_media() {
+    let out = prism_ok(&[&["info", &scene("media.gltf")]]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("media "))
+        .expect("a media line");
+    for word in [
+        "dilute milk",
+        "Rayleigh",
+        "grid 40x40x40",
+        "temperature",
+        "fluorescent dye",
+    ] {
+        assert!(line.contains(word), "{line}");
+    }
+    let out = prism_ok(&[&["info", &scene("cornell-box.gltf")]]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("media ") && l.contains("none")),
+        "{text}"
+    );
+}

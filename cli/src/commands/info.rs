@@ -50,6 +50,17 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
         yes(s.uses_fluorescence),
         yes(s.uses_textures)
     );
+    outln!(
+        "media          {}",
+        if s.media.is_empty() {
+            "none (a vacuum: the path tracer renders it)".into()
+        } else {
+            format!(
+                "{} (the volumetric path tracer renders it)",
+                s.media.join("; ")
+            )
+        }
+    );
     let (elements, lights) = s.polarizing;
     outln!(
         "polarization   {}",

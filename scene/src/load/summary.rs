@@ -41,6 +41,9 @@ pub struct SceneSummary {
     pub gltf_features: Vec<String>,
     /// What the lights' spectra are, one line each, distinct.
     pub light_spectra: Vec<String>,
+    /// The participating media, one line each (`material: what it is`, `world: ...` for
+    /// fog): empty in a vacuum.
+    pub media: Vec<String>,
     /// The wavelengths (nm) the scene needs: the visible 360-830 nm, widened to where its
     /// lights emit (above 1% of their peak) within the range of a fluorescent material
     /// that can turn that light into visible light.
@@ -92,8 +95,33 @@ impl LoadedGeometry {
                 }
             }
         }
+        let mut media: Vec<String> = self
+            .materials
+            .iter()
+            .filter_map(|m| {
+                let medium = m
+                    .spectral
+                    .as_ref()
+                    .and_then(|s| s.medium.as_ref())
+                    .or(m.medium.as_ref())?;
+                Some(format!("{}: {}", m.name, medium.describe()))
+            })
+            .collect();
+        media.extend(
+            self.spectral
+                .medium
+                .as_ref()
+                .map(|m| format!("world (fog): {}", m.describe())),
+        );
+        let dyed = self
+            .materials
+            .iter()
+            .filter_map(|m| m.spectral.as_ref().and_then(|s| s.medium.as_ref()))
+            .chain(self.spectral.medium.as_ref())
+            .any(|m| m.fluorescence().is_some());
         let (lo, hi) = self.bounds();
         SceneSummary {
+            media,
             triangles: self.triangles.len(),
             instances: self.instances.len(),
             materials: self.materials.len(),
@@ -119,10 +147,11 @@ impl LoadedGeometry {
                 Some(s) => s.dispersive(),
                 None => m.transmission > 0.0 && m.dispersion > 0.0,
             }),
-            uses_fluorescence: self
-                .materials
-                .iter()
-                .any(|m| surface(m).is_some_and(|s| s.fluorescent())),
+            uses_fluorescence: dyed
+                || self
+                    .materials
+                    .iter()
+                    .any(|m| surface(m).is_some_and(|s| s.fluorescent())),
             polarizing: (
                 self.materials
                     .iter()

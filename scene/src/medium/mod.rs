@@ -175,6 +175,32 @@ impl Medium {
         self.emission.as_ref()
     }
 
+    /// One line saying what the medium is: its phase function, whether it is a grid, and
+    /// what it adds (emission, heat, a dye).
+    pub fn describe(&self) -> String {
+        let phase = match self.phase {
+            Phase::HenyeyGreenstein { g } => format!("Henyey-Greenstein g {g}"),
+            Phase::Rayleigh => "Rayleigh".into(),
+        };
+        let mut parts = vec![match &self.density {
+            None => format!("homogeneous, {phase}"),
+            Some(g) => {
+                let r = g.resolution();
+                format!("grid {}x{}x{}, {phase}", r.x, r.y, r.z)
+            }
+        }];
+        if self.emission.is_some() {
+            parts.push("emissive".into());
+        }
+        if self.temperature.is_some() {
+            parts.push("glowing by temperature".into());
+        }
+        if self.fluorescence.is_some() {
+            parts.push("fluorescent dye".into());
+        }
+        parts.join(", ")
+    }
+
     /// Whether the medium emits light (an emission coefficient, or a temperature).
     pub fn emissive(&self) -> bool {
         self.emission.is_some() || self.temperature.is_some()
