@@ -189,6 +189,7 @@ impl<'a> Renderer<'a> {
             camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
             clock: crate::path::Clock::of(settings),
             splits,
+            camera_media: crate::volume::MediumStack::around_camera(self.scene),
         }
     }
 

@@ -678,3 +678,51 @@ fn media_render_instants_of_the_clock() {
     let dark = (0..8).all(|y| (0..8).all(|x| film.xyz(x, y).to_array() == [0.0; 3]));
     assert!(dark, "the emitter shows at 2 s");
 }
+
+/// A camera inside a closed volume (an absorbing sphere around it, under a uniform
+/// environment of 1) sees through its medium: exp(-sigma_a R) in every direction. The
+/// render finds the volumes around the camera before it starts.
+#[test]
+fn a_camera_inside_a_medium_sees_through_it() {
+    let radius = 3.0f32;
+    let sphere: Vec<[Vec3; 3]> = icosphere(4)
+        .into_iter()
+        .map(|t| t.map(|v| v * radius))
+        .collect();
+    let ids = vec![0; sphere.len()];
+    let mut scene = Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangle_material: ids,
+        triangles: sphere,
+        materials: vec![Material::Interface],
+        emission: vec![],
+        lights: vec![Light::Environment {
+            radiance: SceneSpectrum::Constant(1.0),
+        }],
+        camera: prism_scene::camera::Camera::look_at(
+            Vec3::ZERO,
+            Vec3::new(0.3, 0.2, -1.0),
+            Vec3::Y,
+            1.0,
+        ),
+        quality: prism_scene::geometry::BvhQuality::Medium,
+    })
+    .unwrap();
+    let sigma = 1.0 / 3.0;
+    let medium = Medium::new(
+        SceneSpectrum::Constant(sigma),
+        SceneSpectrum::Constant(0.0),
+        Phase::henyey_greenstein(0.0).unwrap(),
+        None,
+    )
+    .unwrap();
+    scene
+        .set_media(Media::new(vec![medium], vec![Some(0)], None).unwrap())
+        .unwrap();
+    let (film, stats) = render(&scene, &settings(8, 64, 4)).unwrap();
+    assert_eq!(stats.nonfinite, 0);
+    // Within noise (every pixel has the same expectation; the icosphere's faces sit
+    // within 0.1% of the sphere).
+    let expected = (-sigma * f64::from(radius)).exp();
+    assert_image_mean(&film, constant_xyz(expected), "camera inside");
+}

@@ -52,6 +52,8 @@ pub(crate) struct Tracer<'a> {
     pub clock: Option<Clock>,
     /// Continuations per camera sample from its first non-delta vertex (1: none split).
     pub splits: u32,
+    /// The media the camera is in (read only by the volumetric path tracer).
+    pub camera_media: crate::volume::MediumStack,
 }
 
 /// The sample-stream dimensions: the wavelength and the film position first, then a fixed

@@ -22,9 +22,7 @@ mod segment;
 mod shadow;
 mod stack;
 
-pub(crate) use segment::FlightNumbers;
-
-use glam::Vec2;
+pub(crate) use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
@@ -33,6 +31,8 @@ use prism_scene::geometry::Ray;
 use prism_scene::medium::Phase;
 use prism_scene::world::{EmissionCache, Material};
 use prism_spectrum::SampledWavelengths;
+pub(crate) use segment::FlightNumbers;
+pub(crate) use stack::MediumStack;
 
 use crate::path::{DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk};
 use crate::path::{absorb, roulette, wavelengths};
@@ -42,7 +42,6 @@ use crate::{RenderError, RenderSettings};
 use light::Scatterer;
 use ratios::{Ratios, spectral_weight};
 use segment::{Flight, fly};
-use stack::MediumStack;
 
 /// Checks that `settings` ask for nothing the volumetric path tracer does not do: one
 /// clear error for each (light paths for caustics are left off quietly: camera paths find
@@ -101,7 +100,7 @@ impl<'a> Tracer<'a> {
             &self.camera_frame,
         );
         let mut ratios = Ratios::<N>::one();
-        let mut media = MediumStack::new(self.scene.media().world());
+        let mut media = self.camera_media;
         let (mut rays, mut covered, mut interfaces) = (0u64, false, 0u32);
         loop {
             rays += 1;

@@ -26,6 +26,52 @@ impl MediumStack {
         Self { entries, len: 1 }
     }
 
+    /// The media around the camera: the world's, and those of the closed volumes the
+    /// camera is inside (underwater, in a fog box), found by a probe ray from the camera's
+    /// position that notes each volume it leaves without having entered it. One position
+    /// serves the whole render (an orthographic camera's rays start apart: a volume that
+    /// encloses some of them and not others is not found this way). A scene without media
+    /// has none.
+    pub(crate) fn around_camera(scene: &Scene) -> Self {
+        let mut stack = Self::new(scene.media().world());
+        if scene.media().is_empty() {
+            return stack;
+        }
+        let origin = scene
+            .camera()
+            .generate_ray(glam::Vec2::splat(0.5), 1.0)
+            .origin;
+        // An arbitrary direction, off the axes that modelled boxes are aligned with.
+        let direction = Vec3::new(0.267, 0.862, 0.431).normalize();
+        let mut ray = prism_scene::geometry::Ray::new(origin, direction, f32::INFINITY);
+        let mut entered: Vec<u32> = Vec::new();
+        let mut enclosing: Vec<Option<u32>> = Vec::new();
+        for _ in 0..1024 {
+            let Some(hit) = scene.intersect(&ray) else {
+                break;
+            };
+            if scene.bounds_volume(&hit) {
+                let material = scene.material_index(&hit);
+                if direction.dot(hit.normal) < 0.0 {
+                    entered.push(material);
+                } else if entered.last() == Some(&material) {
+                    entered.pop();
+                } else {
+                    enclosing.push(scene.medium_inside(&hit));
+                }
+            }
+            ray = hit.spawn(direction);
+        }
+        // Outermost first.
+        for medium in enclosing.into_iter().rev() {
+            if stack.len < DEPTH {
+                stack.len += 1;
+            }
+            stack.entries[stack.len - 1] = medium;
+        }
+        stack
+    }
+
     /// The medium the path is in now.
     #[inline]
     pub(crate) fn current(&self) -> Option<u32> {

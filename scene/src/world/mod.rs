@@ -716,6 +716,12 @@ impl Scene {
         }
     }
 
+    /// The index of the material of a hit (as `SceneParts::materials` and the media's
+    /// `inside` list count them).
+    pub fn material_index(&self, hit: &Hit) -> u32 {
+        self.triangle_material[hit.triangle as usize]
+    }
+
     /// The material of a hit.
     pub fn material(&self, hit: &Hit) -> &Material {
         &self.materials[self.triangle_material[hit.triangle as usize] as usize]
