@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{assert_image_mean, furnace, icosphere, ortho_camera, square_z0};
+use common::{assert_image_mean, furnace, icosphere, mean_stokes, ortho_camera, square_z0};
 use glam::Vec3;
 use prism_integrator::{LambdaSampler, RenderSettings, SpectralBands, render};
 use prism_scene::medium::{Media, Medium, Phase};
@@ -568,20 +568,6 @@ fn dye_glows_under_an_ultraviolet_lamp() {
     let (a, b) = (means[0], means[1]);
     assert!(a > 0.05, "no glow: {a}");
     assert!((a - b).abs() < 0.03 * a, "{a} vs {b}");
-}
-
-/// The image's mean Stokes vector (luminance channel).
-fn mean_stokes(film: &prism_integrator::Film) -> [f64; 4] {
-    let mut sum = [0.0; 4];
-    for y in 0..film.height() {
-        for x in 0..film.width() {
-            let s = film.stokes(x, y).expect("a polarized film");
-            for (acc, c) in sum.iter_mut().zip(s) {
-                *acc += c[1];
-            }
-        }
-    }
-    sum.map(|v| v / f64::from(film.width() * film.height()))
 }
 
 /// Polarized renders of media: a furnace of Rayleigh or Henyey-Greenstein scattering under

@@ -6,9 +6,9 @@
 
 mod common;
 
-use common::square_z0;
+use common::{mean_stokes, square_z0};
 use glam::Vec3;
-use prism_integrator::{Film, RenderSettings, render};
+use prism_integrator::{RenderSettings, render};
 use prism_scene::camera::Camera;
 use prism_scene::geometry::BvhQuality;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
@@ -66,20 +66,6 @@ fn settings() -> RenderSettings {
         .height(6)
         .samples(0..32)
         .polarized(true)
-}
-
-/// The image's mean S0..S3 in the luminance (Y) channel.
-fn mean_stokes(film: &Film) -> [f64; 4] {
-    let mut sum = [0.0; 4];
-    for y in 0..film.height() {
-        for x in 0..film.width() {
-            let s = film.stokes(x, y).expect("a polarized film");
-            for (acc, c) in sum.iter_mut().zip(s) {
-                *acc += c[1];
-            }
-        }
-    }
-    sum.map(|v| v / f64::from(film.width() * film.height()))
 }
 
 #[test]

@@ -3,14 +3,41 @@
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::ReradiationSampler;
 use prism_scene::bsdf::Diffuse;
-use prism_scene::world::{Bsdf, Hit, SceneSpectrum};
+use prism_scene::bsdf::TransportMode;
+use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, SceneSpectrum};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::Tracer;
 use super::walk::Walk;
 use crate::throughput::Throughput;
 
-impl Tracer<'_> {
+impl<'a> Tracer<'a> {
+    /// The BSDF a camera path meets at `hit`: at a fluorescent surface (in scenes with
+    /// re-radiation, `FLUORESCENCE`) each lane first picks the wavelength its light arrived
+    /// at ([`Tracer::fluoresce`], drawing from `here`); any other surface is the scene's
+    /// BSDF at the path's wavelengths. None where no wavelength is left.
+    #[inline(always)]
+    pub(crate) fn vertex_bsdf<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+        &self,
+        hit: &Hit,
+        here: &mut SobolStream,
+        walk: &mut Walk<N, T>,
+        emission: &mut EmissionCache<N>,
+    ) -> Option<Bsdf<'a, N>> {
+        match self.scene.material(hit) {
+            Material::Fluorescent {
+                reflectance,
+                reradiation,
+            } if FLUORESCENCE => self.fluoresce(hit, reflectance, reradiation, here, walk),
+            _ => Some(self.scene.bsdf_cached(
+                hit,
+                &walk.transport,
+                TransportMode::Radiance,
+                emission,
+            )),
+        }
+    }
+
     /// A fluorescent vertex of reflectance `reflectance` and re-radiation `reradiation`
     /// at `hit`: each lane of `walk` picks the wavelength its light arrived at
     /// ([`Tracer::reradiated`], drawn from `here`), a phosphor's lanes also when

@@ -12,7 +12,6 @@ use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
-use prism_scene::bsdf::TransportMode;
 use prism_scene::geometry::Ray;
 use prism_scene::world::{EmissionCache, Material, Scene};
 use prism_spectrum::colorimetry::Observer;
@@ -244,22 +243,10 @@ impl<'a> Tracer<'a> {
                 let mut u_roulette = here.next_1d();
 
                 let material = self.scene.material(&hit);
-                let bsdf = match material {
-                    Material::Fluorescent {
-                        reflectance,
-                        reradiation,
-                    } if FLUORESCENCE => {
-                        match self.fluoresce(&hit, reflectance, reradiation, here, &mut walk) {
-                            Some(bsdf) => bsdf,
-                            None => break,
-                        }
-                    }
-                    _ => self.scene.bsdf_cached(
-                        &hit,
-                        &walk.transport,
-                        TransportMode::Radiance,
-                        emission,
-                    ),
+                let Some(bsdf) =
+                    self.vertex_bsdf::<N, FLUORESCENCE, T>(&hit, here, &mut walk, emission)
+                else {
+                    break;
                 };
                 let frame = Frame::from_normal(hit.shading_normal);
                 let wo = frame.to_local(wo_world);

@@ -26,10 +26,9 @@ pub(crate) use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
-use prism_scene::bsdf::TransportMode;
 use prism_scene::geometry::Ray;
 use prism_scene::medium::Phase;
-use prism_scene::world::{EmissionCache, Material};
+use prism_scene::world::EmissionCache;
 use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightNumbers;
 pub(crate) use stack::MediumStack;
@@ -184,21 +183,10 @@ impl<'a> Tracer<'a> {
             let u_lobe = here.next_1d();
             let u_bsdf = here.next_2d();
             let u_roulette = here.next_1d();
-            let material = self.scene.material(&hit);
-            let bsdf = match material {
-                Material::Fluorescent {
-                    reflectance,
-                    reradiation,
-                } if FLUORESCENCE => {
-                    match self.fluoresce(&hit, reflectance, reradiation, here, &mut walk) {
-                        Some(bsdf) => bsdf,
-                        None => break,
-                    }
-                }
-                _ => {
-                    self.scene
-                        .bsdf_cached(&hit, &walk.transport, TransportMode::Radiance, emission)
-                }
+            let Some(bsdf) =
+                self.vertex_bsdf::<N, FLUORESCENCE, T>(&hit, here, &mut walk, emission)
+            else {
+                break;
             };
             let frame = Frame::from_normal(hit.shading_normal);
             let wo = frame.to_local(wo_world);

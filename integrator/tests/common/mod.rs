@@ -330,3 +330,17 @@ pub fn assert_deterministic_and_merges(scene: &Scene, settings: &prism_integrato
         }
     }
 }
+
+/// The image's mean S0..S3 in the luminance (Y) channel of a polarized film.
+pub fn mean_stokes(film: &Film) -> [f64; 4] {
+    let mut sum = [0.0; 4];
+    for y in 0..film.height() {
+        for x in 0..film.width() {
+            let s = film.stokes(x, y).expect("a polarized film");
+            for (acc, c) in sum.iter_mut().zip(s) {
+                *acc += c[1];
+            }
+        }
+    }
+    sum.map(|v| v / f64::from(film.width() * film.height()))
+}

@@ -134,7 +134,24 @@ fn volume_absorption(
     distance: f32,
     upsampler: &Upsampler,
 ) -> Result<Option<SceneSpectrum>, String> {
-    use prism_spectrum::Spectrum;
+    let Some(c) = attenuation(color, distance, upsampler)? else {
+        return Ok(None);
+    };
+    let sigma: Vec<f64> = (300..=830)
+        .map(|nm| extinction(&c, distance, f64::from(nm)))
+        .collect();
+    let dense = DenselySampled::from_values(300.0, sigma).map_err(|e| e.to_string())?;
+    Ok(Some(SceneSpectrum::Dense(Arc::new(dense))))
+}
+
+/// `KHR_materials_volume`'s attenuation colour upsampled as a reflectance; None where it
+/// attenuates nothing (an infinite distance or a white colour). A distance that is not
+/// positive or a colour that is not finite is an error.
+pub(super) fn attenuation(
+    color: [f32; 3],
+    distance: f32,
+    upsampler: &Upsampler,
+) -> Result<Option<RgbSpectrum>, String> {
     if distance.is_nan() || distance <= 0.0 || !color.iter().all(|c| c.is_finite()) {
         return Err(format!(
             "KHR_materials_volume attenuationDistance {distance} must be > 0 and the colour finite"
@@ -143,12 +160,16 @@ fn volume_absorption(
     if distance.is_infinite() || color.iter().all(|&c| c >= 1.0) {
         return Ok(None);
     }
-    let c = upsampler.fit(color.map(f64::from), RgbKind::Albedo)?;
-    let sigma: Vec<f64> = (300..=830)
-        .map(|nm| -c.evaluate(f64::from(nm)).max(1e-6).ln() / f64::from(distance))
-        .collect();
-    let dense = DenselySampled::from_values(300.0, sigma).map_err(|e| e.to_string())?;
-    Ok(Some(SceneSpectrum::Dense(Arc::new(dense))))
+    upsampler
+        .fit(color.map(f64::from), RgbKind::Albedo)
+        .map(Some)
+}
+
+/// The extinction -ln(c(nm)) / distance of an attenuation colour `c` (black clamped so
+/// that it stays finite).
+pub(super) fn extinction(c: &RgbSpectrum, distance: f32, nm: f64) -> f64 {
+    use prism_spectrum::Spectrum;
+    -c.evaluate(nm).max(1e-6).ln() / f64::from(distance)
 }
 
 /// How a scene's constant RGB colours become spectra: the speed-accuracy trade of

@@ -65,20 +65,14 @@ pub(crate) fn medium(
             .ok_or("KHR_materials_volume_scatter scatterAnisotropy must be in (-1, 1)")?
             .clamp(-MAX_ABS_G, MAX_ABS_G),
     };
-    if distance.is_nan() || distance <= 0.0 || !color.iter().all(|c| c.is_finite()) {
-        return Err(format!(
-            "KHR_materials_volume attenuationDistance {distance} must be > 0 and the colour finite"
-        ));
-    }
-    if distance.is_infinite() || color.iter().all(|&c| c >= 1.0) {
+    let Some(attenuation) = super::materials::attenuation(color, distance, upsampler)? else {
         return Ok(None);
-    }
-    let attenuation = upsampler.fit(color.map(f64::from), RgbKind::Albedo)?;
+    };
     let albedo = upsampler.fit(multiscatter, RgbKind::Albedo)?;
     let (mut sigma_a, mut sigma_s) = (Vec::new(), Vec::new());
     for nm in 300..=830 {
         let nm = f64::from(nm);
-        let sigma_t = -attenuation.evaluate(nm).max(1e-6).ln() / f64::from(distance);
+        let sigma_t = super::materials::extinction(&attenuation, distance, nm);
         let rho = single_scatter_albedo(albedo.evaluate(nm));
         sigma_s.push(rho * sigma_t);
         sigma_a.push((1.0 - rho) * sigma_t);

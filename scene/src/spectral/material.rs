@@ -303,17 +303,8 @@ fn fluorescent(map: &Map<String, Value>, cx: &Context) -> Result<Material, Strin
         Some(v) => spectrum(v, Role::Fraction, cx).map_err(|e| format!("reflectance: {e}"))?,
         None => SceneSpectrum::Constant(0.0),
     };
-    let (lo, hi) = match map.get("range") {
-        None => FLUORESCENCE_RANGE_NM,
-        Some(r) => match r.as_array().map(Vec::as_slice) {
-            Some([a, b]) => (
-                number(a, "range start")? as f32,
-                number(b, "range end")? as f32,
-            ),
-            _ => return Err("range must be [start_nm, end_nm]".into()),
-        },
-    };
-    let range = WavelengthRange::new(lo, hi).map_err(|e| format!("range: {e}"))?;
+    let range = kernel_range(map)?;
+    let (lo, hi) = (range.min(), range.max());
     let (bins, matrix) = if let Some(m) = map.get("matrix") {
         for key in ["absorption", "reemission", "quantum_yield", "bins"] {
             if map.contains_key(key) {
@@ -333,13 +324,7 @@ fn fluorescent(map: &Map<String, Value>, cx: &Context) -> Result<Material, Strin
         }
         (bins, m)
     } else {
-        let bins = match map.get("bins") {
-            None => ((hi - lo) / FLUORESCENCE_BIN_NM).ceil().max(1.0) as usize,
-            Some(b) => match b.as_u64() {
-                Some(n @ 1..=4096) => n as usize,
-                _ => return Err(format!("bins {b} must be a whole number in 1..=4096")),
-            },
-        };
+        let bins = kernel_bins(map, range)?;
         let absorption = spectrum(
             map.get("absorption").ok_or("needs 'absorption'")?,
             Role::Fraction,
@@ -365,6 +350,38 @@ fn fluorescent(map: &Map<String, Value>, cx: &Context) -> Result<Material, Strin
         reflectance,
         reradiation: Arc::new(sampler),
     })
+}
+
+/// A re-radiation kernel's `range` ([start_nm, end_nm], default 300-830 nm), for
+/// fluorescent materials and dyes alike.
+pub(crate) fn kernel_range(map: &Map<String, Value>) -> Result<WavelengthRange, String> {
+    let (lo, hi) = match map.get("range") {
+        None => FLUORESCENCE_RANGE_NM,
+        Some(r) => match r.as_array().map(Vec::as_slice) {
+            Some([a, b]) => (
+                number(a, "range start")? as f32,
+                number(b, "range end")? as f32,
+            ),
+            _ => return Err("range must be [start_nm, end_nm]".into()),
+        },
+    };
+    WavelengthRange::new(lo, hi).map_err(|e| format!("range: {e}"))
+}
+
+/// A re-radiation kernel's `bins` over `range` (default one per 2 nm).
+pub(crate) fn kernel_bins(
+    map: &Map<String, Value>,
+    range: WavelengthRange,
+) -> Result<usize, String> {
+    match map.get("bins") {
+        None => Ok(((range.max() - range.min()) / FLUORESCENCE_BIN_NM)
+            .ceil()
+            .max(1.0) as usize),
+        Some(b) => match b.as_u64() {
+            Some(n @ 1..=4096) => Ok(n as usize),
+            _ => Err(format!("bins {b} must be a whole number in 1..=4096")),
+        },
+    }
 }
 
 /// `matrix`: `rows`, one per incident bin, each with one density (per nm of incident

@@ -5,8 +5,6 @@
 use serde_json::Value;
 
 use super::value::{Context, Role, number, only_keys, spectrum};
-use prism_sampling::wavelength::WavelengthRange;
-
 use crate::medium::{Fluorescence, Grid, Medium, Phase, read_vol};
 
 /// The keys a medium may have.
@@ -107,24 +105,8 @@ fn dye(value: &Value, cx: &Context) -> Result<Fluorescence, String> {
         map.get("quantum_yield").ok_or("needs 'quantum_yield'")?,
         "quantum_yield",
     )?;
-    let (lo, hi) = match map.get("range") {
-        None => super::material::FLUORESCENCE_RANGE_NM,
-        Some(r) => match r.as_array().map(Vec::as_slice) {
-            Some([a, b]) => (
-                number(a, "range start")? as f32,
-                number(b, "range end")? as f32,
-            ),
-            _ => return Err("range must be [start_nm, end_nm]".into()),
-        },
-    };
-    let range = WavelengthRange::new(lo, hi).map_err(|e| format!("range: {e}"))?;
-    let bins = match map.get("bins") {
-        None => ((hi - lo) / 2.0).ceil().max(1.0) as usize,
-        Some(b) => match b.as_u64() {
-            Some(n @ 1..=4096) => n as usize,
-            _ => return Err(format!("bins {b} must be a whole number in 1..=4096")),
-        },
-    };
+    let range = super::material::kernel_range(map)?;
+    let bins = super::material::kernel_bins(map, range)?;
     Fluorescence::new(absorption, &reemission, q, range, bins)
 }
 
