@@ -137,6 +137,65 @@ fn a_scene_built_in_code_renders_to_an_image() -> Result<(), Box<dyn std::error:
 }
 
 #[test]
+fn fog_fills_a_scene_built_in_code() -> Result<(), Box<dyn std::error::Error>> {
+    use prism_integrator::glam::Vec3;
+    use prism_integrator::prism_scene::camera::Camera;
+    use prism_integrator::prism_scene::medium::{Media, Medium, Phase};
+    use prism_integrator::prism_scene::world::{Material, SceneBuilder, SceneSpectrum};
+    use prism_integrator::{RenderSettings, render};
+
+    let v = Vec3::new;
+    let build = || -> Result<_, Box<dyn std::error::Error>> {
+        let mut builder = SceneBuilder::new(Camera::look_at(
+            v(0.0, 1.0, 3.0),
+            v(0.0, 0.3, 0.0),
+            Vec3::Y,
+            0.8,
+        ));
+        let grey = builder.material(Material::Diffuse {
+            reflectance: SceneSpectrum::Constant(0.5),
+        });
+        let (a, b, c, d) = (
+            v(-2.0, 0.0, 2.0),
+            v(2.0, 0.0, 2.0),
+            v(2.0, 0.0, -2.0),
+            v(-2.0, 0.0, -2.0),
+        );
+        builder.triangles(&[[a, b, c], [a, c, d]], grey);
+        let lamp = |x: f32, z: f32| v(x, 2.0, z);
+        builder.emitter(
+            &[
+                [lamp(-0.5, -0.5), lamp(0.5, -0.5), lamp(0.5, 0.5)],
+                [lamp(-0.5, -0.5), lamp(0.5, 0.5), lamp(-0.5, 0.5)],
+            ],
+            SceneSpectrum::Constant(0.5),
+            false,
+        );
+        Ok(builder.build()?)
+    };
+    let settings = RenderSettings::default()
+        .width(32)
+        .height(24)
+        .samples(0..16);
+    let (clear, _) = render(&build()?, &settings)?;
+    // Grey fog everywhere: a little absorption, more scattering, forward.
+    let mut foggy = build()?;
+    let fog = Medium::new(
+        SceneSpectrum::Constant(0.1),
+        SceneSpectrum::Constant(0.3),
+        Phase::henyey_greenstein(0.6)?,
+        None,
+    )?;
+    foggy.set_media(Media::new(vec![fog], vec![], Some(0))?)?;
+    let (film, stats) = render(&foggy, &settings)?;
+    assert_eq!(stats.nonfinite, 0);
+    // The floor under the lamp is dimmer through fog, and the air glows where it was black.
+    assert!(film.xyz(16, 20).y < clear.xyz(16, 20).y);
+    assert!(film.xyz(16, 2).y > clear.xyz(16, 2).y);
+    Ok(())
+}
+
+#[test]
 fn a_gltf_is_loaded_with_a_table_of_the_callers_and_errors_carry_their_cause() {
     use prism_scene::LoadError;
     use prism_scene::load::{LoadOptions, load_scene};
