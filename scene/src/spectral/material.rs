@@ -325,22 +325,11 @@ fn fluorescent(map: &Map<String, Value>, cx: &Context) -> Result<Material, Strin
         (bins, m)
     } else {
         let bins = kernel_bins(map, range)?;
-        let absorption = spectrum(
-            map.get("absorption").ok_or("needs 'absorption'")?,
-            Role::Fraction,
-            cx,
-        )
-        .map_err(|e| format!("absorption: {e}"))?;
-        let reemission = spectrum(
-            map.get("reemission").ok_or("needs 'reemission'")?,
-            Role::Plain,
-            cx,
-        )
-        .map_err(|e| format!("reemission: {e}"))?;
-        let q = number(
-            map.get("quantum_yield").ok_or("needs 'quantum_yield'")?,
-            "quantum_yield",
-        )?;
+        let Dye {
+            absorption,
+            reemission,
+            quantum_yield: q,
+        } = dye(map, Role::Fraction, cx)?;
         let m = fluorescence_matrix(range, bins, &reflectance, &absorption, &reemission, q)
             .map_err(|e| e.to_string())?;
         (bins, m)
@@ -349,6 +338,30 @@ fn fluorescent(map: &Map<String, Value>, cx: &Context) -> Result<Material, Strin
     Ok(Material::Fluorescent {
         reflectance,
         reradiation: Arc::new(sampler),
+    })
+}
+
+/// What a dye absorbs, the shape of what it re-emits, and its quantum yield.
+pub(crate) struct Dye {
+    pub absorption: SceneSpectrum,
+    pub reemission: SceneSpectrum,
+    pub quantum_yield: f64,
+}
+
+/// A dye's `absorption` (a fraction on surfaces, a coefficient in media: `absorption`'s
+/// role), `reemission` and `quantum_yield`, each required.
+pub(crate) fn dye(map: &Map<String, Value>, absorption: Role, cx: &Context) -> Result<Dye, String> {
+    let required = |key: &str, role: Role| {
+        let value = map.get(key).ok_or_else(|| format!("needs '{key}'"))?;
+        spectrum(value, role, cx).map_err(|e| format!("{key}: {e}"))
+    };
+    Ok(Dye {
+        absorption: required("absorption", absorption)?,
+        reemission: required("reemission", Role::Plain)?,
+        quantum_yield: number(
+            map.get("quantum_yield").ok_or("needs 'quantum_yield'")?,
+            "quantum_yield",
+        )?,
     })
 }
 

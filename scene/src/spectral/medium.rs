@@ -89,25 +89,16 @@ fn dye(value: &Value, cx: &Context) -> Result<Fluorescence, String> {
         map,
         &["absorption", "reemission", "quantum_yield", "range", "bins"],
     )?;
-    let absorption = spectrum(
-        map.get("absorption").ok_or("needs 'absorption'")?,
-        Role::Plain,
-        cx,
-    )
-    .map_err(|e| format!("absorption: {e}"))?;
-    let reemission = spectrum(
-        map.get("reemission").ok_or("needs 'reemission'")?,
-        Role::Plain,
-        cx,
-    )
-    .map_err(|e| format!("reemission: {e}"))?;
-    let q = number(
-        map.get("quantum_yield").ok_or("needs 'quantum_yield'")?,
-        "quantum_yield",
-    )?;
+    let dye = super::material::dye(map, Role::Plain, cx)?;
     let range = super::material::kernel_range(map)?;
     let bins = super::material::kernel_bins(map, range)?;
-    Fluorescence::new(absorption, &reemission, q, range, bins)
+    Fluorescence::new(
+        dye.absorption,
+        &dye.reemission,
+        dye.quantum_yield,
+        range,
+        bins,
+    )
 }
 
 /// Parses `{"file": "smoke.vol", "grid": NAME, "scale": S, "bounds": [[x, y, z],
