@@ -10,8 +10,8 @@ fn scenes_dir() -> std::path::PathBuf {
 }
 
 /// The Cornell box with `white`'s description replaced by `white` (None: unchanged) and
-/// the root's by `root`, loaded into a scene; files resolve in scenes/, and `bad.vol` is
-/// a grid with a NaN voxel.
+/// the root's by `root`, loaded into a scene; files resolve in scenes/, `vdb/NAME` in
+/// tests/data/vdb, and `bad.vol` is a grid with a NaN voxel.
 fn load(white: Option<Value>, root: Option<Value>) -> Result<Scene, String> {
     let mut doc: Value =
         serde_json::from_slice(&std::fs::read(scenes_dir().join("cornell-box.gltf")).unwrap())
@@ -37,6 +37,10 @@ fn load(white: Option<Value>, root: Option<Value>) -> Result<Scene, String> {
                 glam::Vec3::ONE,
                 &values,
             ));
+        }
+        if let Some(name) = uri.strip_prefix("vdb/") {
+            let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/vdb");
+            return std::fs::read(data.join(name));
         }
         std::fs::read(scenes_dir().join(uri))
     };
@@ -85,6 +89,21 @@ fn media_load_into_the_scene() {
     )
     .unwrap();
     assert!(scene.features().fluorescence && scene.media().all()[0].fluorescence().is_some());
+    // OpenVDB grids: density by its usual name, a temperature grid of the same file.
+    let scene = load(
+        Some(json!({"type": "interface", "medium": {"sigma_a": 1.0,
+            "density": {"file": "vdb/smoke.vdb"},
+            "temperature": {"file": "vdb/smoke.vdb", "scale": 2.0}}})),
+        None,
+    )
+    .unwrap();
+    let medium = &scene.media().all()[0];
+    let density = medium.density().expect("a grid medium").max_value();
+    let temperature = medium.temperature().expect("a hot medium").max_value();
+    assert!(
+        density > 0.5 && density < 1.5 && temperature > 2000.0,
+        "{density} {temperature}"
+    );
     // A scene without media has none and runs the path tracer without them.
     let plain = load(None, None).unwrap();
     assert!(!plain.features().media && plain.media().is_empty());
@@ -131,8 +150,16 @@ fn bad_media_are_one_line_errors_naming_material_and_key() {
             &["white", "density", "NaN"],
         ),
         (
-            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "smoke.vdb"}}}),
-            &["white", "density", "OpenVDB"],
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "vdb/smoke.vdb", "grid": "smoke"}}}),
+            &["white", "density", "smoke.vdb", "no grid named 'smoke'"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "vdb/levelset.vdb"}}}),
+            &["white", "density", "levelset.vdb", "level set"],
+        ),
+        (
+            json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "vdb/smoke.vdb", "grid": 3}}}),
+            &["white", "density", "'grid'"],
         ),
         (
             json!({"type": "interface", "medium": {"sigma_s": 1.0, "density": {"file": "smoke.vol", "scale": -1}}}),

@@ -18,11 +18,15 @@ mod fluorescence;
 mod grid;
 mod phase;
 pub mod track;
+#[cfg(feature = "vdb")]
+mod vdb;
 mod vol;
 
 pub use fluorescence::Fluorescence;
 pub use grid::{Grid, Span};
 pub use phase::{MAX_ABS_G, Phase, PhaseSample};
+#[cfg(feature = "vdb")]
+pub use vdb::read_vdb;
 pub use vol::{read_vol, write_vol};
 
 use std::sync::Arc;

@@ -61,13 +61,14 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
         .transpose()?;
     let mut medium = Medium::new(sigma_a, sigma_s, phase, emission)?;
     if let Some(d) = map.get("density") {
-        medium = medium.with_density(grid(d, cx).map_err(|e| format!("density: {e}"))?);
+        medium = medium.with_density(grid(d, "density", cx).map_err(|e| format!("density: {e}"))?);
     }
     if let Some(t) = map.get("temperature") {
         if !map.contains_key("sigma_a") {
             return Err("temperature: a medium glows by its temperature where it absorbs: it needs 'sigma_a'".into());
         }
-        medium = medium.with_temperature(grid(t, cx).map_err(|e| format!("temperature: {e}"))?);
+        medium = medium
+            .with_temperature(grid(t, "temperature", cx).map_err(|e| format!("temperature: {e}"))?);
     }
     if let Some(f) = map.get("fluorescence") {
         medium = medium.with_fluorescence(dye(f, cx).map_err(|e| format!("fluorescence: {e}"))?);
@@ -101,11 +102,12 @@ fn dye(value: &Value, cx: &Context) -> Result<Fluorescence, String> {
     )
 }
 
-/// Parses `{"file": "smoke.vol", "grid": NAME, "scale": S, "bounds": [[x, y, z],
-/// [x, y, z]]}`: the grid in the file (Mitsuba's `.vol`; `grid` names the grid of a file
-/// that holds several), times `scale` (default 1), on
-/// the file's own box unless `bounds` gives another (in world units).
-fn grid(value: &Value, cx: &Context) -> Result<Grid, String> {
+/// Parses `{"file": "smoke.vdb", "grid": NAME, "scale": S, "bounds": [[x, y, z],
+/// [x, y, z]]}`: the grid in the file (OpenVDB's `.vdb`, where `grid` names one of the
+/// file's grids, by default the one called `usual` or the only one; or Mitsuba's `.vol`,
+/// which holds one), times `scale` (default 1), on the file's own box unless `bounds`
+/// gives another (in world units).
+fn grid(value: &Value, usual: &str, cx: &Context) -> Result<Grid, String> {
     let map = value
         .as_object()
         .ok_or("must be an object {\"file\": .., \"scale\": ..}")?;
@@ -119,12 +121,21 @@ fn grid(value: &Value, cx: &Context) -> Result<Grid, String> {
     let mut grid = match extension.as_str() {
         // A .vol file holds one unnamed grid, whatever 'grid' calls it.
         "vol" => read_vol(&read()?).map_err(|e| format!("{file}: {e}"))?,
+        #[cfg(feature = "vdb")]
+        "vdb" => {
+            let name = match map.get("grid") {
+                None => None,
+                Some(g) => Some(g.as_str().ok_or("'grid' must be a grid's name")?),
+            };
+            crate::medium::read_vdb(&read()?, name, usual).map_err(|e| format!("{file}: {e}"))?
+        }
+        #[cfg(not(feature = "vdb"))]
         "vdb" => {
             return Err(format!(
-                "{file}: OpenVDB files are not read yet; write the grid as Mitsuba's .vol"
+                "{file}: this build of prism-scene reads no OpenVDB files (feature 'vdb')"
             ));
         }
-        _ => return Err(format!("{file}: not a grid file prism reads (.vol)")),
+        _ => return Err(format!("{file}: not a grid file prism reads (.vdb, .vol)")),
     };
     if let Some(scale) = map.get("scale") {
         grid = grid.scaled(number(scale, "scale")? as f32)?;
