@@ -9,6 +9,11 @@
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr   # Mitsuba's, 8192 spp
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --repeats 3   # median times
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --narrow-peers  # peers as without AVX-512
+  python3 benches/peer/compare.py box specular glossy caustic media --width 128 \
+      --variants llvm_ad_spectral,scalar_spectral --peer-reference-dir refs --repeats 3   # the scene kinds
+
+Several scenes print one JSON object each and then a Markdown table of the time-to-equal-error
+ratios and paths/s per scene, with the CPU model (on stderr).
 
 Issue 30's measure is the last form: the reference is a converged render of the independent
 renderer (Mitsuba 3's llvm_ad_spectral at 8192 spp, benches/peer/mitsuba_reference.py), made
@@ -24,7 +29,8 @@ With one, each renderer's relative MSE is reported (prism compare's: the mean of
 prism's: how much sooner prism reaches the same error.
 
 The Mitsuba side is ../shared/scenes/peer/mitsuba_peer.py (the same Cornell box and bunny box
-as the glTF files), and for `media` (scenes/cornell-medium.gltf, the box's large block a
+as the glTF files), for `specular`, `glossy` and `caustic` (the box with glass and metal
+spheres, scenes/tools/make_cornell_kinds.py) benches/peer/mitsuba_kinds.py, and for `media` (scenes/cornell-medium.gltf, the box's large block a
 chromatic scattering medium) benches/peer/mitsuba_media.py with Mitsuba's `volpathmis`. Prints one JSON object. Region agreement: the image is cut into a
 GRID x GRID grid; for each region and channel the relative difference of the means
 is reported (max and mean over regions with enough signal).
@@ -82,7 +88,8 @@ def cpu():
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("scene", choices=SCENES)
+    ap.add_argument("scenes", nargs="+", choices=SCENES, metavar="SCENE",
+                    help=f"one or more of {', '.join(SCENES)}")
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--width", type=int, default=256)
     ap.add_argument("--depth", type=int, default=-1,
@@ -93,7 +100,9 @@ def main():
     ap.add_argument("--reference-spp", type=int,
                     help="without --reference: render one with prism at this many spp (seed 999)")
     ap.add_argument("--peer-reference",
-                    help="a Mitsuba 3 reference EXR, rendered first by mitsuba_reference.py if missing")
+                    help="a Mitsuba 3 reference EXR, rendered first by mitsuba_reference.py if missing (one scene)")
+    ap.add_argument("--peer-reference-dir",
+                    help="a folder of Mitsuba 3 references, ref-SCENE-WIDTH.exr, each rendered first if missing")
     ap.add_argument("--peer-reference-spp", type=int, default=8192)
     ap.add_argument("--grid", type=int, default=8)
     ap.add_argument("--prism-args", default="", help="extra arguments for prism render")
@@ -101,30 +110,62 @@ def main():
                     help="time every renderer this many times, in turns, and report the median (a shared "
                          "host's speed drifts by 20-30%% within minutes; images and errors are the first run's, "
                          "every run's being the same)")
+    ap.add_argument("--table", action="store_true", help="also print the Markdown table for one scene")
     ap.add_argument("--narrow-peers", action="store_true",
                     help="run Mitsuba as on a host without AVX-512 (narrow_peer.py: Dr.Jit 8 lanes wide for "
                          "Zen 3, Embree capped at AVX2); an imitation of such a host, not a measurement on one")
     a = ap.parse_args()
+    if a.peer_reference and len(a.scenes) > 1:
+        ap.error("--peer-reference names one scene's reference: use --peer-reference-dir for several")
+    if a.depth == 0 or a.depth < -1:
+        ap.error("--depth is -1 (unbounded) or at least 1")
+    if a.repeats < 1:
+        ap.error("--repeats is at least 1")
+    results = []
+    for scene in a.scenes:
+        reference = a.peer_reference
+        if a.peer_reference_dir:
+            reference = os.path.join(a.peer_reference_dir, f"ref-{scene}-{a.width}.exr")
+        results.append(compare(scene, a, reference))
+        print(json.dumps(results[-1]), flush=True)
+    if len(results) > 1 or a.table:
+        print(table(results), file=sys.stderr)
+
+
+def table(results):
+    """The results as a Markdown table: time to equal error against each peer, and paths/s."""
+    variants = [k for k in results[0] if isinstance(results[0][k], dict) and "prism_speed_ratio" in results[0][k]]
+    head = "| scene | " + " | ".join(f"vs {v}" for v in variants) + " | prism paths/s | " + \
+        " | ".join(f"{v} paths/s" for v in variants) + " |"
+    rows = [f"{results[0]['cpu']}, {results[0]['width']}x{results[0]['width']}, {results[0]['spp']} spp", "",
+            head, "|" + "---|" * (2 + 2 * len(variants))]
+    for r in results:
+        ratio = lambda v: f"{r[v]['prism_efficiency_ratio']:.2f}x" if "prism_efficiency_ratio" in r[v] else \
+            f"{r[v]['prism_speed_ratio']:.2f}x (speed)"
+        rows.append(f"| {r['scene']} | " + " | ".join(ratio(v) for v in variants) +
+                    f" | {r['prism']['paths_per_second'] / 1e6:.2f} M | " +
+                    " | ".join(f"{r[v]['paths_per_second'] / 1e6:.2f} M" for v in variants) + " |")
+    return "\n".join(rows)
+
+
+def compare(scene, a, peer_reference):
+    """One scene: prism and each peer timed in turns, their images against the reference."""
     out = tempfile.mkdtemp(prefix="prism-peer-")
     prism = os.path.join(ROOT, "target", "release", "prism")
     prism_exr = os.path.join(out, "prism.exr")
-    cmd = [prism, "render", os.path.join(ROOT, "scenes", SCENES[a.scene]), "--spp", str(a.spp),
+    cmd = [prism, "render", os.path.join(ROOT, "scenes", SCENES[scene]), "--spp", str(a.spp),
            "--width", str(a.width), "--height", str(a.width), "-o", prism_exr, "--stats"] + a.prism_args.split()
-    if a.depth == 0 or a.depth < -1:
-        ap.error("--depth is -1 (unbounded) or at least 1")
     if a.depth >= 1:
         # Mitsuba's max_depth counts segments (1: emitters seen directly); prism's
         # --max-depth counts bounces (0: the same). Equal numbers would give prism one
         # bounce more: measured 5.9% region differences at depth 8 on the box, 0.96% with
         # this (within noise at 256 spp).
         cmd += ["--max-depth", str(a.depth - 1)]
-    if a.repeats < 1:
-        ap.error("--repeats is at least 1")
     variants = a.variants.split(",")
 
     def run_peer(variant, exr):
-        peer = subprocess.run([sys.executable, peer_script(a.scene, a.narrow_peers), variant,
-                               a.scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
+        peer = subprocess.run([sys.executable, peer_script(scene, a.narrow_peers), variant,
+                               scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
                               check=True, capture_output=True, text=True)
         return json.loads(peer.stdout.strip().splitlines()[-1])
 
@@ -138,7 +179,7 @@ def main():
     prism_stats = dict(prism_runs[0])
     prism_stats["seconds"] = median(prism_runs)
     prism_stats["paths_per_second"] = a.width * a.width * a.spp / prism_stats["seconds"]
-    result = {"scene": a.scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
+    result = {"scene": scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
               "peers": "imitating a host without AVX-512" if a.narrow_peers else "native",
               "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits", "reuse")}}
     if a.repeats > 1:
@@ -154,10 +195,10 @@ def main():
         images[variant] = read_exr(os.path.join(out, f"{variant}.exr"))
         result[variant]["prism_vs_peer"] = agreement(images["prism"], images[variant], a.grid)
     reference = a.reference
-    if reference is None and a.peer_reference:
-        reference = a.peer_reference
+    if reference is None and peer_reference:
+        reference = peer_reference
         if not os.path.exists(reference):
-            subprocess.run([sys.executable, os.path.join(ROOT, "benches", "peer", "mitsuba_reference.py"), a.scene,
+            subprocess.run([sys.executable, os.path.join(ROOT, "benches", "peer", "mitsuba_reference.py"), scene,
                             "--width", str(a.width), "--spp", str(a.peer_reference_spp), "--depth", str(a.depth),
                             "--out", reference], check=True, capture_output=True)
     if reference is None and a.reference_spp:
@@ -181,7 +222,7 @@ def main():
             peer["prism_error_ratio"] = errors["prism"] / errors[variant]
             peer["prism_efficiency_ratio"] = (peer["seconds"] * errors[variant]) / (
                 result["prism"]["seconds"] * errors["prism"])
-    print(json.dumps(result))
+    return result
 
 
 if __name__ == "__main__":

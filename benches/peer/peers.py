@@ -1,6 +1,6 @@
 """Which Mitsuba 3 script renders which comparison scene: the shared Cornell box and bunny box
-(../shared/scenes/peer/mitsuba_peer.py) and the repository's volume scene
-(mitsuba_media.py). Both take VARIANT SCENE SPP [--depth D] [--width W] [--seed S] [--out F].
+(../shared/scenes/peer/mitsuba_peer.py), the box's scene kinds (specular, glossy, caustic:
+mitsuba_kinds.py) and the repository's volume scene (mitsuba_media.py). Both take VARIANT SCENE SPP [--depth D] [--width W] [--seed S] [--out F].
 """
 import os
 
@@ -8,15 +8,19 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
 
 # prism's scene file for each comparison scene, under scenes/.
-SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf", "media": "cornell-medium.gltf"}
+SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf", "specular": "cornell-specular.gltf",
+          "glossy": "cornell-glossy.gltf", "caustic": "cornell-caustic.gltf", "media": "cornell-medium.gltf"}
+KINDS = ("specular", "glossy", "caustic")
 
 
 def script(scene, narrow=False):
     """The Mitsuba script that renders `scene` (narrow: as on a host without AVX-512)."""
     if narrow:
-        if scene == "media":
-            raise SystemExit("--narrow-peers has no media scene")
+        if scene == "media" or scene in KINDS:
+            raise SystemExit(f"--narrow-peers has no {scene} scene")
         return os.path.join(ROOT, "benches", "peer", "narrow_peer.py")
     if scene == "media":
         return os.path.join(ROOT, "benches", "peer", "mitsuba_media.py")
+    if scene in KINDS:
+        return os.path.join(ROOT, "benches", "peer", "mitsuba_kinds.py")
     return os.path.join(SHARED, "scenes", "peer", "mitsuba_peer.py")

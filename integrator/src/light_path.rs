@@ -1,17 +1,20 @@
-//! Light paths for the caustics a camera sees directly: light leaving an emitter, bent by
-//! one or more delta bounces (smooth glass, smooth metal), landing on a surface that the
-//! camera sees. A camera path can only find such light by hitting the emitter through the
-//! delta chain with a BSDF-sampled direction, which is hopeless for small lights and
-//! impossible for punctual ones (a spot light through a prism casts no spectrum in a pure
-//! path tracer). A light path finds it by following the light and connecting the landing
-//! point to the pinhole (light tracing: Veach 1997, §10.2; *PBR* 4th ed. §13.4, whose
-//! camera importance this uses).
+//! Light paths for caustics: light leaving an emitter, bent by one or more delta bounces
+//! (smooth glass, smooth metal), landing on surfaces, and seen by the camera there or
+//! after further bounces (a caustic on the floor lights the walls too). A camera path can
+//! only find such light by hitting the emitter through the delta chain with a
+//! BSDF-sampled direction, which is hopeless for small lights and impossible for punctual
+//! ones (a spot light through a prism casts no spectrum in a pure path tracer). A light
+//! path finds it by following the light and connecting every non-delta surface it lands
+//! on to the pinhole (light tracing: Veach 1997, §10.2; *PBR* 4th ed. §13.4, whose camera
+//! importance this uses).
 //!
 //! The two estimators split path space between them rather than combine by MIS: light
-//! paths count exactly the paths light -> delta+ -> x -> camera with x neither a delta nor
-//! fluorescent, and camera paths skip emission found along such paths
-//! (`Tracer::light_caustics`). Everything else stays with the camera paths, so the sum is
-//! unbiased and each path is counted once.
+//! paths count exactly the paths light -> delta+ -> x_1 -> ... -> x_k -> camera whose
+//! first bounce from the light is a delta, with x_1 and x_k not deltas and no vertex
+//! fluorescent; camera paths skip the emission found along such paths (`Walk::advance`:
+//! a first bounce that is not a delta, no fluorescent vertex, and a delta bounce onto the
+//! emitter). Everything else stays with the camera paths, so the sum is unbiased and
+//! each path is counted once.
 
 use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
@@ -149,9 +152,10 @@ impl Tracer<'_> {
             let Some(sample) = bsdf.sample(wo, u_lobe, u_bsdf) else {
                 break;
             };
-            // Past a non-delta bounce the path is no caustic seen directly: camera paths
-            // carry it.
-            if !sample.delta {
+            // Light leaving the light's first surface by a non-delta bounce is no caustic:
+            // camera paths carry it. Past the first delta bounce the path goes on, and
+            // connects to the camera from every non-delta surface it lands on.
+            if depth == 0 && !sample.delta {
                 break;
             }
             let pdf = sample.pdf[0];

@@ -1,11 +1,12 @@
-//! Light paths for caustics seen directly: they must add exactly the light camera paths
-//! leave to them. Two checks with independent oracles:
+//! Light paths for caustics: they must add exactly the light camera paths leave to them.
+//! Two checks with independent oracles:
 //! - a point light beside a perfect mirror lights a floor as the light and its mirror
 //!   image do (camera paths cannot find the image at all: a point light is never hit);
 //! - a small area light over a dispersive glass block: camera paths alone find the
 //!   caustic too (noisily), so rendering with and without light paths must agree within
-//!   Monte Carlo error, with the box filter and with a Gaussian one, and the image must
-//!   not depend on the thread count.
+//!   Monte Carlo error, with the box filter and with a Gaussian one, where the camera
+//!   sees the caustic and where it sees it after a bounce, and the image must not depend
+//!   on the thread count.
 
 use std::sync::Arc;
 
@@ -188,9 +189,20 @@ fn a_directional_light_in_a_mirror_lights_the_floor_as_its_image_does() {
 
 /// A box of SF11 glass (dispersive) over a white floor, lit by a small square light
 /// above and beside it; the camera looks down at the floor, the block, its shadow and
-/// the caustic its side casts.
-fn glass_block_scene() -> Scene {
+/// the caustic its side casts. With `wall`, a white wall stands behind the block and the
+/// camera looks at it across the floor: much of the caustic's light reaches the wall
+/// after a bounce on the floor.
+fn glass_block_scene(wall: bool) -> Scene {
     let mut triangles: Vec<[Vec3; 3]> = floor(3.0).to_vec();
+    if wall {
+        triangles.extend(quad(
+            Vec3::new(-3.0, 0.0, -1.2),
+            Vec3::new(3.0, 0.0, -1.2),
+            Vec3::new(3.0, 3.0, -1.2),
+            Vec3::new(-3.0, 3.0, -1.2),
+        ));
+    }
+    let walls = triangles.len();
     let (lo, hi) = (Vec3::new(-0.5, 0.4, -0.5), Vec3::new(0.5, 0.9, 0.5));
     let corner =
         |x: usize, y: usize, z: usize| Vec3::new([lo.x, hi.x][x], [lo.y, hi.y][y], [lo.z, hi.z][z]);
@@ -217,7 +229,7 @@ fn glass_block_scene() -> Scene {
     ));
     let triangle_material = (0..triangles.len())
         .map(|i| match i {
-            0..2 => 0,
+            i if i < walls => 0,
             i if i < glass => 1,
             _ => 2,
         })
@@ -248,7 +260,16 @@ fn glass_block_scene() -> Scene {
         ],
         emission: vec![SceneSpectrum::Constant(20.0)],
         lights,
-        camera: camera_above(3.5, 40.0),
+        camera: if wall {
+            Camera::look_at(
+                Vec3::new(0.3, 1.3, 3.0),
+                Vec3::new(0.3, 0.5, -1.2),
+                Vec3::Y,
+                45f32.to_radians(),
+            )
+        } else {
+            camera_above(3.5, 40.0)
+        },
         quality: BvhQuality::Medium,
     })
     .unwrap()
@@ -263,7 +284,22 @@ fn glass_block_scene() -> Scene {
 /// that also counted the caustic change the caustic's blocks by 10-40 standard errors.
 #[test]
 fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
-    let scene = glass_block_scene();
+    assert_light_and_camera_paths_agree(&glass_block_scene(false), 4);
+}
+
+/// The same where the camera sees the caustic mostly after a bounce (light, glass, floor,
+/// wall, camera): light paths go on past the floor and connect to the camera from the
+/// wall, and camera paths leave them every path that reaches the light through glass
+/// after a first bounce that is not a delta.
+#[test]
+fn light_paths_and_camera_paths_agree_on_a_caustic_seen_after_a_bounce() {
+    assert_light_and_camera_paths_agree(&glass_block_scene(true), 4);
+}
+
+/// Renders `scene` with and without light paths over seeds and checks every block of
+/// pixels agrees, and that light paths carry a visible share in at least `caustic`
+/// blocks.
+fn assert_light_and_camera_paths_agree(scene: &Scene, caustic: usize) {
     const SIZE: u32 = 16;
     // Eight seeds once left a corner block 4.8 standard errors out (the caustic's tail;
     // 64 seeds put the same block at 0.05), so sixteen.
@@ -273,9 +309,9 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
         let mut level = [0.0; 16];
         for seed in 0..RUNS {
             let base = (settings(SIZE, 128, seed)).filter(filter);
-            let with = render(&scene, &base).unwrap().0;
+            let with = render(scene, &base).unwrap().0;
             let off = base.light_paths(false);
-            let without = render(&scene, &off).unwrap().0;
+            let without = render(scene, &off).unwrap().0;
             for b in 0..16u32 {
                 let (bx, by) = (b % 4 * 4, b / 4 * 4);
                 let a = block_mean(&with, (bx, bx + 4), (by, by + 4));
@@ -301,7 +337,7 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
             }
         }
         assert!(
-            caustic_blocks >= 4,
+            caustic_blocks >= caustic,
             "{filter:?}: caustic in {caustic_blocks} blocks"
         );
     }
@@ -310,7 +346,7 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
 /// Light paths splat anywhere on the film; the image still does not depend on threads.
 #[test]
 fn light_paths_do_not_depend_on_the_thread_count() {
-    let scene = glass_block_scene();
+    let scene = glass_block_scene(false);
     let one = (settings(20, 4, 7)).threads(1);
     let two = one.clone().threads(2);
     let (a, _) = render(&scene, &one).unwrap();

@@ -35,9 +35,9 @@ pub(crate) struct Tracer<'a> {
     pub camera: Option<&'a crate::CameraResponse>,
     /// Bounces after which a path ends (u32::MAX: unbounded).
     pub max_depth: u32,
-    /// Whether light paths carry the caustics seen directly (light, then one or more
-    /// delta bounces, then a non-delta, non-fluorescent surface the camera sees): camera
-    /// paths then leave those to them, so that each path is counted by one estimator.
+    /// Whether light paths carry caustics (light, then one or more delta bounces, then
+    /// non-fluorescent surfaces, the last a non-delta one the camera sees): camera paths
+    /// then leave those to them, so that each path is counted by one estimator.
     pub light_caustics: bool,
     /// Whether camera rays that leave the scene show nothing (a transparent background).
     pub transparent: bool,

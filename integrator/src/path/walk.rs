@@ -39,10 +39,13 @@ pub(crate) struct Walk<const N: usize, T: Throughput<N>> {
     /// carries 1 / eta^2 from each refraction and 1 / splits from the split, neither of
     /// which Russian roulette may read as lost energy.
     pub eta_scale: f32,
-    /// Whether the path so far is one that light paths carry: a first vertex that is
-    /// neither a delta nor fluorescent, then only delta bounces (at least one).
-    caustic_prefix: bool,
-    /// Whether the path from here on is such a caustic: its light is the light paths'.
+    /// Whether the path so far could end in light that light paths carry: its first
+    /// bounce was not a delta, and no vertex so far was fluorescent (light paths stop at
+    /// fluorescent surfaces and connect to the camera only from the surface it sees).
+    caustic_eligible: bool,
+    /// Whether light met at the vertex this bounce leads to is the light paths': the path
+    /// is eligible and the bounce was a delta (so the light reaches the path's last
+    /// non-delta vertex through one or more delta bounces, a caustic).
     pub light_caustic: bool,
 }
 
@@ -67,7 +70,7 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
             previous: None,
             depth: 0,
             eta_scale: 1.0,
-            caustic_prefix: false,
+            caustic_eligible: false,
             light_caustic: false,
         }
     }
@@ -147,10 +150,10 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
         caustic_start: bool,
     ) {
         if self.depth == 0 {
-            self.caustic_prefix = caustic_start && !delta;
+            self.caustic_eligible = caustic_start && !delta;
         } else {
-            self.caustic_prefix &= delta;
-            self.light_caustic = self.caustic_prefix;
+            self.caustic_eligible &= caustic_start;
+            self.light_caustic = self.caustic_eligible && delta;
         }
         self.previous = (!delta).then_some((pdf, hit.p));
         self.ray = hit.spawn(wi_world);

@@ -1,0 +1,118 @@
+"""The Cornell box's scene kinds (scenes/cornell-specular.gltf, -glossy, -caustic, written
+by scenes/tools/make_cornell_kinds.py) in Mitsuba 3, rendered by its `path` integrator:
+Mitsuba's built-in `cornell_box()` (whose walls, light and camera prism's glTF copies)
+without its two boxes, plus the glTF file's spheres, read from the file itself: the mesh
+(positions, smooth normals, triangles) as a PLY file, placed by the node's translation and
+scale, and each material from its `PRISM_spectral` description (a dielectric's index and
+a conductor's eta and k tables, GGX alpha = roughness^2 for rough ones). Times a render,
+optionally writes it; prints one JSON line as ../../../shared/scenes/peer/mitsuba_peer.py
+does.
+
+  pip install mitsuba numpy
+  python3 benches/peer/mitsuba_kinds.py scalar_spectral specular 64 --width 128 --out s.exr
+"""
+import argparse, base64, json, os, struct, tempfile, time
+
+import numpy as np
+import mitsuba as mi
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+KINDS = ("specular", "glossy", "caustic")
+SHARED_NODES = {"light", "floor", "ceiling", "back", "green-wall", "red-wall", "camera"}
+
+
+def accessor(doc, blobs, index, dtype, width):
+    a = doc["accessors"][index]
+    view = doc["bufferViews"][a["bufferView"]]
+    blob = blobs[view["buffer"]]
+    start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+    count = a["count"] * width
+    return np.frombuffer(blob, dtype=dtype, count=count, offset=start).reshape(-1, width) if width > 1 else \
+        np.frombuffer(blob, dtype=dtype, count=count, offset=start)
+
+
+def ply(path, positions, normals, indices):
+    faces = indices.reshape(-1, 3)
+    with open(path, "wb") as f:
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(positions)}\n"
+                 "property float x\nproperty float y\nproperty float z\n"
+                 "property float nx\nproperty float ny\nproperty float nz\n"
+                 f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n").encode())
+        f.write(np.hstack([positions, normals]).astype("<f4").tobytes())
+        for a, b, c in faces:
+            f.write(struct.pack("<B3i", 3, int(a), int(b), int(c)))
+
+
+def spectrum(table):
+    return {"type": "spectrum", "value": [(float(nm), float(v)) for nm, v in table]}
+
+
+def bsdf(desc):
+    alpha = float(desc.get("roughness", 0.0)) ** 2
+    if desc["type"] == "dielectric":
+        ior = float(desc["ior"])
+        if alpha:
+            return {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha, "int_ior": ior, "ext_ior": 1.0}
+        return {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}
+    if desc["type"] == "conductor":
+        d = {"type": "roughconductor" if alpha else "conductor", "eta": spectrum(desc["eta"]), "k": spectrum(desc["k"])}
+        if alpha:
+            d.update(distribution="ggx", alpha=alpha)
+        return d
+    raise SystemExit(f"no Mitsuba BSDF for {desc['type']}")
+
+
+def spheres(kind, tmp):
+    """Mitsuba shapes for the glTF file's meshes that are not the box's."""
+    with open(os.path.join(ROOT, "scenes", f"cornell-{kind}.gltf")) as f:
+        doc = json.load(f)
+    blobs = []
+    for b in doc["buffers"]:
+        uri = b["uri"]
+        if uri.startswith("data:"):
+            blobs.append(base64.b64decode(uri.split(",", 1)[1]))
+        else:
+            with open(os.path.join(ROOT, "scenes", uri), "rb") as f:
+                blobs.append(f.read())
+    shapes = {}
+    for node in (doc["nodes"][i] for i in doc["scenes"][0]["nodes"]):
+        if node["name"] in SHARED_NODES or "mesh" not in node:
+            continue
+        primitive = doc["meshes"][node["mesh"]]["primitives"][0]
+        itype = {5123: "<u2", 5125: "<u4"}[doc["accessors"][primitive["indices"]]["componentType"]]
+        path = os.path.join(tmp, node["name"] + ".ply")
+        ply(path, accessor(doc, blobs, primitive["attributes"]["POSITION"], "<f4", 3),
+            accessor(doc, blobs, primitive["attributes"]["NORMAL"], "<f4", 3),
+            accessor(doc, blobs, primitive["indices"], itype, 1))
+        to_world = mi.ScalarTransform4f().translate(node.get("translation", [0, 0, 0])).scale(node.get("scale", [1, 1, 1]))
+        material = doc["materials"][primitive["material"]]["extensions"]["PRISM_spectral"]
+        shapes[node["name"]] = {"type": "ply", "filename": path, "to_world": to_world, "bsdf": bsdf(material)}
+    return shapes
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("variant"); ap.add_argument("scene", choices=KINDS); ap.add_argument("spp", type=int)
+    ap.add_argument("--depth", type=int, default=-1); ap.add_argument("--width", type=int, default=256)
+    ap.add_argument("--out"); ap.add_argument("--seed", type=int, default=1)
+    a = ap.parse_args()
+    mi.set_variant(a.variant)
+    import drjit as dr
+    desc = mi.cornell_box()
+    del desc["small-box"], desc["large-box"]
+    desc["integrator"]["max_depth"] = a.depth
+    desc["sensor"]["film"]["rfilter"] = {"type": "box"}
+    desc["sensor"]["film"]["width"] = desc["sensor"]["film"]["height"] = a.width
+    with tempfile.TemporaryDirectory() as tmp:
+        desc.update(spheres(a.scene, tmp))
+        scene = mi.load_dict(desc)
+    img = mi.render(scene, spp=1); dr.eval(img)  # warm-up (JIT compilation for the LLVM variant)
+    t = time.time(); img = mi.render(scene, spp=a.spp, seed=a.seed); dr.eval(img); dr.sync_thread(); dt = time.time() - t
+    if a.out:
+        mi.util.write_bitmap(a.out, img)
+    print(json.dumps({"variant": a.variant, "scene": a.scene, "spp": a.spp, "depth": a.depth, "width": a.width,
+                      "seconds": round(dt, 3), "paths_per_second": a.width * a.width * a.spp / dt}))
+
+
+if __name__ == "__main__":
+    main()
