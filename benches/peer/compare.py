@@ -9,8 +9,8 @@
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr   # Mitsuba's, 8192 spp
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --repeats 3   # median times
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --narrow-peers  # peers as without AVX-512
-  python3 benches/peer/compare.py box specular glossy caustic media --width 128 \
-      --variants llvm_ad_spectral,scalar_spectral --peer-reference-dir refs --repeats 3   # the scene kinds
+  python3 benches/peer/compare.py box bunny specular glossy caustic media --width 128 \
+      --variants llvm_ad_spectral,scalar_spectral --peer-reference-dir refs --seeds 4   # the scene kinds
 
 Several scenes print one JSON object each and then a Markdown table of the time-to-equal-error
 ratios and paths/s per scene, with the CPU model (on stderr).
@@ -110,6 +110,9 @@ def main():
                     help="time every renderer this many times, in turns, and report the median (a shared "
                          "host's speed drifts by 20-30%% within minutes; images and errors are the first run's, "
                          "every run's being the same)")
+    ap.add_argument("--seeds", type=int, default=1,
+                    help="render every renderer with this many seeds (in turns, as --repeats) and report the "
+                         "mean relative MSE: one seed's error is a poor estimate where fireflies are")
     ap.add_argument("--table", action="store_true", help="also print the Markdown table for one scene")
     ap.add_argument("--narrow-peers", action="store_true",
                     help="run Mitsuba as on a host without AVX-512 (narrow_peer.py: Dr.Jit 8 lanes wide for "
@@ -119,8 +122,8 @@ def main():
         ap.error("--peer-reference names one scene's reference: use --peer-reference-dir for several")
     if a.depth == 0 or a.depth < -1:
         ap.error("--depth is -1 (unbounded) or at least 1")
-    if a.repeats < 1:
-        ap.error("--repeats is at least 1")
+    if a.repeats < 1 or a.seeds < 1:
+        ap.error("--repeats and --seeds are at least 1")
     results = []
     for scene in a.scenes:
         reference = a.peer_reference
@@ -163,18 +166,23 @@ def compare(scene, a, peer_reference):
         cmd += ["--max-depth", str(a.depth - 1)]
     variants = a.variants.split(",")
 
-    def run_peer(variant, exr):
+    def run_peer(variant, exr, seed):
         peer = subprocess.run([sys.executable, peer_script(scene, a.narrow_peers), variant,
-                               scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr],
+                               scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr,
+                               "--seed", str(seed + 1)],
                               check=True, capture_output=True, text=True)
         return json.loads(peer.stdout.strip().splitlines()[-1])
 
     # Every renderer once per turn, so that a drift of the host's speed reaches all alike.
+    # Turn t renders seed t % seeds; the first `seeds` turns' images are kept.
     prism_runs, peer_runs = [], {v: [] for v in variants}
-    for turn in range(a.repeats):
-        prism_runs.append(json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout))
+    image_of = lambda name, turn: os.path.join(out, f"{name}-{turn}.exr")
+    for turn in range(max(a.repeats, a.seeds)):
+        seed = turn % a.seeds
+        run = [image_of("prism", turn) if c == prism_exr else c for c in cmd] + ["--seed", str(seed)]
+        prism_runs.append(json.loads(subprocess.run(run, check=True, capture_output=True, text=True).stdout))
         for variant in variants:
-            peer_runs[variant].append(run_peer(variant, os.path.join(out, f"{variant}.exr")))
+            peer_runs[variant].append(run_peer(variant, image_of(variant, turn), seed))
     median = lambda runs: float(np.median([r["seconds"] for r in runs]))
     prism_stats = dict(prism_runs[0])
     prism_stats["seconds"] = median(prism_runs)
@@ -184,7 +192,8 @@ def compare(scene, a, peer_reference):
               "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits", "reuse")}}
     if a.repeats > 1:
         result["prism"]["seconds_each"] = [r["seconds"] for r in prism_runs]
-    images = {"prism": read_exr(prism_exr)}
+    seeded = {name: [read_exr(image_of(name, t)) for t in range(a.seeds)] for name in ["prism"] + variants}
+    images = {name: runs[0] for name, runs in seeded.items()}
     for variant in variants:
         seconds = median(peer_runs[variant])
         pps = a.width * a.width * a.spp / seconds
@@ -192,7 +201,6 @@ def compare(scene, a, peer_reference):
                            "prism_speed_ratio": prism_stats["paths_per_second"] / pps}
         if a.repeats > 1:
             result[variant]["seconds_each"] = [r["seconds"] for r in peer_runs[variant]]
-        images[variant] = read_exr(os.path.join(out, f"{variant}.exr"))
         result[variant]["prism_vs_peer"] = agreement(images["prism"], images[variant], a.grid)
     reference = a.reference
     if reference is None and peer_reference:
@@ -214,7 +222,10 @@ def compare(scene, a, peer_reference):
     if reference:
         ref = read_exr(reference)
         result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
-        errors = {name: relmse(img, ref) for name, img in images.items()}
+        # Fireflies make one seed's error a poor estimate: the mean over the seeds.
+        errors = {name: float(np.mean([relmse(img, ref) for img in runs])) for name, runs in seeded.items()}
+        if a.seeds > 1:
+            result["seeds"] = a.seeds
         result["prism"]["relmse"] = errors["prism"]
         for variant in variants:
             peer = result[variant]

@@ -1,20 +1,24 @@
-//! Light paths for caustics: light leaving an emitter, bent by one or more delta bounces
-//! (smooth glass, smooth metal), landing on surfaces, and seen by the camera there or
-//! after further bounces (a caustic on the floor lights the walls too). A camera path can
-//! only find such light by hitting the emitter through the delta chain with a
+//! Light paths for caustics: light leaving an emitter, focused by one or more bounces off
+//! smooth or nearly smooth glass and metal, landing on surfaces, and seen by the camera
+//! there or after further bounces (a caustic on the floor lights the walls too). A camera
+//! path can only find such light by hitting the emitter through the focusing chain with a
 //! BSDF-sampled direction, which is hopeless for small lights and impossible for punctual
 //! ones (a spot light through a prism casts no spectrum in a pure path tracer). A light
 //! path finds it by following the light and connecting every non-delta surface it lands
 //! on to the pinhole (light tracing: Veach 1997, §10.2; *PBR* 4th ed. §13.4, whose camera
 //! importance this uses).
 //!
-//! The two estimators split path space between them rather than combine by MIS: light
-//! paths count exactly the paths light -> delta+ -> x_1 -> ... -> x_k -> camera whose
-//! first bounce from the light is a delta, with x_1 and x_k not deltas and no vertex
-//! fluorescent; camera paths skip the emission found along such paths (`Walk::advance`:
-//! a first bounce that is not a delta, no fluorescent vertex, and a delta bounce onto the
-//! emitter). Everything else stays with the camera paths, so the sum is unbiased and
-//! each path is counted once.
+//! The two estimators split path space between them rather than combine by MIS. A bounce
+//! is *focused* when it is a delta or off a narrow surface (every lobe a delta or GGX with
+//! alpha at most [`CAUSTIC_ALPHA`], `Bsdf::is_narrow`). Light paths count exactly the
+//! paths light -> x_1 -> ... -> x_k -> camera whose bounce at x_1 is focused, with x_k not
+//! narrow (a glossy highlight seen directly is the camera's to find), k >= 2 and no vertex
+//! fluorescent; camera paths skip the light found along such paths (`Walk::advance`: a
+//! first bounce that is not focused, no fluorescent vertex, and a focused bounce onto the
+//! emitter; `Tracer::next_event`: no light sample from a narrow
+//! surface past the first bounce, but the environment's, which light paths never start
+//! from). Everything else stays with the camera paths, so the sum is unbiased and each
+//! path is counted once.
 
 use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
@@ -26,6 +30,13 @@ use prism_spectrum::SampledWavelengths;
 use crate::light_throughput::LightThroughput;
 use crate::path::{Frame, Tracer, absorb, wavelengths};
 use crate::throughput::Vertex;
+
+/// The roughest GGX lobe (alpha, roughness 0.35) whose light counts as focused: light
+/// leaving an emitter through such surfaces (or smooth ones) is carried by light paths,
+/// like a caustic through glass. Measured as time to equal error on the glossy box
+/// (docs/trade-offs.md): counting lobes up to 0.1 doubles the efficiency; counting
+/// rougher ones too (copper at 0.15, aluminium at 0.3) gives some of it back.
+pub(crate) const CAUSTIC_ALPHA: f32 = 0.12;
 
 /// Sample-stream dimensions of a light path: the wavelength (0), the light choice, its
 /// position and direction (1-5), then a fixed block per bounce.
@@ -129,7 +140,7 @@ impl Tracer<'_> {
             // After at least one delta bounce, a surface the camera can see is where the
             // caustic lands.
             if depth > 0
-                && !bsdf.is_delta()
+                && !bsdf.is_narrow(CAUSTIC_ALPHA)
                 && let Some(seen) = camera.project(hit.p, aspect)
             {
                 let wi_world = -seen.direction;
@@ -155,7 +166,7 @@ impl Tracer<'_> {
             // Light leaving the light's first surface by a non-delta bounce is no caustic:
             // camera paths carry it. Past the first delta bounce the path goes on, and
             // connects to the camera from every non-delta surface it lands on.
-            if depth == 0 && !sample.delta {
+            if depth == 0 && !sample.delta && !bsdf.is_narrow(CAUSTIC_ALPHA) {
                 break;
             }
             let pdf = sample.pdf[0];

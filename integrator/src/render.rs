@@ -227,6 +227,11 @@ impl<'a> Renderer<'a> {
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
             && self.scene.features().specular
+                | self
+                    .scene
+                    .materials()
+                    .iter()
+                    .any(|m| m.narrow(crate::light_path::CAUSTIC_ALPHA))
             && !self.scene.features().media
             && matches!(
                 self.scene.camera().projection,

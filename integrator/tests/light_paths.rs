@@ -191,8 +191,8 @@ fn a_directional_light_in_a_mirror_lights_the_floor_as_its_image_does() {
 /// above and beside it; the camera looks down at the floor, the block, its shadow and
 /// the caustic its side casts. With `wall`, a white wall stands behind the block and the
 /// camera looks at it across the floor: much of the caustic's light reaches the wall
-/// after a bounce on the floor.
-fn glass_block_scene(wall: bool) -> Scene {
+/// after a bounce on the floor. `roughness` roughens the glass (GGX alpha its square).
+fn glass_block_scene(wall: bool, roughness: f32) -> Scene {
     let mut triangles: Vec<[Vec3; 3]> = floor(3.0).to_vec();
     if wall {
         triangles.extend(quad(
@@ -251,7 +251,7 @@ fn glass_block_scene(wall: bool) -> Scene {
             },
             Material::Dielectric {
                 ior: SceneSpectrum::Sellmeier(Arc::new(named_glass("sf11").unwrap().ior)),
-                roughness: 0.0,
+                roughness,
                 absorption: None,
             },
             Material::Diffuse {
@@ -284,7 +284,7 @@ fn glass_block_scene(wall: bool) -> Scene {
 /// that also counted the caustic change the caustic's blocks by 10-40 standard errors.
 #[test]
 fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
-    assert_light_and_camera_paths_agree(&glass_block_scene(false), 4);
+    assert_light_and_camera_paths_agree(&glass_block_scene(false, 0.0), 4);
 }
 
 /// The same where the camera sees the caustic mostly after a bounce (light, glass, floor,
@@ -293,7 +293,15 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
 /// after a first bounce that is not a delta.
 #[test]
 fn light_paths_and_camera_paths_agree_on_a_caustic_seen_after_a_bounce() {
-    assert_light_and_camera_paths_agree(&glass_block_scene(true), 4);
+    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.0), 4);
+}
+
+/// The same through slightly rough glass (alpha 0.0625): its light is focused too, so
+/// light paths carry it, and camera paths leave them the light they would find through it,
+/// by a bounce off the glass or a light sample there, past their first bounce.
+#[test]
+fn light_paths_and_camera_paths_agree_on_a_rough_glass_caustic() {
+    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.25), 4);
 }
 
 /// Renders `scene` with and without light paths over seeds and checks every block of
@@ -346,7 +354,7 @@ fn assert_light_and_camera_paths_agree(scene: &Scene, caustic: usize) {
 /// Light paths splat anywhere on the film; the image still does not depend on threads.
 #[test]
 fn light_paths_do_not_depend_on_the_thread_count() {
-    let scene = glass_block_scene(false);
+    let scene = glass_block_scene(false, 0.0);
     let one = (settings(20, 4, 7)).threads(1);
     let two = one.clone().threads(2);
     let (a, _) = render(&scene, &one).unwrap();

@@ -205,8 +205,14 @@ fn scatter<const N: usize, const W: usize>(
         }
         // A Lambertian bounce is no refraction: eta_scale stays as it was.
         let caustic_start = tracer.light_caustics && !at.material.fluorescent();
-        lane.walk
-            .advance(&at.hit, false, pdf.lane(i), wi_world.lane(i), caustic_start);
+        lane.walk.advance(
+            &at.hit,
+            false,
+            false,
+            pdf.lane(i),
+            wi_world.lane(i),
+            caustic_start,
+        );
         at_risk[i] = lane.walk.depth >= ROULETTE_DEPTH;
     }
     let largest = beta

@@ -7,6 +7,7 @@ use prism_scene::world::{EmissionCache, Hit};
 
 use super::Tracer;
 use super::walk::Walk;
+use crate::light_path::CAUSTIC_ALPHA;
 use crate::throughput::{Arrival, Throughput, Vertex};
 
 impl Tracer<'_> {
@@ -79,6 +80,15 @@ impl Tracer<'_> {
         else {
             return 0;
         };
+        // Light reaching a narrow surface past the path's first bounce is the light paths'
+        // (every light but the environment, which they do not start from).
+        if walk.depth > 0
+            && walk.caustic_eligible
+            && vertex.bsdf.is_narrow(CAUSTIC_ALPHA)
+            && self.scene.environment_light() != Some(light.light)
+        {
+            return 0;
+        }
         if let Some(times) = &walk.times {
             self.gate(Some(light.light), times, &mut light.radiance);
         }

@@ -10,6 +10,7 @@ use prism_scene::world::Hit;
 use prism_spectrum::SampledWavelengths;
 
 use super::{ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
+use crate::light_path::CAUSTIC_ALPHA;
 use crate::reuse::{Record, Second};
 use crate::throughput::{CameraFrame, Throughput, Vertex};
 
@@ -40,12 +41,13 @@ pub(crate) struct Walk<const N: usize, T: Throughput<N>> {
     /// which Russian roulette may read as lost energy.
     pub eta_scale: f32,
     /// Whether the path so far could end in light that light paths carry: its first
-    /// bounce was not a delta, and no vertex so far was fluorescent (light paths stop at
-    /// fluorescent surfaces and connect to the camera only from the surface it sees).
-    caustic_eligible: bool,
+    /// bounce was not focused (neither a delta nor off a narrow surface), and no vertex so
+    /// far was fluorescent (light paths stop at fluorescent surfaces and connect to the
+    /// camera only from a surface it sees that is not narrow).
+    pub caustic_eligible: bool,
     /// Whether light met at the vertex this bounce leads to is the light paths': the path
-    /// is eligible and the bounce was a delta (so the light reaches the path's last
-    /// non-delta vertex through one or more delta bounces, a caustic).
+    /// is eligible and the bounce was focused, a delta or off a narrow surface (the light
+    /// reaches the path through a caustic).
     pub light_caustic: bool,
 }
 
@@ -133,27 +135,30 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
             }
         }
         let wi_world = vertex.frame.to_world(sample.wi);
-        self.advance(hit, sample.delta, pdf, wi_world, caustic_start);
+        let focused = sample.delta || (caustic_start && vertex.bsdf.is_narrow(CAUSTIC_ALPHA));
+        self.advance(hit, sample.delta, focused, pdf, wi_world, caustic_start);
         true
     }
 
     /// The rest of a bounce from `hit` once the throughput has scattered: whether the path
-    /// is a caustic light paths carry (`caustic_start` as in [`Walk::follow`]), the bounce's
+    /// is a caustic light paths carry (`caustic_start` as in [`Walk::follow`]; `focused`:
+    /// the bounce was a delta or off a narrow surface, `Bsdf::is_narrow`), the bounce's
     /// density `pdf` for MIS unless it was a `delta`, the ray towards `wi_world`, the depth.
     #[inline(always)]
     pub fn advance(
         &mut self,
         hit: &Hit,
         delta: bool,
+        focused: bool,
         pdf: f32,
         wi_world: Vec3,
         caustic_start: bool,
     ) {
         if self.depth == 0 {
-            self.caustic_eligible = caustic_start && !delta;
+            self.caustic_eligible = caustic_start && !focused;
         } else {
             self.caustic_eligible &= caustic_start;
-            self.light_caustic = self.caustic_eligible && delta;
+            self.light_caustic = self.caustic_eligible && focused;
         }
         self.previous = (!delta).then_some((pdf, hit.p));
         self.ray = hit.spawn(wi_world);

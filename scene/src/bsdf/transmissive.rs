@@ -38,6 +38,15 @@ impl<const N: usize> Glass<N> {
         }
     }
 
+    /// Whether its lobes have roughness alpha at most `alpha`.
+    pub fn is_narrow(&self, alpha: f32) -> bool {
+        let d = match self {
+            Glass::Thick(g) => &g.distribution,
+            Glass::Thin(g) => &g.distribution,
+        };
+        d.alpha_x.max(d.alpha_y) <= alpha
+    }
+
     /// Whether its lobes are deltas.
     pub fn is_delta(&self) -> bool {
         match self {
@@ -143,5 +152,10 @@ impl<const N: usize> Transmissive<'_, N> {
     /// Whether every lobe is a delta (all glass, smooth).
     pub fn is_delta(&self) -> bool {
         self.share() >= 1.0 && self.glass.is_delta()
+    }
+
+    /// Whether it is all glass of roughness alpha at most `alpha`.
+    pub fn is_narrow(&self, alpha: f32) -> bool {
+        self.share() >= 1.0 && self.glass.is_narrow(alpha)
     }
 }

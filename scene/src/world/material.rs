@@ -169,6 +169,21 @@ impl Material {
         }
     }
 
+    /// Whether its BSDF can be narrow at a hit ([`Bsdf::is_narrow`] with `alpha`): smooth
+    /// or slightly rough glass or metal, the polarizing sheets.
+    pub fn narrow(&self, alpha: f32) -> bool {
+        let below = |roughness: f32| roughness * roughness <= alpha;
+        match self {
+            Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
+                below(*roughness)
+            }
+            Material::MetallicRoughness {
+                roughness, texture, ..
+            } if self.transmission().is_some() => texture.is_some() || below(*roughness),
+            _ => self.specular(),
+        }
+    }
+
     /// Whether its reflectance or metallic-roughness parameters come from textures (what
     /// footprint filtering applies to).
     pub fn textured(&self) -> bool {
@@ -472,6 +487,19 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Dielectric(b) => b.sample(wo, uc, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
             Bsdf::Sheet(b) => b.sample(wo),
+        }
+    }
+
+    /// Whether every lobe is a delta or a GGX lobe of roughness alpha at most `alpha`
+    /// (on either axis): light through it is focused, a caustic. Light paths carry what
+    /// reaches the camera through such a surface after a first bounce elsewhere.
+    pub fn is_narrow(&self, alpha: f32) -> bool {
+        match self {
+            Bsdf::Dielectric(b) => b.distribution.alpha_x.max(b.distribution.alpha_y) <= alpha,
+            Bsdf::Conductor(b) => b.distribution.alpha_x.max(b.distribution.alpha_y) <= alpha,
+            Bsdf::Transmissive(b) => b.is_narrow(alpha),
+            Bsdf::Sheet(_) => true,
+            _ => false,
         }
     }
 
