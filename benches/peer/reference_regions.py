@@ -11,6 +11,10 @@ reference test (integrator/tests/reference.rs).
   python3 benches/peer/mitsuba_media.py scalar_spectral media 2048 --width 128 --out /tmp/media.exr
   python3 benches/peer/reference_regions.py /tmp/media.exr --spp 2048 --scene media \
       --out integrator/tests/data/cornell-medium-mitsuba-regions.json
+  python3 benches/peer/mitsuba_reference.py specular --width 128 --spp 8192 --out /tmp/specular.exr
+  python3 benches/peer/reference_regions.py /tmp/specular.exr --spp 8192 --scene specular \
+      --variant llvm_ad_spectral --out integrator/tests/data/cornell-specular-mitsuba-regions.json
+  (and glossy, caustic alike)
 
 With a box pixel filter the mean of a region of the film is the integral of radiance over
 that part of the film, whatever the resolution, so prism can be compared at a lower one.
@@ -28,6 +32,9 @@ SOURCES = {
     "media": "; the large box a null BSDF holding scenes/cornell-medium.gltf's homogeneous medium"
              ", integrator volpathmis; rendered by benches/peer/mitsuba_media.py",
 }
+for kind in ("specular", "glossy", "caustic"):
+    SOURCES[kind] = (f"; boxes replaced by the spheres of scenes/cornell-{kind}.gltf (mesh and materials read "
+                     "from it); rendered by benches/peer/mitsuba_kinds.py")
 
 
 def main():
@@ -36,6 +43,7 @@ def main():
     ap.add_argument("--grid", type=int, default=8)
     ap.add_argument("--spp", type=int, required=True)
     ap.add_argument("--scene", default="box")
+    ap.add_argument("--variant", default="scalar_spectral", help="the Mitsuba variant that rendered it")
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
     import mitsuba as mi
@@ -46,7 +54,7 @@ def main():
     means = [[img[i * h // g:(i + 1) * h // g, j * w // g:(j + 1) * w // g].mean(axis=(0, 1)).tolist()
               for j in range(g)] for i in range(g)]
     doc = {
-        "provenance": f"Mitsuba {mi.__version__} scalar_spectral, mitsuba.cornell_box() ({a.scene}{SOURCES.get(a.scene, SOURCES['box'])}), "
+        "provenance": f"Mitsuba {mi.__version__} {a.variant}, mitsuba.cornell_box() ({a.scene}{SOURCES.get(a.scene, SOURCES['box'])}), "
                       f"{w}x{h}, {a.spp} spp, unbounded depth, box filter; linear sRGB region means "
                       f"(rows top to bottom), made by benches/peer/reference_regions.py",
         "grid": g, "width": w, "height": h, "spp": a.spp,
