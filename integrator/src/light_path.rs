@@ -53,6 +53,26 @@ pub(crate) fn light_seed(seed: u64) -> u64 {
 }
 
 impl Tracer<'_> {
+    /// Where the camera sees `point` (a light path's vertex at `depth`), connecting it to
+    /// the pinhole or to a point of the lens the light path's stream chooses.
+    fn seen(
+        &self,
+        point: glam::Vec3,
+        aspect: f32,
+        stream: &SobolStream,
+        depth: u32,
+    ) -> Option<prism_scene::camera::FilmPoint> {
+        let camera = self.scene.camera();
+        match &self.focus {
+            None => camera.project(point, aspect),
+            Some(focus) => {
+                let mut lens = stream.clone();
+                lens.set_dimension(crate::path::LENS_DIMENSION + 2 * u64::from(depth));
+                camera.project_through(point, aspect, Some(focus), lens.next_2d())
+            }
+        }
+    }
+
     /// Traces one light path with `stream` (positioned at dimension 0) for an image of
     /// aspect ratio `aspect`; every connection to the camera goes to `sink` with its film
     /// position, its radiance (the contribution to the film's mean in that pixel, given
@@ -98,7 +118,6 @@ impl Tracer<'_> {
             Some(p.stokes(ray.direction.normalize()))
         });
         let initial = beta.max_value();
-        let camera = self.scene.camera();
         let mut rays = 0u64;
         let mut depth = 0u32;
         loop {
@@ -141,7 +160,7 @@ impl Tracer<'_> {
             // caustic lands.
             if depth > 0
                 && !bsdf.is_narrow(CAUSTIC_ALPHA)
-                && let Some(seen) = camera.project(hit.p, aspect)
+                && let Some(seen) = self.seen(hit.p, aspect, stream, depth)
             {
                 let wi_world = -seen.direction;
                 let wi = frame.to_local(wi_world);

@@ -29,7 +29,7 @@ use crate::{Film, RenderError, RenderSettings};
 use prism_spectrum::SampledSpectrum;
 
 /// Counts gathered during a render.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RenderStats {
     /// Camera paths traced.
     pub paths: u64,
@@ -41,6 +41,8 @@ pub struct RenderStats {
     pub splits: u32,
     /// The side of the tiles whose paths share second vertices (see [`crate::Reuse`]).
     pub reuse: u32,
+    /// The distance in focus of the camera's thin lens (None: a pinhole).
+    pub focus_distance: Option<f32>,
 }
 
 /// Everything a render sets up once (the wavelength distribution, the filter table, the
@@ -55,6 +57,8 @@ pub struct Renderer<'a> {
     splits: u32,
     /// The side of the tiles whose paths share their second vertices (1: none).
     reuse: u32,
+    /// The camera's thin lens, ready (None: a pinhole).
+    focus: Option<prism_scene::camera::Focus>,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -125,7 +129,16 @@ impl<'a> Renderer<'a> {
             pool,
             splits: 1,
             reuse: 1,
+            focus: None,
         };
+        let aspect = settings.width as f32 / settings.height as f32;
+        renderer.focus = scene.camera().focus(aspect, || {
+            // What the image's centre sees (the pinhole's ray there runs along the view).
+            let ray = scene.camera().generate_ray(glam::Vec2::splat(0.5), aspect);
+            scene
+                .intersect(&ray)
+                .map(|hit| hit.t * ray.direction.length())
+        });
         if scene.features().media {
             crate::volume::check_settings(settings)?;
             return Ok(renderer);
@@ -159,6 +172,12 @@ impl<'a> Renderer<'a> {
         &self.settings
     }
 
+    /// The camera's thin lens as this render uses it: its radius, shape and the distance
+    /// in focus (None: a pinhole).
+    pub fn focus(&self) -> Option<prism_scene::camera::Focus> {
+        self.focus
+    }
+
     /// Continuations per camera sample: the settings' number, or the pilot's choice.
     pub fn splits(&self) -> u32 {
         self.splits
@@ -190,6 +209,7 @@ impl<'a> Renderer<'a> {
             clock: crate::path::Clock::of(settings),
             splits,
             camera_media: crate::volume::MediumStack::around_camera(self.scene),
+            focus: self.focus,
         }
     }
 
@@ -312,6 +332,7 @@ impl<'a> Renderer<'a> {
             nonfinite,
             splits: self.splits,
             reuse: self.reuse,
+            focus_distance: self.focus.map(|f| f.distance),
         }))
     }
 

@@ -91,6 +91,7 @@ fn each_wavelength_leaves_the_prism_where_snell_puts_it() {
         name: "eye".into(),
         to_world: Mat4::from_translation(w(eye, 0.0)) * Mat4::from_rotation_y(phi),
         aspect_ratio: None,
+        lens: None,
         projection: Projection::Perspective { yfov },
     };
     let scene = Scene::new(SceneParts {

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 use prism_integrator::{Film, Filter, LambdaSampler, RenderSettings, render};
-use prism_scene::camera::{Camera, Projection};
+use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Projection, ThinLens};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
 use prism_spectrum::optics::named_glass;
@@ -29,6 +29,7 @@ fn camera_above(h: f32, yfov_degrees: f32) -> Camera {
         to_world: Mat4::from_translation(Vec3::new(0.0, h, 0.0))
             * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2),
         aspect_ratio: None,
+        lens: None,
         projection: Projection::Perspective {
             yfov: yfov_degrees.to_radians(),
         },
@@ -191,8 +192,9 @@ fn a_directional_light_in_a_mirror_lights_the_floor_as_its_image_does() {
 /// above and beside it; the camera looks down at the floor, the block, its shadow and
 /// the caustic its side casts. With `wall`, a white wall stands behind the block and the
 /// camera looks at it across the floor: much of the caustic's light reaches the wall
-/// after a bounce on the floor. `roughness` roughens the glass (GGX alpha its square).
-fn glass_block_scene(wall: bool, roughness: f32) -> Scene {
+/// after a bounce on the floor. `roughness` roughens the glass (GGX alpha its square);
+/// `lens` puts a thin lens on the camera that looks at the wall.
+fn glass_block_scene(wall: bool, roughness: f32, lens: Option<ThinLens>) -> Scene {
     let mut triangles: Vec<[Vec3; 3]> = floor(3.0).to_vec();
     if wall {
         triangles.extend(quad(
@@ -261,12 +263,15 @@ fn glass_block_scene(wall: bool, roughness: f32) -> Scene {
         emission: vec![SceneSpectrum::Constant(20.0)],
         lights,
         camera: if wall {
-            Camera::look_at(
-                Vec3::new(0.3, 1.3, 3.0),
-                Vec3::new(0.3, 0.5, -1.2),
-                Vec3::Y,
-                45f32.to_radians(),
-            )
+            Camera {
+                lens,
+                ..Camera::look_at(
+                    Vec3::new(0.3, 1.3, 3.0),
+                    Vec3::new(0.3, 0.5, -1.2),
+                    Vec3::Y,
+                    45f32.to_radians(),
+                )
+            }
         } else {
             camera_above(3.5, 40.0)
         },
@@ -284,7 +289,7 @@ fn glass_block_scene(wall: bool, roughness: f32) -> Scene {
 /// that also counted the caustic change the caustic's blocks by 10-40 standard errors.
 #[test]
 fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
-    assert_light_and_camera_paths_agree(&glass_block_scene(false, 0.0), 4);
+    assert_light_and_camera_paths_agree(&glass_block_scene(false, 0.0, None), 4);
 }
 
 /// The same where the camera sees the caustic mostly after a bounce (light, glass, floor,
@@ -293,7 +298,7 @@ fn light_paths_and_camera_paths_agree_on_a_dispersive_caustic() {
 /// after a first bounce that is not a delta.
 #[test]
 fn light_paths_and_camera_paths_agree_on_a_caustic_seen_after_a_bounce() {
-    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.0), 4);
+    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.0, None), 4);
 }
 
 /// The same through slightly rough glass (alpha 0.0625): its light is focused too, so
@@ -301,7 +306,23 @@ fn light_paths_and_camera_paths_agree_on_a_caustic_seen_after_a_bounce() {
 /// by a bounce off the glass or a light sample there, past their first bounce.
 #[test]
 fn light_paths_and_camera_paths_agree_on_a_rough_glass_caustic() {
-    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.25), 4);
+    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.25, None), 4);
+}
+
+/// The same through a wide thin lens focused in front of the block (everything blurred
+/// by several pixels): light paths connect to points of the aperture, with the lens's
+/// importance (connecting to the pinhole instead fails by 7 standard errors).
+#[test]
+fn light_paths_and_camera_paths_agree_through_a_thin_lens() {
+    let lens = ThinLens {
+        focus_distance: Some(1.5),
+        shape: ApertureShape::Polygon {
+            blades: 5,
+            rotation: 0.0,
+        },
+        ..ThinLens::new(ApertureSize::Radius(0.8))
+    };
+    assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.0, Some(lens)), 4);
 }
 
 /// Renders `scene` with and without light paths over seeds and checks every block of
@@ -354,7 +375,7 @@ fn assert_light_and_camera_paths_agree(scene: &Scene, caustic: usize) {
 /// Light paths splat anywhere on the film; the image still does not depend on threads.
 #[test]
 fn light_paths_do_not_depend_on_the_thread_count() {
-    let scene = glass_block_scene(false, 0.0);
+    let scene = glass_block_scene(false, 0.0, None);
     let one = (settings(20, 4, 7)).threads(1);
     let two = one.clone().threads(2);
     let (a, _) = render(&scene, &one).unwrap();

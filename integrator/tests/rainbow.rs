@@ -90,6 +90,7 @@ fn the_primary_bow_is_where_descartes_puts_it() {
                 yfov: (2.0 * HALF_VIEW.atan()) as f32,
             },
             aspect_ratio: None,
+            lens: None,
         }];
     });
     let bands = SpectralBands::new(430.0, 670.0, 12).unwrap();

@@ -118,7 +118,10 @@ fn medium_box_agrees_with_mitsuba_volpathmis_within_one_percent() {
 #[test]
 #[ignore = "slow: renders 4 x 64^2 x 256 paths; run before resolving the speed issue"]
 fn specular_box_agrees_with_mitsuba_within_one_percent() {
-    assert_agrees_with_mitsuba("cornell-specular.gltf", "cornell-specular-mitsuba-regions.json");
+    assert_agrees_with_mitsuba(
+        "cornell-specular.gltf",
+        "cornell-specular-mitsuba-regions.json",
+    );
 }
 
 #[test]
@@ -130,5 +133,8 @@ fn glossy_box_agrees_with_mitsuba_within_one_percent() {
 #[test]
 #[ignore = "slow: renders 4 x 64^2 x 256 paths; run before resolving the speed issue"]
 fn caustic_box_agrees_with_mitsuba_within_one_percent() {
-    assert_agrees_with_mitsuba("cornell-caustic.gltf", "cornell-caustic-mitsuba-regions.json");
+    assert_agrees_with_mitsuba(
+        "cornell-caustic.gltf",
+        "cornell-caustic-mitsuba-regions.json",
+    );
 }

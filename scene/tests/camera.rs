@@ -55,6 +55,7 @@ fn perspective_rays_span_the_field_of_view() {
         name: "c".into(),
         to_world: Mat4::IDENTITY,
         aspect_ratio: None,
+        lens: None,
         projection: Projection::Perspective { yfov },
     };
     let top = camera.generate_ray(Vec2::new(0.5, 0.0), 2.0).direction;
@@ -76,6 +77,7 @@ fn orthographic_rays_are_parallel() {
         name: "o".into(),
         to_world: Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)),
         aspect_ratio: None,
+        lens: None,
         projection: Projection::Orthographic {
             xmag: 2.0,
             ymag: 1.0,

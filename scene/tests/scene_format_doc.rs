@@ -1,6 +1,7 @@
 //! Every example in docs/scene-format.md loads: material descriptions on the Cornell box's
-//! "white" material (glTF material extensions too), light descriptions as an added punctual light, root descriptions on
-//! the root, and overlays against the Cornell box.
+//! "white" material (glTF material extensions too), light descriptions as an added
+//! punctual light, camera descriptions on its camera, root descriptions on the root, and
+//! overlays against the Cornell box.
 
 use prism_scene::load::{LoadError, LoadOptions, LoadedGeometry, load_scene};
 use prism_scene::spectral::Overlay;
@@ -69,6 +70,12 @@ fn every_documented_example_loads() {
                 .as_array_mut()
                 .unwrap()
                 .push(json!(n));
+        } else if value.get("aperture").is_some() {
+            // A camera's thin lens: on the box's camera.
+            doc["extensionsUsed"] = json!(["PRISM_spectral"]);
+            doc["cameras"][0]["extensions"] = json!({ "PRISM_spectral": value });
+            let loaded = load(&doc, None).unwrap_or_else(|e| panic!("{e}:\n{example}"));
+            assert!(loaded.cameras[0].lens.is_some(), "{example}");
         } else if let Some(extensions) = value["extensions"].as_object().filter(|e| {
             e.keys().any(|k| k.starts_with("KHR_materials_"))
                 && e.keys()

@@ -55,7 +55,7 @@ impl<const N: usize> Lane<N> {
         let lambdas = wavelengths(&package)?;
         let times = tracer.clock.map(|clock| [clock.time(&mut stream); N]);
         let aspect = rows.width as f32 / rows.height as f32;
-        let ray = tracer.scene.camera().generate_ray(film, aspect);
+        let ray = tracer.camera_ray(film, aspect, &stream);
         Some(Self {
             walk: Walk::new(package, lambdas, times, ray, &tracer.camera_frame),
             stream,

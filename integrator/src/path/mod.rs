@@ -53,7 +53,13 @@ pub(crate) struct Tracer<'a> {
     pub splits: u32,
     /// The media the camera is in (read only by the volumetric path tracer).
     pub camera_media: crate::volume::MediumStack,
+    /// The camera's thin lens, ready (None: a pinhole).
+    pub focus: Option<prism_scene::camera::Focus>,
 }
+
+/// The sample-stream dimension of a camera ray's point on the lens: far past any bounce's,
+/// so that a pinhole camera's samples draw what they always did.
+pub(crate) const LENS_DIMENSION: u64 = 1 << 40;
 
 /// The sample-stream dimensions: the wavelength and the film position first, then a fixed
 /// block per bounce so that bounce k always draws from the same dimensions.
@@ -109,6 +115,22 @@ pub(crate) fn wavelengths<const N: usize>(
 }
 
 impl<'a> Tracer<'a> {
+    /// The camera ray of the sample `stream` belongs to (at any dimension) through film
+    /// point `film`: through the pinhole, or from the lens point the sample's lens
+    /// dimensions choose.
+    #[inline(always)]
+    pub(crate) fn camera_ray(&self, film: Vec2, aspect: f32, stream: &SobolStream) -> Ray {
+        let camera = self.scene.camera();
+        match &self.focus {
+            None => camera.generate_ray(film, aspect),
+            Some(focus) => {
+                let mut lens = stream.clone();
+                lens.set_dimension(LENS_DIMENSION);
+                camera.generate_ray_through(film, aspect, Some(focus), lens.next_2d())
+            }
+        }
+    }
+
     /// The package of wavelengths a sample draws with `u_lambda` (its hero's number).
     pub(crate) fn package<const N: usize>(&self, u_lambda: f32) -> WavelengthPackage<N> {
         WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme)
@@ -160,7 +182,7 @@ impl<'a> Tracer<'a> {
             };
         };
         let first_times = self.clock.map(|clock| [clock.time(stream); N]);
-        let camera_ray: Ray = self.scene.camera().generate_ray(film, aspect);
+        let camera_ray: Ray = self.camera_ray(film, aspect, stream);
         let mut rays = 0u64;
         let mut covered = false;
         // Splitting (Arvo and Kirk's, as production renderers' "diffuse samples"): the

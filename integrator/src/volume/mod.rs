@@ -90,7 +90,7 @@ impl<'a> Tracer<'a> {
             };
         };
         let times = self.clock.map(|clock| [clock.time(stream); N]);
-        let camera_ray: Ray = self.scene.camera().generate_ray(film, aspect);
+        let camera_ray: Ray = self.camera_ray(film, aspect, stream);
         let mut walk = Walk::<N, T>::new(
             *first_package,
             first_lambdas,

@@ -64,6 +64,7 @@ pub fn ortho_camera(eye: glam::Vec3, half: f32) -> prism_scene::camera::Camera {
         name: "test".into(),
         to_world: glam::Mat4::from_translation(eye),
         aspect_ratio: None,
+        lens: None,
         projection: prism_scene::camera::Projection::Orthographic {
             xmag: half,
             ymag: half,

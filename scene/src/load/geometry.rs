@@ -587,11 +587,29 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
             )
         }
     };
+    let lens = match camera.extension_value(crate::spectral::EXTENSION) {
+        None => None,
+        Some(description) => {
+            let lens = crate::spectral::thin_lens(description).map_err(|e| {
+                LoadError::Geometry(format!(
+                    "camera {name}: {}: {e}",
+                    crate::spectral::EXTENSION
+                ))
+            })?;
+            if lens.is_some() && matches!(projection, Projection::Orthographic { .. }) {
+                return Err(LoadError::Geometry(format!(
+                    "camera {name}: a thin lens needs a perspective camera"
+                )));
+            }
+            lens
+        }
+    };
     Ok(Camera {
         name,
         to_world: world,
         projection,
         aspect_ratio,
+        lens,
     })
 }
 

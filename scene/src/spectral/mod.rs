@@ -1,6 +1,6 @@
 //! Spectral descriptions: what glTF cannot say about spectra, said either in the glTF file
-//! itself (the `PRISM_spectral` extension on materials, `KHR_lights_punctual` lights and
-//! the root) or in a TOML overlay that names a glTF file and its materials and lights.
+//! itself (the `PRISM_spectral` extension on materials, `KHR_lights_punctual` lights,
+//! cameras (their thin lens) and the root) or in a TOML overlay that names a glTF file and its materials and lights.
 //! The format, with an example per feature, is documented in `docs/scene-format.md`.
 //!
 //! Both forms are JSON values by the time they are read (TOML is converted), so one parser
@@ -8,6 +8,7 @@
 //! fluorescent materials conserve energy, and unknown keys are errors rather than being
 //! silently ignored.
 
+mod camera;
 mod light;
 mod material;
 mod medium;
@@ -19,6 +20,7 @@ pub use material::{FLUORESCENCE_RANGE_NM, MATERIAL_TYPES, SpectralMaterial};
 pub use overlay::Overlay;
 pub use value::{IOR_FORMS, Role, SPECTRUM_FORMS};
 
+pub(crate) use camera::thin_lens;
 pub(crate) use light::{light, scene};
 pub(crate) use material::material;
 pub(crate) use value::Context;

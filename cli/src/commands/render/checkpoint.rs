@@ -16,7 +16,7 @@ pub(super) fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String 
         .spectral_bands
         .map_or("none".into(), |n| format!("{n}@{}", args.spectral_range));
     format!(
-        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?};light_paths={};bands={bands};energy={};camera_response={:?};transparent={}",
+        "scene={};camera={:?};size={width}x{height};seed={};max_depth={:?};wavelengths={};lambda_sampler={};filter={};clamp={:?};environment={:?};wavelength_range={};scene_index={:?};light_paths={};bands={bands};energy={};camera_response={:?};transparent={};lens={:?}/{:?}/{:?}",
         args.scene
             .as_ref()
             .map_or("(default)".into(), |p| p.display().to_string()),
@@ -36,7 +36,10 @@ pub(super) fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String 
         !args.no_light_paths,
         args.energy,
         args.camera_response,
-        args.transparent
+        args.transparent,
+        args.f_number,
+        args.aperture_radius,
+        args.focus_distance
     ) + &later_settings_fingerprint(args)
 }
 

@@ -171,6 +171,24 @@ pub struct RenderArgs {
         value_name = "S"
     )]
     pub environment_strength: f64,
+    /// Depth of field: a thin lens of this f-number (focal length over aperture diameter;
+    /// the focal length follows from the camera's field of view and a 36 mm wide sensor,
+    /// or the camera's `sensor_width`), replacing the camera's own aperture.
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with = "aperture_radius",
+        allow_negative_numbers = true
+    )]
+    pub f_number: Option<f32>,
+    /// Depth of field: a thin lens of this aperture radius, in scene units (metres in
+    /// glTF); 0 is a pinhole.
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub aperture_radius: Option<f32>,
+    /// The distance in focus along the view, scene units (default: the camera's own, else
+    /// what the image's centre sees; `--stats` reports it). Needs an aperture.
+    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    pub focus_distance: Option<f32>,
     /// Leave caustics to camera paths alone: no light paths, even in scenes with smooth
     /// glass or metal (unbiased either way; without light paths a small light's caustic
     /// is noise and a punctual light's is missing).

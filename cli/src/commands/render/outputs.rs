@@ -94,6 +94,9 @@ pub(super) fn print_stats(
         "wavelengths": args.wavelengths,
         "splits": stats.splits,
         "reuse": stats.reuse,
+        "focus_distance": stats.focus_distance.map(|d| {
+            if d.is_finite() { serde_json::json!(d) } else { serde_json::json!("infinity") }
+        }),
         "lambda_sampler": args.lambda_sampler,
         "energy": energy_stats(film, settings.range),
         "polarized": settings.is_polarized(),

@@ -1,10 +1,12 @@
 //! The scene `prism render` renders: the file (or the embedded effects stage) with the
-//! command line's camera, environment and tree quality, and what the user should know of it.
+//! command line's camera, thin lens, environment and tree quality, and what the user should
+//! know of it.
 
 use std::path::Path;
 use std::sync::Arc;
 
 use prism_integrator::{CameraResponse, ResponseCurve};
+use prism_scene::camera::{ApertureSize, Camera, Projection, ThinLens};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
 use prism_scene::world::{DEFAULT_ENVIRONMENT, Environment, Scene, SceneOptions, grey_environment};
@@ -44,6 +46,8 @@ pub(super) fn prepare(args: &RenderArgs) -> Result<(Scene, Option<CameraResponse
         Some(c) => Some(c),
         None => scene_camera(&loaded)?,
     };
+    let mut loaded = loaded;
+    let lens_flags = lens_overrides(args, &mut loaded.cameras)?;
     let summary = loaded.summary();
     let (polarizing, timed) = (summary.polarizing, summary.timed);
     let scene = Scene::from_loaded(loaded, &options).map_err(|e| e.to_string())?;
@@ -56,6 +60,12 @@ pub(super) fn prepare(args: &RenderArgs) -> Result<(Scene, Option<CameraResponse
         eprintln!(
             "prism: note: the scene has schedules or phosphors; without --at every source has always been on (the steady state)"
         );
+    }
+    if lens_flags && !matches!(scene.camera().projection, Projection::Perspective { .. }) {
+        return Err(format!(
+            "--f-number, --aperture-radius and --focus-distance need a perspective camera; '{}' is orthographic",
+            scene.camera().name
+        ));
     }
     let features = scene.features();
     if features.media && features.specular {
@@ -157,4 +167,43 @@ fn environment(args: &RenderArgs) -> Result<Option<Environment>, String> {
     let map = environment_map(&bytes, rotation, strength)
         .map_err(|e| format!("--environment '{}': {e}", path.display()))?;
     Ok(Some(Environment::Map(map)))
+}
+
+/// Applies the command line's thin lens (`--f-number`, `--aperture-radius`,
+/// `--focus-distance`) to every perspective camera, over what the scene says; whether any
+/// was given.
+fn lens_overrides(args: &RenderArgs, cameras: &mut [Camera]) -> Result<bool, String> {
+    let size = match (args.f_number, args.aperture_radius) {
+        (Some(n), _) => Some(ApertureSize::FNumber(n)),
+        (None, Some(r)) => Some(ApertureSize::Radius(r)),
+        (None, None) => None,
+    };
+    if size.is_none() && args.focus_distance.is_none() {
+        return Ok(false);
+    }
+    for camera in cameras
+        .iter_mut()
+        .filter(|c| matches!(c.projection, Projection::Perspective { .. }))
+    {
+        let mut lens = match (camera.lens, size) {
+            (_, Some(size)) => ThinLens {
+                size,
+                ..camera.lens.unwrap_or(ThinLens::new(size))
+            },
+            (Some(lens), None) => lens,
+            (None, None) => {
+                return Err(format!(
+                    "--focus-distance needs an aperture: give --f-number or --aperture-radius (camera '{}' has none)",
+                    camera.name
+                ));
+            }
+        };
+        if let Some(d) = args.focus_distance {
+            lens.focus_distance = Some(d);
+        }
+        lens.validate()
+            .map_err(|e| format!("camera '{}': {e}", camera.name))?;
+        camera.lens = Some(lens);
+    }
+    Ok(true)
 }

@@ -1,5 +1,12 @@
 //! Cameras: glTF perspective and orthographic projections placed by a node, and a default
-//! camera that frames a scene without one.
+//! camera that frames a scene without one. A perspective camera is a pinhole unless it
+//! has a thin lens (`lens`: depth of field, the aperture's shape in its bokeh).
+
+mod aperture;
+mod lens;
+
+pub use aperture::ApertureShape;
+pub use lens::{ApertureSize, FULL_FRAME_WIDTH, Focus, ThinLens};
 
 use glam::{Mat4, Vec2, Vec3};
 
@@ -51,6 +58,8 @@ pub struct Camera {
     /// The width / height the scene was framed for, if it says (glTF's `aspectRatio`, or
     /// `xmag / ymag`): what an output whose size is not given takes.
     pub aspect_ratio: Option<f32>,
+    /// A thin lens in front of a perspective camera (None: a pinhole, everything sharp).
+    pub lens: Option<ThinLens>,
 }
 
 impl Camera {
@@ -73,6 +82,115 @@ impl Camera {
             .transform_vector3(direction)
             .normalize_or(-Vec3::Z);
         Ray::new(origin, direction, f32::INFINITY)
+    }
+
+    /// The camera's thin lens made ready for an output of aspect ratio `aspect`: its
+    /// radius and the distance in focus, `auto_focus` giving the distance to what the
+    /// image's centre sees when the lens does not say (None there: focused at infinity).
+    /// None for a pinhole, an orthographic camera or an aperture of radius 0.
+    pub fn focus(&self, aspect: f32, auto_focus: impl FnOnce() -> Option<f32>) -> Option<Focus> {
+        let (Projection::Perspective { yfov }, Some(lens)) = (self.projection, self.lens) else {
+            return None;
+        };
+        let radius = lens.radius(yfov, aspect);
+        if !(radius > 0.0 && radius.is_finite()) {
+            return None;
+        }
+        let distance = lens
+            .focus_distance
+            .or_else(auto_focus)
+            .filter(|d| d.is_finite() && *d > 0.0)
+            .unwrap_or(f32::INFINITY);
+        Some(Focus {
+            radius,
+            shape: lens.shape,
+            distance,
+        })
+    }
+
+    /// The ray through film position `film` (as in [`Camera::generate_ray`]) leaving the
+    /// thin lens `focus` (from [`Camera::focus`]) at its point for `u_lens` in [0, 1)^2,
+    /// towards where the pinhole's ray meets the plane in focus. Without a lens, the
+    /// pinhole's ray.
+    pub fn generate_ray_through(
+        &self,
+        film: Vec2,
+        aspect: f32,
+        focus: Option<&Focus>,
+        u_lens: Vec2,
+    ) -> Ray {
+        let (Some(focus), Projection::Perspective { yfov }) = (focus, self.projection) else {
+            return self.generate_ray(film, aspect);
+        };
+        let ndc = Vec2::new(2.0 * film.x - 1.0, 1.0 - 2.0 * film.y);
+        let h = (0.5 * yfov).tan();
+        let pinhole = Vec3::new(ndc.x * h * aspect, ndc.y * h, -1.0);
+        let lens = focus.lens_point(u_lens).extend(0.0);
+        let direction = if focus.distance.is_finite() {
+            pinhole * focus.distance - lens
+        } else {
+            pinhole
+        };
+        let origin = self.to_world.transform_point3(lens);
+        let direction = self
+            .to_world
+            .transform_vector3(direction)
+            .normalize_or(-Vec3::Z);
+        Ray::new(origin, direction, f32::INFINITY)
+    }
+
+    /// [`Camera::project`] through the thin lens `focus`: the point is connected to the
+    /// aperture's point for `u_lens` (drawn uniformly over the aperture, as camera rays
+    /// leave it), and seen where the ray from there through the point meets the film.
+    /// Without a lens, [`Camera::project`].
+    pub fn project_through(
+        &self,
+        point: Vec3,
+        aspect: f32,
+        focus: Option<&Focus>,
+        u_lens: Vec2,
+    ) -> Option<FilmPoint> {
+        let (Some(focus), Projection::Perspective { yfov }) = (focus, self.projection) else {
+            return self.project(point, aspect);
+        };
+        let local = self.to_world.inverse().transform_point3(point);
+        let lens = focus.lens_point(u_lens).extend(0.0);
+        let v = local - lens;
+        if v.z.is_nan() || v.z >= 0.0 {
+            return None;
+        }
+        // The pinhole direction of the film point this ray comes from: where it meets
+        // the plane in focus, seen from the lens's centre.
+        let pinhole = if focus.distance.is_finite() {
+            lens + v * (focus.distance / -v.z)
+        } else {
+            v
+        };
+        let h = (0.5 * yfov).tan();
+        let ndc = Vec2::new(
+            pinhole.x / (-pinhole.z * h * aspect),
+            pinhole.y / (-pinhole.z * h),
+        );
+        let film = Vec2::new(0.5 * (ndc.x + 1.0), 0.5 * (1.0 - ndc.y));
+        if !(film.x >= 0.0 && film.x < 1.0 && film.y >= 0.0 && film.y < 1.0) {
+            return None;
+        }
+        let origin = self.to_world.transform_point3(lens);
+        let to = point - origin;
+        let distance = to.length();
+        let direction = to / distance;
+        // As for the pinhole, with the cosine of this ray (*PBR* 4th ed. §5.4.1: the
+        // thin lens's importance 1 / (A A_lens cos^4) times the lens's cosine and area,
+        // its sampling density being uniform over the aperture).
+        let cos = -v.z / v.length();
+        let area = 4.0 * h * h * aspect;
+        let importance = 1.0 / (area * cos * cos * cos);
+        (distance > 0.0 && importance.is_finite()).then_some(FilmPoint {
+            film,
+            direction,
+            distance,
+            importance,
+        })
     }
 
     /// Where a light path's vertex `point` is seen on the film of an output of aspect ratio
@@ -160,6 +278,7 @@ impl Camera {
             to_world,
             projection: Projection::Perspective { yfov },
             aspect_ratio: None,
+            lens: None,
         }
     }
 
@@ -179,6 +298,7 @@ impl Camera {
             to_world: Mat4::from_translation(center + Vec3::new(0.0, 0.0, distance)),
             projection: Projection::Perspective { yfov },
             aspect_ratio: None,
+            lens: None,
         }
     }
 }

@@ -1,0 +1,94 @@
+//! Depth of field from the command line: `--f-number`, `--aperture-radius` and
+//! `--focus-distance` render, `--stats` reports the distance in focus (by default what the
+//! image's centre sees), a pinhole's images do not change, and bad values are one-line
+//! errors.
+
+mod common;
+
+use common::{TempDir, assert_one_line_errors, prism_ok, temp_dir};
+
+fn scene(name: &str) -> String {
+    format!("{}/../scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn render(dir: &TempDir, name: &str, extra: &[&str]) -> (serde_json::Value, Vec<u8>) {
+    let out = dir.join(name);
+    let box_scene = scene("cornell-box.gltf");
+    let mut args = vec![
+        "render",
+        box_scene.as_str(),
+        "--width",
+        "24",
+        "--height",
+        "24",
+        "--spp",
+        "4",
+        "--stats",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let run = prism_ok(&[&args]);
+    let stats = serde_json::from_slice(&run.stdout).unwrap();
+    (stats, std::fs::read(&out).unwrap())
+}
+
+#[test]
+fn depth_of_field_from_the_command_line() {
+    let dir = temp_dir("lens");
+    let (pinhole, sharp) = render(&dir, "pinhole.exr", &[]);
+    assert!(pinhole["focus_distance"].is_null());
+    // The box's camera sits at z = 3.9 looking into the box (open at z = 1, its back wall
+    // at z = -1): the image's centre sees something in there.
+    let (auto, blurred) = render(&dir, "auto.exr", &["--f-number", "0.7"]);
+    let focus = auto["focus_distance"].as_f64().unwrap();
+    assert!((2.9..=4.9 + 1e-3).contains(&focus), "{focus}");
+    assert_ne!(sharp, blurred);
+    let (set, _) = render(
+        &dir,
+        "set.exr",
+        &["--aperture-radius", "0.05", "--focus-distance", "3.2"],
+    );
+    assert!((set["focus_distance"].as_f64().unwrap() - 3.2).abs() < 1e-6);
+    // A radius of 0 is a pinhole: the same image to the byte.
+    let (zero, same) = render(&dir, "zero.exr", &["--aperture-radius", "0"]);
+    assert!(zero["focus_distance"].is_null());
+    assert_eq!(sharp, same);
+}
+
+#[test]
+fn bad_lenses_are_one_line_errors() {
+    let box_scene = scene("cornell-box.gltf");
+    let with = |extra: &[&'static str]| {
+        let mut args = vec![
+            "render",
+            box_scene.as_str(),
+            "--spp",
+            "1",
+            "-o",
+            "never-written.png",
+        ];
+        args.extend_from_slice(extra);
+        args.into_iter().map(str::to_string).collect::<Vec<_>>()
+    };
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (with(&["--f-number", "0"]), "f-number 0"),
+        (with(&["--aperture-radius", "-1"]), "radius -1"),
+        (with(&["--focus-distance", "2"]), "needs an aperture"),
+        (
+            with(&["--f-number", "2", "--focus-distance", "-1"]),
+            "focus distance -1",
+        ),
+        (
+            with(&["--f-number", "2", "--aperture-radius", "0.1"]),
+            "cannot be used with",
+        ),
+    ];
+    let owned: Vec<(Vec<&str>, &str)> = cases
+        .iter()
+        .map(|(a, n)| (a.iter().map(String::as_str).collect(), *n))
+        .collect();
+    let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
+    assert_one_line_errors(&borrowed);
+}

@@ -1,0 +1,279 @@
+//! Thin lenses: the aperture's samplers against their shapes (chi-square), camera rays
+//! through the lens and connections to it inverse to each other, no NaN at the extremes,
+//! and the scene format's `PRISM_spectral` on cameras.
+
+use std::f32::consts::PI;
+
+use glam::{Mat4, Vec2, Vec3};
+use prism_sampling::stats::chi_square_test;
+use prism_sampling::stream::{IndependentStream, SampleStream};
+use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Focus, Projection, ThinLens};
+use proptest::prelude::*;
+
+const SHAPES: [ApertureShape; 4] = [
+    ApertureShape::Disk,
+    ApertureShape::Polygon {
+        blades: 3,
+        rotation: 0.3,
+    },
+    ApertureShape::Polygon {
+        blades: 6,
+        rotation: 0.0,
+    },
+    ApertureShape::Polygon {
+        blades: 9,
+        rotation: -1.0,
+    },
+];
+
+/// The share of each of `bins` x `bins` cells of [-1, 1]^2 the shape covers, by counting
+/// 64 x 64 points per cell.
+fn cell_areas(shape: &ApertureShape, bins: usize) -> Vec<f64> {
+    const SUB: usize = 64;
+    let cell = 2.0 / bins as f32;
+    let mut areas = vec![0.0; bins * bins];
+    for (i, area) in areas.iter_mut().enumerate() {
+        let (cx, cy) = ((i % bins) as f32, (i / bins) as f32);
+        let mut inside = 0;
+        for s in 0..SUB * SUB {
+            let p = Vec2::new(
+                -1.0 + cell * (cx + ((s % SUB) as f32 + 0.5) / SUB as f32),
+                -1.0 + cell * (cy + ((s / SUB) as f32 + 0.5) / SUB as f32),
+            );
+            inside += usize::from(shape.contains(p));
+        }
+        *area = inside as f64 / (SUB * SUB) as f64 * f64::from(cell * cell);
+    }
+    areas
+}
+
+fn histogram(sample: impl Fn(Vec2) -> Vec2, bins: usize, n: usize) -> Vec<u64> {
+    let mut stream = IndependentStream::new(11, 0, 0);
+    let mut counts = vec![0u64; bins * bins];
+    for _ in 0..n {
+        let p = sample(stream.next_2d());
+        let cell = |v: f32| (((v + 1.0) * 0.5 * bins as f32) as usize).min(bins - 1);
+        counts[cell(p.y) * bins + cell(p.x)] += 1;
+    }
+    counts
+}
+
+#[test]
+fn apertures_are_sampled_uniformly_over_their_shapes() {
+    let (bins, n) = (16, 200_000);
+    for shape in SHAPES {
+        let areas = cell_areas(&shape, bins);
+        let total: f64 = areas.iter().sum();
+        assert!(
+            (total - f64::from(shape.area())).abs() < 2e-3 * total,
+            "{shape:?}: area {} against {total}",
+            shape.area()
+        );
+        let expected: Vec<f64> = areas.iter().map(|a| a / total * n as f64).collect();
+        let counts = histogram(|u| shape.sample(u), bins, n);
+        let p = chi_square_test(&counts, &expected).p_value;
+        assert!(p > 1e-3, "{shape:?}: p = {p:.2e}");
+    }
+}
+
+/// The test has power: a disk drawn at radius u (not sqrt u), denser at the centre, fails.
+#[test]
+fn chi_square_rejects_a_disk_denser_at_its_centre() {
+    let (bins, n) = (16, 200_000);
+    let areas = cell_areas(&ApertureShape::Disk, bins);
+    let total: f64 = areas.iter().sum();
+    let expected: Vec<f64> = areas.iter().map(|a| a / total * n as f64).collect();
+    let counts = histogram(
+        |u| {
+            let a = 2.0 * PI * u.y;
+            u.x * Vec2::new(a.cos(), a.sin())
+        },
+        bins,
+        n,
+    );
+    assert!(chi_square_test(&counts, &expected).p_value < 1e-6);
+}
+
+fn camera() -> Camera {
+    Camera {
+        name: "lens".into(),
+        to_world: Mat4::from_translation(Vec3::new(0.3, -0.2, 5.0)) * Mat4::from_rotation_y(0.4),
+        projection: Projection::Perspective { yfov: 0.6 },
+        aspect_ratio: None,
+        lens: Some(ThinLens::new(ApertureSize::Radius(0.1))),
+    }
+}
+
+/// A ray through film point f from lens point u, followed to any point, projects back to
+/// f through the same lens point: what light paths rely on to land where camera rays
+/// leave.
+#[test]
+fn projection_through_the_lens_inverts_its_rays() {
+    let camera = camera();
+    for distance in [2.0, 5.0, f32::INFINITY] {
+        let focus = Focus {
+            radius: 0.1,
+            shape: ApertureShape::Polygon {
+                blades: 5,
+                rotation: 0.2,
+            },
+            distance,
+        };
+        let mut stream = IndependentStream::new(3, 0, 0);
+        for _ in 0..1000 {
+            let (film, u) = (stream.next_2d(), stream.next_2d());
+            let ray = camera.generate_ray_through(film, 1.5, Some(&focus), u);
+            let t = 0.5 + 10.0 * stream.next_1d();
+            let seen = camera
+                .project_through(ray.origin + t * ray.direction, 1.5, Some(&focus), u)
+                .expect("the point is in view");
+            assert!(
+                (seen.film - film).length() < 1e-3,
+                "{film} -> {}",
+                seen.film
+            );
+            assert!((seen.distance - t * ray.direction.length()).abs() < 1e-3 * t);
+        }
+    }
+}
+
+/// The aperture's radius from an f-number is f / (2 N), f from the field of view and
+/// the sensor: a 36 mm sensor behind a 39.6 degree horizontal view is a 50 mm lens.
+#[test]
+fn an_f_number_means_what_it_means_on_a_camera() {
+    let lens = ThinLens::new(ApertureSize::FNumber(2.0));
+    let hfov = 2.0 * (18.0f32 / 50.0).atan();
+    let aspect = 1.5;
+    let yfov = 2.0 * ((0.5 * hfov).tan() / aspect).atan();
+    assert!((lens.focal_length(yfov, aspect) - 0.050).abs() < 1e-6);
+    assert!((lens.radius(yfov, aspect) - 0.0125).abs() < 1e-6);
+}
+
+proptest! {
+    /// Rays and connections at the extremes (film corners, the aperture's rim, tiny and
+    /// huge apertures and focus distances) are finite or refused, never NaN.
+    #[test]
+    fn lens_rays_stay_finite(
+        film in (0.0f32..=1.0, 0.0f32..=1.0),
+        u in (0.0f32..=1.0, 0.0f32..=1.0),
+        radius in prop::sample::select(vec![1e-8f32, 1e-3, 0.1, 10.0, 1e6]),
+        distance in prop::sample::select(vec![1e-6f32, 0.01, 3.0, 1e8, f32::INFINITY]),
+        blades in 0u32..10,
+        point in (-1e3f32..1e3, -1e3f32..1e3, -1e3f32..1e3),
+    ) {
+        let camera = camera();
+        let shape = if blades < 3 { ApertureShape::Disk } else { ApertureShape::Polygon { blades, rotation: 0.1 } };
+        let focus = Focus { radius, shape, distance };
+        let (film, u) = (Vec2::new(film.0, film.1), Vec2::new(u.0, u.1));
+        let ray = camera.generate_ray_through(film, 1.0, Some(&focus), u);
+        prop_assert!(ray.origin.is_finite() && ray.direction.is_finite());
+        prop_assert!((ray.direction.length() - 1.0).abs() < 1e-3);
+        if let Some(seen) = camera.project_through(Vec3::new(point.0, point.1, point.2), 1.0, Some(&focus), u) {
+            prop_assert!(seen.film.is_finite() && seen.direction.is_finite());
+            prop_assert!(seen.distance.is_finite() && seen.importance.is_finite() && seen.importance > 0.0);
+        }
+    }
+}
+
+/// A glTF document with one perspective camera (or an orthographic one) described by
+/// `spectral`, loaded.
+fn load_camera(spectral: serde_json::Value, orthographic: bool) -> Result<Camera, String> {
+    let projection = if orthographic {
+        serde_json::json!({"type": "orthographic", "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.1, "zfar": 10.0}})
+    } else {
+        serde_json::json!({"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}})
+    };
+    let mut camera = projection;
+    camera["extensions"] = serde_json::json!({ "PRISM_spectral": spectral });
+    let doc = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["PRISM_spectral"],
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"name": "eye", "camera": 0}, {"mesh": 0}],
+        "cameras": [camera],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+            "min": [0.0, 0.0, -5.0], "max": [1.0, 1.0, -5.0]}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAKDAAACAPwAAAAAAAKDAAAAAAAAAgD8AAKDA"}],
+    });
+    let bytes = serde_json::to_vec(&doc).unwrap();
+    let loaded =
+        prism_scene::load::load_geometry(&bytes, &|_| Err(std::io::Error::other("no files")), None)
+            .map_err(|e| e.to_string())?;
+    Ok(loaded.cameras[0].clone())
+}
+
+#[test]
+fn cameras_describe_their_lens_in_the_scene_format() {
+    let lens = |v| load_camera(v, false).unwrap().lens.unwrap();
+    let l = lens(serde_json::json!({"aperture": {"f_number": 2.8}}));
+    assert_eq!(l.size, ApertureSize::FNumber(2.8));
+    assert_eq!(
+        (l.shape, l.focus_distance, l.sensor_width),
+        (ApertureShape::Disk, None, 0.036)
+    );
+    let l = lens(
+        serde_json::json!({"aperture": {"radius": 0.01, "blades": 6, "rotation": 90},
+        "focus_distance": 2.5, "sensor_width": 0.024}),
+    );
+    assert_eq!(l.size, ApertureSize::Radius(0.01));
+    assert_eq!(
+        l.shape,
+        ApertureShape::Polygon {
+            blades: 6,
+            rotation: 90f32.to_radians()
+        }
+    );
+    assert_eq!((l.focus_distance, l.sensor_width), (Some(2.5), 0.024));
+    assert!(
+        load_camera(serde_json::json!({}), false)
+            .unwrap()
+            .lens
+            .is_none()
+    );
+    for (spectral, words) in [
+        (
+            serde_json::json!({"aperture": {"f_number": 0}}),
+            "f-number 0",
+        ),
+        (serde_json::json!({"aperture": {"radius": -1}}), "radius -1"),
+        (
+            serde_json::json!({"aperture": {"f_number": 2, "radius": 0.1}}),
+            "one of",
+        ),
+        (
+            serde_json::json!({"aperture": {"f_number": 2, "blades": 2}}),
+            "blades 2",
+        ),
+        (
+            serde_json::json!({"aperture": {"f_number": 2, "rotation": 3}}),
+            "needs 'blades'",
+        ),
+        (
+            serde_json::json!({"aperture": {"f_number": 2}, "focus_distance": -3}),
+            "focus distance -3",
+        ),
+        (
+            serde_json::json!({"aperture": {"f_number": 2}, "sensor_width": 36}),
+            "0.036",
+        ),
+        (
+            serde_json::json!({"focus_distance": 3}),
+            "need an 'aperture'",
+        ),
+        (
+            serde_json::json!({"aperture": {"fnumber": 2}}),
+            "unknown key 'fnumber'",
+        ),
+    ] {
+        let e = load_camera(spectral.clone(), false).unwrap_err();
+        assert!(
+            e.contains("camera eye") && e.contains(words),
+            "{spectral}: {e}"
+        );
+    }
+    let e = load_camera(serde_json::json!({"aperture": {"f_number": 2}}), true).unwrap_err();
+    assert!(e.contains("perspective"), "{e}");
+}
