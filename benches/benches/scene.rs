@@ -4,7 +4,8 @@
 //! ones (random points and directions inside the box), and shadow rays (random segments
 //! inside the box); then what a path tracer traces from its first vertex, in pixel order:
 //! bounce rays (from where the camera rays hit, in random directions) and shadow rays
-//! (from there to random points of the ceiling light).
+//! (from there to random points of the ceiling light). And camera rays themselves: a
+//! pinhole's against a thin lens's.
 
 use std::hint::black_box;
 
@@ -129,5 +130,52 @@ fn scene(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, scene);
+/// Camera rays per film point: the pinhole's, and a thin lens's (a round and a six-bladed
+/// aperture, focused at 3 units), each drawing its lens point from a uniform pair.
+fn camera_rays(c: &mut Criterion) {
+    use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Focus, ThinLens};
+    let camera = Camera {
+        lens: Some(ThinLens::new(ApertureSize::FNumber(2.0))),
+        ..Camera::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, 0.68)
+    };
+    let mut u = uniform(7);
+    let points: Vec<(glam::Vec2, glam::Vec2)> = (0..4096)
+        .map(|_| (glam::Vec2::new(u(), u()), glam::Vec2::new(u(), u())))
+        .collect();
+    let mut group = c.benchmark_group("camera rays");
+    group.throughput(Throughput::Elements(points.len() as u64));
+    group.bench_function("pinhole", |b| {
+        b.iter(|| {
+            for (film, _) in &points {
+                black_box(camera.generate_ray(*film, 1.0));
+            }
+        })
+    });
+    for (name, shape) in [
+        ("thin lens, disk", ApertureShape::Disk),
+        (
+            "thin lens, 6 blades",
+            ApertureShape::Polygon {
+                blades: 6,
+                rotation: 0.0,
+            },
+        ),
+    ] {
+        let focus = Focus {
+            radius: 0.05,
+            shape,
+            distance: 3.0,
+        };
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                for (film, lens) in &points {
+                    black_box(camera.generate_ray_through(*film, 1.0, Some(&focus), *lens));
+                }
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, scene, camera_rays);
 criterion_main!(benches);
