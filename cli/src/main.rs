@@ -49,6 +49,9 @@ enum Command {
     Compare(commands::compare::CompareArgs),
     /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
     Info(commands::info::InfoArgs),
+    /// A lens prescription's focal length, back focal distance, pupil and f-number per
+    /// wavelength, and its longitudinal chromatic aberration.
+    Lens(commands::lens::LensArgs),
     /// Measure the speed-accuracy trade of a scene: error against time per setting.
     Trade(commands::trade::TradeArgs),
     /// Fit and inspect RGB-to-spectrum coefficient tables.
@@ -75,6 +78,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => commands::compare::run(&args),
         Command::Table(command) => commands::table::run(&command),
         Command::Trade(args) => commands::trade::run(&args),
+        Command::Lens(args) => commands::lens::run(&args),
     };
     match result {
         // What could not be written was named on stderr when it failed.

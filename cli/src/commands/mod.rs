@@ -3,6 +3,7 @@
 pub mod color;
 pub mod compare;
 pub mod info;
+pub mod lens;
 pub mod merge;
 pub mod render;
 pub mod table;

@@ -4,6 +4,7 @@
 
 mod aperture;
 mod lens;
+pub mod system;
 
 pub use aperture::ApertureShape;
 pub use lens::{ApertureSize, FULL_FRAME_WIDTH, Focus, ThinLens};
