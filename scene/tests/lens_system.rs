@@ -188,3 +188,54 @@ proptest! {
         }
     }
 }
+
+/// A thick singlet's principal planes sit where the closed form puts them: the rear one
+/// f (n - 1) d / (n R1) in front of the rear vertex, the front one f (n - 1) d / (n R2)
+/// behind the front vertex (signs as the radii's), and both focal points f from them.
+#[test]
+fn the_thick_lens_approximation_finds_the_principal_planes() {
+    let lens = parse_prescription("50 12 1.5 40\n-80 70 1 40\n").unwrap();
+    let thick = lens.thick_lens(FRAUNHOFER_D_NM).unwrap();
+    let (n, d, r1, r2) = (1.5, 12.0, 50.0, -80.0);
+    let f = 1.0 / ((n - 1.0) * (1.0 / r1 - 1.0 / r2 + (n - 1.0) * d / (n * r1 * r2)));
+    let (front_vertex, rear_vertex) = (-82.0, -70.0);
+    let rear_principal = rear_vertex - f * (n - 1.0) * d / (n * r1);
+    let front_principal = front_vertex - f * (n - 1.0) * d / (n * r2);
+    assert!(
+        (thick.focal_length() - f).abs() < 1e-4 * f,
+        "{} vs {f}",
+        thick.focal_length()
+    );
+    assert!(
+        (thick.rear_principal_z - rear_principal).abs() < 1e-3,
+        "{thick:?} vs {rear_principal}"
+    );
+    assert!(
+        (thick.front_principal_z - front_principal).abs() < 1e-3,
+        "{thick:?} vs {front_principal}"
+    );
+    assert!((thick.front_principal_z - thick.front_focal_z - f).abs() < 1e-3);
+}
+
+/// Moving the film by `focus_shift` puts the image of an on-axis point at the distance
+/// asked for on the film: a near-axis ray from it crosses the axis there.
+#[test]
+fn focusing_moves_the_film_to_the_image() {
+    let (text, _) = achromat();
+    let lens = parse_prescription(&text).unwrap();
+    for distance in [400.0, 1000.0, 5000.0] {
+        let shift = lens.focus_shift(distance, FRAUNHOFER_D_NM).unwrap();
+        let ray = LensRay {
+            origin: DVec3::new(0.0, 0.0, -distance),
+            direction: DVec3::new(0.0, 1e-4, 1.0).normalize(),
+        };
+        let out = lens.trace_from_scene(ray, FRAUNHOFER_D_NM).unwrap();
+        let crossing = out.origin.z - out.origin.y / out.direction.y * out.direction.z;
+        assert!(
+            (crossing - shift).abs() < 1e-3 * (1.0 + shift.abs()),
+            "{distance}: image at {crossing}, film moved to {shift}"
+        );
+    }
+    // Nearer than the front focal point there is no real image.
+    assert!(lens.focus_shift(50.0, FRAUNHOFER_D_NM).is_none());
+}

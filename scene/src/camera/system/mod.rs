@@ -5,9 +5,11 @@
 //! at negative z, the film at z = 0 behind the last interface. Tracing is in f64: a
 //! paraxial ray's slopes are small differences of large numbers.
 
+mod focus;
 mod paraxial;
 mod prescription;
 
+pub use focus::ThickLens;
 pub use paraxial::Paraxial;
 pub use prescription::parse_prescription;
 
@@ -131,6 +133,45 @@ impl LensSystem {
                 eta_before = eta_after;
             }
             z += interface.thickness;
+        }
+        Some(ray)
+    }
+}
+
+impl LensSystem {
+    /// Traces a ray from the film's side (starting behind the last interface, towards
+    /// -z) through every interface back to front at `lambda_nm`: the ray leaving the
+    /// first, or None where an aperture stops it or it is totally reflected.
+    pub fn trace_from_film(&self, ray: LensRay, lambda_nm: f64) -> Option<LensRay> {
+        let mut ray = ray;
+        let mut z = 0.0;
+        for (i, interface) in self.interfaces.iter().enumerate().rev() {
+            z -= interface.thickness;
+            let (t, normal) = if interface.radius == 0.0 {
+                if ray.direction.z == 0.0 {
+                    return None;
+                }
+                ((z - ray.origin.z) / ray.direction.z, DVec3::Z)
+            } else {
+                intersect_sphere(&ray, z + interface.radius, interface.radius)?
+            };
+            if !(t.is_finite() && t >= 0.0) {
+                return None;
+            }
+            let hit = ray.origin + t * ray.direction;
+            if hit.x * hit.x + hit.y * hit.y > interface.aperture_radius * interface.aperture_radius
+            {
+                return None;
+            }
+            ray.origin = hit;
+            if interface.radius != 0.0 {
+                let eta_before = interface.medium.index(lambda_nm);
+                let eta_after = match i {
+                    0 => 1.0,
+                    _ => self.interfaces[i - 1].medium.index(lambda_nm),
+                };
+                ray.direction = refract(ray.direction, normal, eta_before / eta_after)?;
+            }
         }
         Some(ray)
     }
