@@ -132,13 +132,7 @@ impl<'a> Renderer<'a> {
             focus: None,
         };
         let aspect = settings.width as f32 / settings.height as f32;
-        renderer.focus = scene.camera().focus(aspect, || {
-            // What the image's centre sees (the pinhole's ray there runs along the view).
-            let ray = scene.camera().generate_ray(glam::Vec2::splat(0.5), aspect);
-            scene
-                .intersect(&ray)
-                .map(|hit| hit.t * ray.direction.length())
-        });
+        renderer.focus = scene.camera().focus(aspect, || auto_focus(scene, aspect));
         if scene.features().media {
             crate::volume::check_settings(settings)?;
             return Ok(renderer);
@@ -661,6 +655,23 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
 struct Splat {
     film: Vec2,
     value: SampleValue,
+}
+
+/// The distance to what the image's centre sees (the pinhole's ray there runs along the
+/// view), through the boundaries of media, which are not seen (None: nothing).
+fn auto_focus(scene: &Scene, aspect: f32) -> Option<f32> {
+    let mut ray = scene.camera().generate_ray(glam::Vec2::splat(0.5), aspect);
+    let mut distance = 0.0;
+    // Nested boundaries are few; a ray caught between coincident ones gives up.
+    for _ in 0..64 {
+        let hit = scene.intersect(&ray)?;
+        distance += hit.t * ray.direction.length();
+        if !scene.is_interface(&hit) {
+            return Some(distance);
+        }
+        ray = hit.spawn(ray.direction);
+    }
+    None
 }
 
 /// The splats of one row's light paths, in the order they were made.
