@@ -239,3 +239,63 @@ fn focusing_moves_the_film_to_the_image() {
     // Nearer than the front focal point there is no real image.
     assert!(lens.focus_shift(50.0, FRAUNHOFER_D_NM).is_none());
 }
+
+/// A lens with a small stop behind a wide front: from a film point, rays aimed at the
+/// whole rear element mostly hit the stop; the exit-pupil bounds hold every ray that
+/// passes (checked by aiming 20,000 at the rear element) and far fewer that do not.
+#[test]
+fn exit_pupil_bounds_hold_every_passing_ray_and_save_most_of_the_rest() {
+    let lens = parse_prescription(
+        "60 6 1.5 40 bk7\n-300 8 1 40\n0 8 0 8\n200 5 1.5 36 bk7\n-90 80 1 36\n",
+    )
+    .unwrap();
+    let rear = lens.interfaces().last().unwrap();
+    let (rear_z, radius) = (-rear.thickness, rear.aperture_radius);
+    for film_x in [0.0, 6.0, 14.0] {
+        let b = lens
+            .exit_pupil(film_x, FRAUNHOFER_D_NM)
+            .expect("some rays pass");
+        let film = DVec3::new(film_x, 0.0, 0.0);
+        let (mut passed, mut outside, mut aimed_in_bounds, mut passed_in_bounds) = (0, 0, 0, 0);
+        let mut state = 12345u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..20_000 {
+            let (r, a) = (radius * next().sqrt(), 2.0 * std::f64::consts::PI * next());
+            let p = DVec3::new(r * a.cos(), r * a.sin(), rear_z);
+            let inside = p.x >= b[0] && p.x <= b[2] && p.y >= b[1] && p.y <= b[3];
+            let ray = LensRay {
+                origin: film,
+                direction: (p - film).normalize(),
+            };
+            let passes = lens.trace_from_film(ray, FRAUNHOFER_D_NM).is_some();
+            if passes {
+                passed += 1;
+                outside += usize::from(!inside);
+            }
+            if inside {
+                aimed_in_bounds += 1;
+                passed_in_bounds += usize::from(passes);
+            }
+        }
+        assert_eq!(
+            outside, 0,
+            "film x {film_x}: {outside} passing rays outside the bounds"
+        );
+        let disk_rate = passed as f64 / 20_000.0;
+        let bounds_rate = passed_in_bounds as f64 / aimed_in_bounds.max(1) as f64;
+        eprintln!(
+            "film x {film_x} mm: {:.1}% of rays aimed at the rear element pass, {:.1}% of those aimed in the bounds",
+            100.0 * disk_rate,
+            100.0 * bounds_rate
+        );
+        assert!(
+            bounds_rate > 3.0 * disk_rate,
+            "film x {film_x}: {bounds_rate} in the bounds, {disk_rate} over the rear element"
+        );
+    }
+}

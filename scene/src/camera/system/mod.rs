@@ -8,10 +8,12 @@
 mod focus;
 mod paraxial;
 mod prescription;
+mod pupil;
 
 pub use focus::ThickLens;
 pub use paraxial::Paraxial;
 pub use prescription::parse_prescription;
+pub use pupil::PupilBounds;
 
 use glam::DVec3;
 use prism_spectrum::Spectrum;
