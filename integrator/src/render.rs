@@ -235,22 +235,22 @@ impl<'a> Renderer<'a> {
         self.scene.features().fluorescence
     }
 
-    /// Whether light paths carry the caustics the camera sees directly: when the scene has
-    /// delta surfaces (smooth glass or metal), the settings allow it, and the camera is a
-    /// pinhole (an orthographic camera cannot be connected to).
+    /// Whether light paths carry caustics: when the scene has surfaces that focus light
+    /// (smooth or nearly smooth glass or metal, `Material::narrow`, which includes every
+    /// delta surface), the settings allow it, there are no media, and the camera is
+    /// perspective (an orthographic camera cannot be connected to).
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
-            && self.scene.features().specular
-                | self
-                    .scene
-                    .materials()
-                    .iter()
-                    .any(|m| m.narrow(crate::light_path::CAUSTIC_ALPHA))
             && !self.scene.features().media
             && matches!(
                 self.scene.camera().projection,
                 prism_scene::camera::Projection::Perspective { .. }
             )
+            && self
+                .scene
+                .materials()
+                .iter()
+                .any(|m| m.narrow(crate::light_path::CAUSTIC_ALPHA))
     }
 
     /// Renders sample indices `samples` of every pixel into `film` (which must have the
