@@ -115,3 +115,15 @@ fn bad_lenses_are_one_line_errors() {
     let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
     assert_one_line_errors(&borrowed);
 }
+
+#[test]
+fn info_describes_a_cameras_lens() {
+    let out = prism_ok(&[&["info", scene("bokeh.gltf").as_str()]]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains(
+            "lens           camera: thin lens, f/1.4, 6 blades, focused at 2.5 m, sensor 36 mm wide"
+        ),
+        "{text}"
+    );
+}

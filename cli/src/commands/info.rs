@@ -42,6 +42,11 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             s.cameras.join(", ")
         }
     );
+    for camera in &loaded.cameras {
+        if let Some(lens) = &camera.lens {
+            outln!("lens           {}: {}", camera.name, describe_lens(lens));
+        }
+    }
     outln!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
     outln!(
         "features       transmission: {}, dispersion: {}, fluorescence: {}, textures: {}",
@@ -114,4 +119,26 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
 
 fn yes(b: bool) -> &'static str {
     if b { "yes" } else { "no" }
+}
+
+/// A thin lens in a line: aperture, shape, focus, sensor.
+fn describe_lens(lens: &prism_scene::camera::ThinLens) -> String {
+    use prism_scene::camera::{ApertureShape, ApertureSize};
+    let size = match lens.size {
+        ApertureSize::FNumber(n) => format!("f/{n}"),
+        ApertureSize::Radius(r) => format!("aperture radius {r} m"),
+    };
+    let shape = match lens.shape {
+        ApertureShape::Disk => "round".to_string(),
+        ApertureShape::Polygon { blades, .. } => format!("{blades} blades"),
+    };
+    let focus = lens
+        .focus_distance
+        .map_or("focused on what the image's centre sees".into(), |d| {
+            format!("focused at {d} m")
+        });
+    format!(
+        "thin lens, {size}, {shape}, {focus}, sensor {} mm wide",
+        lens.sensor_width * 1000.0
+    )
 }
