@@ -136,6 +136,7 @@ fn camera_rays(c: &mut Criterion) {
     use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Focus, ThinLens};
     let camera = Camera {
         lens: Some(ThinLens::new(ApertureSize::FNumber(2.0))),
+        system: None,
         ..Camera::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, 0.68)
     };
     let mut u = uniform(7);

@@ -65,7 +65,7 @@ pub fn run(
     let renderer = Renderer::new(scene, settings).map_err(|e| e.to_string())?;
     stats.splits = renderer.splits();
     stats.reuse = renderer.reuse();
-    stats.focus_distance = renderer.focus().map(|f| f.distance);
+    stats.focus_distance = renderer.focus_distance();
     if let prism_integrator::Reuse::Fixed(t) = settings.reuse
         && t > 1
         && renderer.reuse() == 1

@@ -59,6 +59,8 @@ pub struct Renderer<'a> {
     reuse: u32,
     /// The camera's thin lens, ready (None: a pinhole).
     focus: Option<prism_scene::camera::Focus>,
+    /// The camera's lens system, focused (None: a pinhole or a thin lens).
+    system: Option<std::sync::Arc<prism_scene::camera::FocusedSystem>>,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -130,9 +132,22 @@ impl<'a> Renderer<'a> {
             splits: 1,
             reuse: 1,
             focus: None,
+            system: None,
         };
         let aspect = settings.width as f32 / settings.height as f32;
         renderer.focus = scene.camera().focus(aspect, || auto_focus(scene, aspect));
+        if let Some(mounted) = &scene.camera().system {
+            let focused = mounted
+                .focus(aspect, || auto_focus(scene, aspect))
+                .map_err(RenderError::Setting)?;
+            if let Tracing::Lanes(_) = settings.tracing {
+                return Err(RenderError::Setting(
+                    "tracing in lanes does not trace camera rays through lens systems: trace paths one by one".into(),
+                ));
+            }
+            renderer.focus = None;
+            renderer.system = Some(std::sync::Arc::new(focused));
+        }
         if scene.features().media {
             crate::volume::check_settings(settings)?;
             return Ok(renderer);
@@ -141,11 +156,14 @@ impl<'a> Renderer<'a> {
             (renderer.splits, renderer.reuse) = lanes_modes(settings)?;
             return Ok(renderer);
         }
-        let shareable = crate::reuse::supported(
-            scene,
-            settings.is_polarized(),
-            crate::path::Clock::of(settings).is_some(),
-        );
+        // Reuse restarts a path's throughput at its second vertex, which a lens system's
+        // camera-ray weight would not survive.
+        let shareable = renderer.system.is_none()
+            && crate::reuse::supported(
+                scene,
+                settings.is_polarized(),
+                crate::path::Clock::of(settings).is_some(),
+            );
         (renderer.splits, renderer.reuse) = match (settings.splits, settings.reuse) {
             (_, Reuse::Fixed(t)) if t > 1 => (1, if shareable { t } else { 1 }),
             (Splits::Fixed(k), _) => (k, 1),
@@ -167,9 +185,25 @@ impl<'a> Renderer<'a> {
     }
 
     /// The camera's thin lens as this render uses it: its radius, shape and the distance
-    /// in focus (None: a pinhole).
+    /// in focus (None: a pinhole or a lens system).
     pub fn focus(&self) -> Option<prism_scene::camera::Focus> {
         self.focus
+    }
+
+    /// The distance in focus, scene units (infinite: focused at infinity; None: a
+    /// pinhole), of the thin lens or the lens system.
+    pub fn focus_distance(&self) -> Option<f32> {
+        self.focus.map(|f| f.distance).or_else(|| {
+            self.system
+                .as_ref()
+                .map(|s| (s.focus_distance_mm() / 1000.0) as f32)
+        })
+    }
+
+    /// The camera's lens system as this render uses it: the film moved to focus, the stop
+    /// closed (None: a pinhole or a thin lens).
+    pub fn lens_system(&self) -> Option<&prism_scene::camera::FocusedSystem> {
+        self.system.as_deref()
     }
 
     /// Continuations per camera sample: the settings' number, or the pilot's choice.
@@ -195,15 +229,19 @@ impl<'a> Renderer<'a> {
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
             light_caustics: self.light_caustics(),
             transparent: settings.transparent,
-            footprint: self
-                .scene
-                .filters_textures()
-                .then(|| Footprint::new(self.scene.camera(), settings.height)),
+            footprint: self.scene.filters_textures().then(|| {
+                Footprint::new(
+                    self.scene.camera(),
+                    self.system.as_ref().map(|s| s.yfov() as f32),
+                    settings.height,
+                )
+            }),
             camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
             clock: crate::path::Clock::of(settings),
             splits,
             camera_media: crate::volume::MediumStack::around_camera(self.scene),
             focus: self.focus,
+            system: self.system.clone(),
         }
     }
 
@@ -238,10 +276,12 @@ impl<'a> Renderer<'a> {
     /// Whether light paths carry caustics: when the scene has surfaces that focus light
     /// (smooth or nearly smooth glass or metal, `Material::narrow`, which includes every
     /// delta surface), the settings allow it, there are no media, and the camera is
-    /// perspective (an orthographic camera cannot be connected to).
+    /// perspective without a lens system (an orthographic camera cannot be connected to,
+    /// nor can a lens system's film be found from a point of the scene).
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
             && !self.scene.features().media
+            && self.system.is_none()
             && matches!(
                 self.scene.camera().projection,
                 prism_scene::camera::Projection::Perspective { .. }
@@ -326,7 +366,7 @@ impl<'a> Renderer<'a> {
             nonfinite,
             splits: self.splits,
             reuse: self.reuse,
-            focus_distance: self.focus.map(|f| f.distance),
+            focus_distance: self.focus_distance(),
         }))
     }
 

@@ -52,6 +52,7 @@ fn scene(depth: f32, focus: f32, radius: f32, shape: ApertureShape) -> Scene {
                 focus_distance: Some(focus),
                 ..ThinLens::new(ApertureSize::Radius(radius))
             }),
+            system: None,
         },
         quality: BvhQuality::Medium,
     })

@@ -92,6 +92,7 @@ fn each_wavelength_leaves_the_prism_where_snell_puts_it() {
         to_world: Mat4::from_translation(w(eye, 0.0)) * Mat4::from_rotation_y(phi),
         aspect_ratio: None,
         lens: None,
+        system: None,
         projection: Projection::Perspective { yfov },
     };
     let scene = Scene::new(SceneParts {

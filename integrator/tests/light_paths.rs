@@ -30,6 +30,7 @@ fn camera_above(h: f32, yfov_degrees: f32) -> Camera {
             * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2),
         aspect_ratio: None,
         lens: None,
+        system: None,
         projection: Projection::Perspective {
             yfov: yfov_degrees.to_radians(),
         },

@@ -91,6 +91,7 @@ fn the_primary_bow_is_where_descartes_puts_it() {
             },
             aspect_ratio: None,
             lens: None,
+            system: None,
         }];
     });
     let bands = SpectralBands::new(430.0, 670.0, 12).unwrap();

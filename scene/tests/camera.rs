@@ -56,6 +56,7 @@ fn perspective_rays_span_the_field_of_view() {
         to_world: Mat4::IDENTITY,
         aspect_ratio: None,
         lens: None,
+        system: None,
         projection: Projection::Perspective { yfov },
     };
     let top = camera.generate_ray(Vec2::new(0.5, 0.0), 2.0).direction;
@@ -78,6 +79,7 @@ fn orthographic_rays_are_parallel() {
         to_world: Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)),
         aspect_ratio: None,
         lens: None,
+        system: None,
         projection: Projection::Orthographic {
             xmag: 2.0,
             ymag: 1.0,

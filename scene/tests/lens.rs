@@ -101,6 +101,7 @@ fn camera() -> Camera {
         projection: Projection::Perspective { yfov: 0.6 },
         aspect_ratio: None,
         lens: Some(ThinLens::new(ApertureSize::Radius(0.1))),
+        system: None,
     }
 }
 

@@ -46,6 +46,9 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
         if let Some(lens) = &camera.lens {
             outln!("lens           {}: {}", camera.name, describe_lens(lens));
         }
+        if let Some(system) = &camera.system {
+            outln!("lens           {}: {}", camera.name, describe_system(system));
+        }
     }
     outln!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
     outln!(
@@ -119,6 +122,34 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
 
 fn yes(b: bool) -> &'static str {
     if b { "yes" } else { "no" }
+}
+
+/// A lens system in a line: its file, focal length and f-number, focus, sensor.
+fn describe_system(mounted: &prism_scene::camera::MountedLens) -> String {
+    use prism_scene::camera::system::D_LINE_NM;
+    let optics = match mounted.system.paraxial(D_LINE_NM) {
+        Ok(p) => format!("{:.1} mm f/{:.2} wide open", p.efl_mm, p.f_number),
+        Err(e) => e,
+    };
+    let stop = mounted
+        .f_number
+        .map_or(String::new(), |n| format!(", stopped to f/{n}"));
+    let focus = mounted
+        .focus_distance
+        .map_or("focused on what the image's centre sees".into(), |d| {
+            format!("focused at {d} m")
+        });
+    format!(
+        "lens system {} ({optics}{stop}, {} interfaces{}), {focus}, sensor {} mm wide",
+        mounted.source,
+        mounted.system.interfaces().len(),
+        if mounted.system.dispersive() {
+            ", dispersive glass"
+        } else {
+            ""
+        },
+        mounted.sensor_width * 1000.0
+    )
 }
 
 /// A thin lens in a line: aperture, shape, focus, sensor.

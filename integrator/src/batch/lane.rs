@@ -55,9 +55,11 @@ impl<const N: usize> Lane<N> {
         let lambdas = wavelengths(&package)?;
         let times = tracer.clock.map(|clock| [clock.time(&mut stream); N]);
         let aspect = rows.width as f32 / rows.height as f32;
-        let ray = tracer.camera_ray(film, aspect, &stream);
+        let (ray, weight) = tracer.camera_ray(film, aspect, &stream, package.lambda[0])?;
+        let mut walk = Walk::new(package, lambdas, times, ray, &tracer.camera_frame);
+        walk.weigh_camera_ray(weight);
         Some(Self {
-            walk: Walk::new(package, lambdas, times, ray, &tracer.camera_frame),
+            walk,
             stream,
             cache: EmissionCache::new(),
             rays: 0,

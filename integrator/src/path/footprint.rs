@@ -16,14 +16,15 @@ pub(crate) struct Footprint {
 }
 
 impl Footprint {
-    /// For `camera` rendering `height` rows.
-    pub(crate) fn new(camera: &prism_scene::camera::Camera, height: u32) -> Self {
+    /// For `camera` rendering `height` rows, seeing a vertical field of view `yfov` where
+    /// its lens system sets it instead of its projection.
+    pub(crate) fn new(camera: &prism_scene::camera::Camera, yfov: Option<f32>, height: u32) -> Self {
         let narrowing = 0.5;
         let rows = height.max(1) as f32;
         match camera.projection {
-            prism_scene::camera::Projection::Perspective { yfov } => Self {
+            prism_scene::camera::Projection::Perspective { yfov: own } => Self {
                 origin: Some(camera.to_world.transform_point3(Vec3::ZERO)),
-                width: 2.0 * (0.5 * yfov).tan() / rows * narrowing,
+                width: 2.0 * (0.5 * yfov.unwrap_or(own)).tan() / rows * narrowing,
             },
             prism_scene::camera::Projection::Orthographic { ymag, .. } => Self {
                 origin: None,

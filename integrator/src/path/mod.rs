@@ -55,6 +55,8 @@ pub(crate) struct Tracer<'a> {
     pub camera_media: crate::volume::MediumStack,
     /// The camera's thin lens, ready (None: a pinhole).
     pub focus: Option<prism_scene::camera::Focus>,
+    /// The camera's lens system, focused (None: a pinhole or a thin lens).
+    pub system: Option<std::sync::Arc<prism_scene::camera::FocusedSystem>>,
 }
 
 /// The sample-stream dimension of a camera ray's point on the lens: far past any bounce's,
@@ -116,24 +118,46 @@ pub(crate) fn wavelengths<const N: usize>(
 
 impl<'a> Tracer<'a> {
     /// The camera ray of the sample `stream` belongs to (at any dimension) through film
-    /// point `film`: through the pinhole, or from the lens point the sample's lens
-    /// dimensions choose.
+    /// point `film`, for the hero wavelength `lambda` (nm), and its weight: through the
+    /// pinhole (weight 1), from the thin lens's point the sample's lens dimensions choose
+    /// (weight 1), or through a lens system's elements along the path those dimensions
+    /// choose. None where a lens system's elements stop the ray: the sample sees black.
     #[inline(always)]
-    pub(crate) fn camera_ray(&self, film: Vec2, aspect: f32, stream: &SobolStream) -> Ray {
+    pub(crate) fn camera_ray(
+        &self,
+        film: Vec2,
+        aspect: f32,
+        stream: &SobolStream,
+        lambda: f32,
+    ) -> Option<(Ray, f32)> {
         let camera = self.scene.camera();
-        match &self.focus {
-            None => camera.generate_ray(film, aspect),
-            Some(focus) => {
-                let mut lens = stream.clone();
-                lens.set_dimension(LENS_DIMENSION);
-                camera.generate_ray_through(film, aspect, Some(focus), lens.next_2d())
-            }
+        let lens_numbers = || {
+            let mut lens = stream.clone();
+            lens.set_dimension(LENS_DIMENSION);
+            lens.next_2d()
+        };
+        if let Some(system) = &self.system {
+            return camera.generate_ray_system(film, system, lens_numbers(), lambda);
         }
+        Some(match &self.focus {
+            None => (camera.generate_ray(film, aspect), 1.0),
+            Some(focus) => (
+                camera.generate_ray_through(film, aspect, Some(focus), lens_numbers()),
+                1.0,
+            ),
+        })
     }
 
-    /// The package of wavelengths a sample draws with `u_lambda` (its hero's number).
+    /// The package of wavelengths a sample draws with `u_lambda` (its hero's number): only
+    /// the hero behind a lens system whose glass disperses, since each wavelength's camera
+    /// ray takes its own way through the elements.
     pub(crate) fn package<const N: usize>(&self, u_lambda: f32) -> WavelengthPackage<N> {
-        WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme)
+        let mut package =
+            WavelengthPackage::<N>::sample(self.distribution, f64::from(u_lambda), self.scheme);
+        if self.system.as_ref().is_some_and(|s| s.dispersive()) {
+            package.terminate_secondary();
+        }
+        package
     }
 
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
@@ -182,7 +206,15 @@ impl<'a> Tracer<'a> {
             };
         };
         let first_times = self.clock.map(|clock| [clock.time(stream); N]);
-        let camera_ray: Ray = self.camera_ray(film, aspect, stream);
+        let Some((camera_ray, lens_weight)) =
+            self.camera_ray(film, aspect, stream, first_package.lambda[0])
+        else {
+            return PathResult {
+                valid: true,
+                rays: 0,
+                covered: false,
+            };
+        };
         let mut rays = 0u64;
         let mut covered = false;
         // Splitting (Arvo and Kirk's, as production renderers' "diffuse samples"): the
@@ -204,6 +236,7 @@ impl<'a> Tracer<'a> {
                 camera_ray,
                 &self.camera_frame,
             );
+            walk.weigh_camera_ray(lens_weight);
             // The stream of this split's bounces (set at the first vertex).
             let mut bounces = stream.clone();
             loop {

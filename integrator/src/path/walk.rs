@@ -77,6 +77,16 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
         }
     }
 
+    /// Scales the path by its camera ray's `weight` (a lens system's: what the film gathers
+    /// along the ray relative to a pinhole); a pinhole's and a thin lens's 1 leaves it as
+    /// it was, to the bit.
+    #[inline(always)]
+    pub fn weigh_camera_ray(&mut self, weight: f32) {
+        if weight != 1.0 {
+            self.beta.scale_uniform(weight);
+        }
+    }
+
     /// At the second vertex `hit` (seen from `wo_world`), which the tile's pixels share
     /// (`crate::reuse`): from here the path estimates what the vertex reflects per unit of
     /// throughput, and the light gathered before it goes to `record`. Russian roulette

@@ -90,7 +90,15 @@ impl<'a> Tracer<'a> {
             };
         };
         let times = self.clock.map(|clock| [clock.time(stream); N]);
-        let camera_ray: Ray = self.camera_ray(film, aspect, stream);
+        let Some((camera_ray, lens_weight)) =
+            self.camera_ray(film, aspect, stream, first_package.lambda[0])
+        else {
+            return PathResult {
+                valid: true,
+                rays: 0,
+                covered: false,
+            };
+        };
         let mut walk = Walk::<N, T>::new(
             *first_package,
             first_lambdas,
@@ -98,6 +106,7 @@ impl<'a> Tracer<'a> {
             camera_ray,
             &self.camera_frame,
         );
+        walk.weigh_camera_ray(lens_weight);
         let mut ratios = Ratios::<N>::one();
         let mut media = self.camera_media;
         let (mut rays, mut covered, mut interfaces) = (0u64, false, 0u32);

@@ -65,6 +65,7 @@ pub fn ortho_camera(eye: glam::Vec3, half: f32) -> prism_scene::camera::Camera {
         to_world: glam::Mat4::from_translation(eye),
         aspect_ratio: None,
         lens: None,
+        system: None,
         projection: prism_scene::camera::Projection::Orthographic {
             xmag: half,
             ymag: half,

@@ -8,6 +8,7 @@ pub mod system;
 
 pub use aperture::ApertureShape;
 pub use lens::{ApertureSize, FULL_FRAME_WIDTH, Focus, ThinLens};
+pub use system::{FocusedSystem, MountedLens};
 
 use glam::{Mat4, Vec2, Vec3};
 
@@ -61,6 +62,10 @@ pub struct Camera {
     pub aspect_ratio: Option<f32>,
     /// A thin lens in front of a perspective camera (None: a pinhole, everything sharp).
     pub lens: Option<ThinLens>,
+    /// A lens system in front of a perspective camera's film, which then replaces both the
+    /// pinhole and the thin lens: its focal length and the film's size set the field of
+    /// view.
+    pub system: Option<MountedLens>,
 }
 
 impl Camera {
@@ -138,6 +143,33 @@ impl Camera {
             .transform_vector3(direction)
             .normalize_or(-Vec3::Z);
         Ray::new(origin, direction, f32::INFINITY)
+    }
+
+    /// The ray through film position `film` (as in [`Camera::generate_ray`]) leaving the
+    /// lens system `system` (from [`MountedLens::focus`]) at wavelength `lambda_nm`, its
+    /// path through the elements chosen by `u_lens` in [0, 1)^2, and its weight (the
+    /// light the film gathers along it relative to a pinhole's); None where the
+    /// elements stop it.
+    pub fn generate_ray_system(
+        &self,
+        film: Vec2,
+        system: &FocusedSystem,
+        u_lens: Vec2,
+        lambda_nm: f32,
+    ) -> Option<(Ray, f32)> {
+        let (ray, weight) = system.ray(film, u_lens, f64::from(lambda_nm))?;
+        // Lens space is camera space in millimetres (the film at the camera's origin where
+        // the prescription puts it, the scene towards -z).
+        let origin = self
+            .to_world
+            .transform_point3((ray.origin * 1e-3).as_vec3());
+        let direction = self
+            .to_world
+            .transform_vector3(ray.direction.as_vec3())
+            .try_normalize()?;
+        let weight = weight as f32;
+        (origin.is_finite() && weight.is_finite())
+            .then(|| (Ray::new(origin, direction, f32::INFINITY), weight))
     }
 
     /// [`Camera::project`] through the thin lens `focus`: the point is connected to the
@@ -280,6 +312,7 @@ impl Camera {
             projection: Projection::Perspective { yfov },
             aspect_ratio: None,
             lens: None,
+            system: None,
         }
     }
 
@@ -300,6 +333,7 @@ impl Camera {
             projection: Projection::Perspective { yfov },
             aspect_ratio: None,
             lens: None,
+            system: None,
         }
     }
 }

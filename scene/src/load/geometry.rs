@@ -296,7 +296,7 @@ pub fn load_scene(
             }
         }
         if let Some(camera) = node.camera() {
-            out.cameras.push(make_camera(&node, &camera, world)?);
+            out.cameras.push(make_camera(&node, &camera, world, resolve)?);
         }
         if let Some(mesh) = node.mesh() {
             if node.skin().is_some() {
@@ -547,7 +547,12 @@ fn check_position_accessors(root: &gltf::json::Root) -> Result<(), LoadError> {
     Ok(())
 }
 
-fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<Camera, LoadError> {
+fn make_camera(
+    node: &gltf::Node,
+    camera: &gltf::Camera,
+    world: Mat4,
+    resolve: &super::Resolver,
+) -> Result<Camera, LoadError> {
     let name = node
         .name()
         .map_or_else(|| format!("camera {}", camera.index()), str::to_string);
@@ -587,29 +592,34 @@ fn make_camera(node: &gltf::Node, camera: &gltf::Camera, world: Mat4) -> Result<
             )
         }
     };
-    let lens = match camera.extension_value(crate::spectral::EXTENSION) {
-        None => None,
-        Some(description) => {
-            let lens = crate::spectral::thin_lens(description).map_err(|e| {
-                LoadError::Geometry(format!(
-                    "camera {name}: {}: {e}",
-                    crate::spectral::EXTENSION
-                ))
-            })?;
-            if lens.is_some() && matches!(projection, Projection::Orthographic { .. }) {
-                return Err(LoadError::Geometry(format!(
-                    "camera {name}: a thin lens needs a perspective camera"
-                )));
-            }
-            lens
-        }
+    let optics = match camera.extension_value(crate::spectral::EXTENSION) {
+        None => crate::spectral::Optics::Pinhole,
+        Some(description) => crate::spectral::optics(description, resolve).map_err(|e| {
+            LoadError::Geometry(format!(
+                "camera {name}: {}: {e}",
+                crate::spectral::EXTENSION
+            ))
+        })?,
     };
+    let (lens, system) = match optics {
+        crate::spectral::Optics::Pinhole => (None, None),
+        crate::spectral::Optics::Thin(lens) => (Some(lens), None),
+        crate::spectral::Optics::System(system) => (None, Some(system)),
+    };
+    if (lens.is_some() || system.is_some())
+        && matches!(projection, Projection::Orthographic { .. })
+    {
+        return Err(LoadError::Geometry(format!(
+            "camera {name}: a lens needs a perspective camera"
+        )));
+    }
     Ok(Camera {
         name,
         to_world: world,
         projection,
         aspect_ratio,
         lens,
+        system,
     })
 }
 

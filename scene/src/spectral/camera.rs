@@ -2,17 +2,94 @@
 //! or `{"aperture": {"radius": 0.01}}` (metres), optionally with `"blades"` and
 //! `"rotation"` (degrees) for a polygonal opening, `"focus_distance"` (metres; default:
 //! what the image's centre sees) and `"sensor_width"` (metres; default 0.036, full frame).
+//! Or a lens system, `{"lens": "file.dat"}`: a prescription in pbrt-v4's lens file format
+//! (`camera::system::parse_prescription`), with `"focus_distance"`, `"sensor_width"` and
+//! an `"aperture"` of an `"f_number"` that closes its stop.
 
 use serde_json::Value;
 
 use super::value::{number, only_keys};
-use crate::camera::{ApertureShape, ApertureSize, FULL_FRAME_WIDTH, ThinLens};
+use crate::camera::system::parse_prescription;
+use crate::camera::{ApertureShape, ApertureSize, FULL_FRAME_WIDTH, MountedLens, ThinLens};
 
 /// The widest sensor prism takes, metres: wider is surely millimetres written as metres.
 const WIDEST_SENSOR: f64 = 1.0;
 
+/// What a camera's description puts before its film: a thin lens, a lens system (read
+/// through `resolve`), or neither (a pinhole).
+pub(crate) enum Optics {
+    Pinhole,
+    Thin(ThinLens),
+    System(MountedLens),
+}
+
+/// Parses a camera's description, reading a lens system's file through `resolve`.
+pub(crate) fn optics(
+    value: &Value,
+    resolve: &crate::load::Resolver,
+) -> Result<Optics, String> {
+    let map = value
+        .as_object()
+        .ok_or("must be an object {\"aperture\": .., \"focus_distance\": ..}")?;
+    let Some(file) = map.get("lens") else {
+        return Ok(match thin_lens(value)? {
+            Some(lens) => Optics::Thin(lens),
+            None => Optics::Pinhole,
+        });
+    };
+    only_keys(map, &["lens", "aperture", "focus_distance", "sensor_width"])?;
+    let file = file
+        .as_str()
+        .ok_or("'lens' must be a prescription's file name")?;
+    let text = resolve(file).map_err(|e| format!("lens {file}: {e}"))?;
+    let text = String::from_utf8(text).map_err(|_| format!("lens {file}: not a text file"))?;
+    let system = parse_prescription(&text).map_err(|e| format!("lens {file}: {e}"))?;
+    let mut mounted = MountedLens::new(file, system);
+    if let Some(aperture) = map.get("aperture") {
+        let aperture = aperture
+            .as_object()
+            .ok_or("aperture must be an object {\"f_number\": N}")?;
+        only_keys(aperture, &["f_number"]).map_err(|e| {
+            format!("{e} (a lens system's aperture is its stop, closed by 'f_number')")
+        })?;
+        let n = aperture
+            .get("f_number")
+            .ok_or("a lens system's aperture needs 'f_number'")?;
+        let n = number(n, "aperture f_number")?;
+        if !(n.is_finite() && n > 0.0) {
+            return Err(format!("f-number {n} must be finite and > 0"));
+        }
+        mounted.f_number = Some(n as f32);
+    }
+    if let Some(d) = map.get("focus_distance") {
+        let d = number(d, "focus_distance")?;
+        if !(d.is_finite() && d > 0.0) {
+            return Err(format!("focus_distance {d} must be finite and > 0"));
+        }
+        mounted.focus_distance = Some(d as f32);
+    }
+    if let Some(w) = map.get("sensor_width") {
+        mounted.sensor_width = sensor_width(w)?;
+    }
+    Ok(Optics::System(mounted))
+}
+
+/// A sensor's width, metres.
+fn sensor_width(w: &Value) -> Result<f32, String> {
+    let w = number(w, "sensor_width")?;
+    if w > WIDEST_SENSOR {
+        return Err(format!(
+            "sensor_width {w} is in metres (a full-frame sensor is 0.036)"
+        ));
+    }
+    if !(w.is_finite() && w > 0.0) {
+        return Err(format!("sensor_width {w} must be finite and > 0"));
+    }
+    Ok(w as f32)
+}
+
 /// Parses a camera's description into its thin lens (None: no `aperture`, a pinhole).
-pub(crate) fn thin_lens(value: &Value) -> Result<Option<ThinLens>, String> {
+fn thin_lens(value: &Value) -> Result<Option<ThinLens>, String> {
     let map = value
         .as_object()
         .ok_or("must be an object {\"aperture\": .., \"focus_distance\": ..}")?;
@@ -59,15 +136,7 @@ pub(crate) fn thin_lens(value: &Value) -> Result<Option<ThinLens>, String> {
     };
     let sensor_width = match map.get("sensor_width") {
         None => FULL_FRAME_WIDTH,
-        Some(w) => {
-            let w = number(w, "sensor_width")?;
-            if w > WIDEST_SENSOR {
-                return Err(format!(
-                    "sensor_width {w} is in metres (a full-frame sensor is 0.036)"
-                ));
-            }
-            w as f32
-        }
+        Some(w) => sensor_width(w)?,
     };
     let lens = ThinLens {
         size,

@@ -20,7 +20,7 @@ pub use material::{FLUORESCENCE_RANGE_NM, MATERIAL_TYPES, SpectralMaterial};
 pub use overlay::Overlay;
 pub use value::{IOR_FORMS, Role, SPECTRUM_FORMS};
 
-pub(crate) use camera::thin_lens;
+pub(crate) use camera::{Optics, optics};
 pub(crate) use light::{light, scene};
 pub(crate) use material::material;
 pub(crate) use value::Context;

@@ -51,10 +51,15 @@ fn later_settings_fingerprint(args: &RenderArgs) -> String {
         (_, filter) => format!(";polarized=1;camera_polarizer={filter:?}"),
     };
     // The instant, likewise only when one is rendered.
-    match (args.at, &args.shutter) {
+    let timed = match (args.at, &args.shutter) {
         (Some(t), _) => format!("{polarization};at={t}"),
         (None, Some(s)) => format!("{polarization};shutter={s}"),
         (None, None) => polarization,
+    };
+    // And the lens system, by its prescription's path.
+    match &args.lens {
+        Some(lens) => format!("{timed};lens={}", lens.display()),
+        None => timed,
     }
 }
 

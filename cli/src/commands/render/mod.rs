@@ -186,9 +186,17 @@ pub struct RenderArgs {
     #[arg(long, value_name = "R", allow_negative_numbers = true)]
     pub aperture_radius: Option<f32>,
     /// The distance in focus along the view, scene units (default: the camera's own, else
-    /// what the image's centre sees; `--stats` reports it). Needs an aperture.
+    /// what the image's centre sees; `--stats` reports it). Needs an aperture or a lens.
     #[arg(long, value_name = "D", allow_negative_numbers = true)]
     pub focus_distance: Option<f32>,
+    /// A real lens before the film, from a prescription in pbrt-v4's lens file format
+    /// (radius, thickness, index, aperture diameter per interface in mm, optionally a
+    /// fifth column naming the glass: `bk7` or `1.5168:64.17`), traced per wavelength.
+    /// Replaces the camera's own lens; the film is 36 mm wide (or the camera's
+    /// `sensor_width`) and the lens's focal length sets the field of view. `--f-number`
+    /// closes its stop, `--focus-distance` moves its film.
+    #[arg(long, value_name = "FILE", conflicts_with = "aperture_radius")]
+    pub lens: Option<std::path::PathBuf>,
     /// Leave caustics to camera paths alone: no light paths, even in scenes with smooth
     /// glass or metal (unbiased either way; without light paths a small light's caustic
     /// is noise and a punctual light's is missing).

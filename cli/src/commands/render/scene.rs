@@ -6,7 +6,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use prism_integrator::{CameraResponse, ResponseCurve};
-use prism_scene::camera::{ApertureSize, Camera, Projection, ThinLens};
+use prism_scene::camera::system::parse_prescription;
+use prism_scene::camera::{ApertureSize, Camera, MountedLens, Projection, ThinLens};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
 use prism_scene::world::{DEFAULT_ENVIRONMENT, Environment, Scene, SceneOptions, grey_environment};
@@ -63,7 +64,7 @@ pub(super) fn prepare(args: &RenderArgs) -> Result<(Scene, Option<CameraResponse
     }
     if lens_flags && !matches!(scene.camera().projection, Projection::Perspective { .. }) {
         return Err(format!(
-            "--f-number, --aperture-radius and --focus-distance need a perspective camera; '{}' is orthographic",
+            "--lens, --f-number, --aperture-radius and --focus-distance need a perspective camera; '{}' is orthographic",
             scene.camera().name
         ));
     }
@@ -169,10 +170,62 @@ fn environment(args: &RenderArgs) -> Result<Option<Environment>, String> {
     Ok(Some(Environment::Map(map)))
 }
 
-/// Applies the command line's thin lens (`--f-number`, `--aperture-radius`,
+/// Applies the command line's lens (`--lens`, `--f-number`, `--aperture-radius`,
 /// `--focus-distance`) to every perspective camera, over what the scene says; whether any
-/// was given.
+/// was given. A camera with a lens system (its own or `--lens`) takes the f-number and
+/// the distance in focus for it.
 fn lens_overrides(args: &RenderArgs, cameras: &mut [Camera]) -> Result<bool, String> {
+    if let Some(path) = &args.lens {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("--lens '{}': {e}", path.display()))?;
+        let system = parse_prescription(&text)
+            .map_err(|e| format!("--lens '{}': {e}", path.display()))?;
+        for camera in cameras
+            .iter_mut()
+            .filter(|c| matches!(c.projection, Projection::Perspective { .. }))
+        {
+            let mounted = MountedLens {
+                sensor_width: camera
+                    .system
+                    .as_ref()
+                    .map(|s| s.sensor_width)
+                    .or(camera.lens.map(|l| l.sensor_width))
+                    .unwrap_or(prism_scene::camera::FULL_FRAME_WIDTH),
+                ..MountedLens::new(path.display().to_string(), system.clone())
+            };
+            camera.lens = None;
+            camera.system = Some(mounted);
+        }
+    }
+    let mut any = args.lens.is_some();
+    for camera in cameras.iter_mut() {
+        let Some(mounted) = &mut camera.system else {
+            continue;
+        };
+        if args.aperture_radius.is_some() {
+            return Err(format!(
+                "--aperture-radius is a thin lens's; camera '{}' has a lens system, whose stop --f-number closes",
+                camera.name
+            ));
+        }
+        if let Some(n) = args.f_number {
+            if !(n.is_finite() && n > 0.0) {
+                return Err(format!("--f-number {n} must be finite and > 0"));
+            }
+            mounted.f_number = Some(n);
+            any = true;
+        }
+        if let Some(d) = args.focus_distance {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(format!("--focus-distance {d} must be finite and > 0"));
+            }
+            mounted.focus_distance = Some(d);
+            any = true;
+        }
+    }
+    if cameras.iter().any(|c| c.system.is_some()) {
+        return Ok(any);
+    }
     let size = match (args.f_number, args.aperture_radius) {
         (Some(n), _) => Some(ApertureSize::FNumber(n)),
         (None, Some(r)) => Some(ApertureSize::Radius(r)),

@@ -6,11 +6,15 @@
 //! paraxial ray's slopes are small differences of large numbers.
 
 mod focus;
+mod focused;
+mod mounted;
 mod paraxial;
 mod prescription;
 mod pupil;
 
 pub use focus::ThickLens;
+pub use focused::{D_LINE_NM, FocusedSystem};
+pub use mounted::MountedLens;
 pub use paraxial::Paraxial;
 pub use prescription::parse_prescription;
 pub use pupil::PupilBounds;

@@ -8,7 +8,8 @@ use glam::DVec3;
 
 use super::{LensRay, LensSystem};
 
-/// Grid points per side of the square searched on the rear element's plane.
+/// Grid points per side of the square searched on the rear element's plane by
+/// [`LensSystem::exit_pupil`].
 const GRID: usize = 256;
 
 /// An axis-aligned box on the rear element's plane (mm): min x, min y, max x, max y.
@@ -16,18 +17,24 @@ pub type PupilBounds = [f64; 4];
 
 impl LensSystem {
     /// The bounds, on the rear element's plane, of the rays from the film point at
-    /// distance `film_x` from the axis (on its x axis) that pass the system at
-    /// `lambda_nm`, grown by one grid cell; None where none passes.
+    /// distance `film_x` from the axis (on its x axis, the film where the prescription
+    /// puts it) that pass the system at `lambda_nm`, grown by one grid cell; None where
+    /// none passes.
     pub fn exit_pupil(&self, film_x: f64, lambda_nm: f64) -> Option<PupilBounds> {
+        self.exit_pupil_from(DVec3::new(film_x, 0.0, 0.0), lambda_nm, GRID)
+    }
+
+    /// [`LensSystem::exit_pupil`] from the film point `film` (on the x axis's half plane
+    /// y = 0, at any z behind the rear element), searched on a `grid` x `grid` grid.
+    pub fn exit_pupil_from(&self, film: DVec3, lambda_nm: f64, grid: usize) -> Option<PupilBounds> {
         let rear = self.interfaces().last()?;
         let rear_z = -rear.thickness;
         // The rear element's square, half again as wide: the pupil may be off the axis.
         let half = 1.5 * rear.aperture_radius;
-        let cell = 2.0 * half / GRID as f64;
-        let film = DVec3::new(film_x, 0.0, 0.0);
+        let cell = 2.0 * half / grid as f64;
         let mut bounds: Option<PupilBounds> = None;
-        for j in 0..GRID {
-            for i in 0..GRID {
+        for j in 0..grid {
+            for i in 0..grid {
                 let p = DVec3::new(
                     -half + (i as f64 + 0.5) * cell,
                     -half + (j as f64 + 0.5) * cell,
