@@ -175,6 +175,25 @@ fn camera_rays(c: &mut Criterion) {
             })
         });
     }
+    // Lens systems, wide open and focused at 3 m on a full-frame film, at 550 nm: a ray that
+    // the elements stop costs its tracing too (counted as a ray).
+    for (name, file) in [
+        ("double Gauss 50 mm", "dgauss.50mm.dat"),
+        ("wide angle 28 mm", "wide.28mm.dat"),
+    ] {
+        let path = format!("{}/../scenes/lenses/{file}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).expect("the repository's lenses");
+        let system = prism_scene::camera::system::parse_prescription(&text).unwrap();
+        let focused =
+            prism_scene::camera::FocusedSystem::new(&system, 36.0, 1.0, None, 3000.0).unwrap();
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                for (film, lens) in &points {
+                    black_box(camera.generate_ray_system(*film, &focused, *lens, 550.0));
+                }
+            })
+        });
+    }
     group.finish();
 }
 

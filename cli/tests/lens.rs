@@ -127,3 +127,89 @@ fn info_describes_a_cameras_lens() {
         "{text}"
     );
 }
+
+/// `--lens FILE` renders through a prescription: the film moves to focus on what the
+/// centre sees (reported), `--f-number` and `--focus-distance` apply to it, `prism info`
+/// describes a scene's own, and bad prescriptions and flags are one-line errors.
+#[test]
+fn lens_systems_from_the_command_line() {
+    let dir = temp_dir("lens-system");
+    let dgauss = scene("lenses/dgauss.50mm.dat");
+    let (pinhole, sharp) = render(&dir, "pinhole.exr", &[]);
+    assert!(pinhole["focus_distance"].is_null());
+    let (auto, through) = render(&dir, "auto.exr", &["--lens", dgauss.as_str()]);
+    let focus = auto["focus_distance"].as_f64().unwrap();
+    assert!((2.9..=4.9 + 1e-3).contains(&focus), "{focus}");
+    assert_eq!(
+        auto["reuse"], 1,
+        "reuse does not apply behind a lens system"
+    );
+    assert_ne!(sharp, through);
+    let (set, stopped) = render(
+        &dir,
+        "set.exr",
+        &[
+            "--lens",
+            dgauss.as_str(),
+            "--f-number",
+            "8",
+            "--focus-distance",
+            "3.2",
+        ],
+    );
+    assert!((set["focus_distance"].as_f64().unwrap() - 3.2).abs() < 1e-6);
+    assert_ne!(through, stopped);
+    // The same render twice is the same image.
+    let (_, again) = render(
+        &dir,
+        "again.exr",
+        &[
+            "--lens",
+            dgauss.as_str(),
+            "--f-number",
+            "8",
+            "--focus-distance",
+            "3.2",
+        ],
+    );
+    assert_eq!(stopped, again);
+
+    let broken = dir.join("broken.dat");
+    std::fs::write(&broken, "29.4 3.7\n").unwrap();
+    let broken = broken.to_str().unwrap().to_string();
+    let box_scene = scene("cornell-box.gltf");
+    let base = |extra: &[&str]| {
+        let mut args = vec![
+            "render".to_string(),
+            box_scene.clone(),
+            "--spp".into(),
+            "1".into(),
+            "-o".into(),
+            "never-written.png".into(),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        args
+    };
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (base(&["--lens", "no-such.dat"]), "--lens 'no-such.dat'"),
+        (base(&["--lens", broken.as_str()]), "line 1: 2 columns"),
+        (
+            base(&["--lens", dgauss.as_str(), "--f-number", "1.2"]),
+            "wider than the lens opens (f/2.02)",
+        ),
+        (
+            base(&["--lens", dgauss.as_str(), "--focus-distance", "0.02"]),
+            "cannot focus at 0.020 m",
+        ),
+        (
+            base(&["--lens", dgauss.as_str(), "--aperture-radius", "0.1"]),
+            "cannot be used with",
+        ),
+    ];
+    let owned: Vec<(Vec<&str>, &str)> = cases
+        .iter()
+        .map(|(a, n)| (a.iter().map(String::as_str).collect(), *n))
+        .collect();
+    let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
+    assert_one_line_errors(&borrowed);
+}

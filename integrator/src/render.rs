@@ -187,13 +187,13 @@ impl<'a> Renderer<'a> {
     /// The camera's thin lens as this render uses it: its radius, shape and the distance
     /// in focus (None: a pinhole or a lens system).
     pub fn focus(&self) -> Option<prism_scene::camera::Focus> {
-        self.focus
+        self.focus.clone()
     }
 
     /// The distance in focus, scene units (infinite: focused at infinity; None: a
     /// pinhole), of the thin lens or the lens system.
     pub fn focus_distance(&self) -> Option<f32> {
-        self.focus.map(|f| f.distance).or_else(|| {
+        self.focus.as_ref().map(|f| f.distance).or_else(|| {
             self.system
                 .as_ref()
                 .map(|s| (s.focus_distance_mm() / 1000.0) as f32)
@@ -240,7 +240,7 @@ impl<'a> Renderer<'a> {
             clock: crate::path::Clock::of(settings),
             splits,
             camera_media: crate::volume::MediumStack::around_camera(self.scene),
-            focus: self.focus,
+            focus: self.focus.clone(),
             system: self.system.clone(),
         }
     }

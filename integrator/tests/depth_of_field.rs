@@ -4,7 +4,9 @@
 
 use glam::{Mat4, Vec3};
 use prism_integrator::{Film, LambdaSampler, RenderSettings, render};
-use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Projection, ThinLens};
+use prism_scene::camera::{
+    ApertureImage, ApertureShape, ApertureSize, Camera, Projection, ThinLens,
+};
 use prism_scene::geometry::BvhQuality;
 use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
 
@@ -107,6 +109,39 @@ fn sharp_part(depth: f32) -> f64 {
     side * side / 6.0 - 1.0 / 6.0
 }
 
+/// An aperture image of a ring (transmission 1 between radii 0.5 and 1 of the square
+/// [-1, 1]^2 it fills, 0.5 on a thin circle inside, 0 elsewhere), and its second moment
+/// about its centre, E[x^2 + y^2], summed exactly over its pixels.
+fn ring_aperture() -> (ApertureShape, f64) {
+    let side = 32usize;
+    let cell = 2.0 / side as f64;
+    let (mut values, mut mass, mut moment) = (Vec::new(), 0.0, 0.0);
+    for j in 0..side {
+        for i in 0..side {
+            let (x0, y0) = (-1.0 + i as f64 * cell, 1.0 - (j + 1) as f64 * cell);
+            let (cx, cy) = (x0 + 0.5 * cell, y0 + 0.5 * cell);
+            let r = cx.hypot(cy);
+            let t = if (0.5..1.0).contains(&r) {
+                1.0
+            } else if (0.3..0.36).contains(&r) {
+                0.5
+            } else {
+                0.0
+            };
+            // The integral of x^2 + y^2 over the cell.
+            let second = |a: f64| (a + cell).powi(3) / 3.0 - a.powi(3) / 3.0;
+            moment += t * (second(x0) * cell + second(y0) * cell);
+            mass += t * cell * cell;
+            values.push(t as f32);
+        }
+    }
+    let image = ApertureImage::new(side, side, values).unwrap();
+    (
+        ApertureShape::Image(std::sync::Arc::new(image)),
+        moment / mass,
+    )
+}
+
 #[test]
 fn the_blur_of_a_point_off_focus_is_the_circle_of_confusion() {
     let (depth, focus, radius) = (4.0f32, 2.0f32, 0.25f32);
@@ -123,13 +158,18 @@ fn the_blur_of_a_point_off_focus_is_the_circle_of_confusion() {
             },
             (2.0 + (std::f64::consts::PI / 3.0).cos()) / 6.0,
         ),
+        ring_aperture(),
     ] {
         let want = scale * scale * unit_moment;
-        let got = blur(depth, focus, radius, shape) - sharp_part(depth);
+        let got = blur(depth, focus, radius, shape.clone()) - sharp_part(depth);
         let diameter = |m: f64| 2.0 * (m / unit_moment).sqrt();
+        let name = match &shape {
+            ApertureShape::Image(_) => "ring image".to_string(),
+            other => format!("{other:?}"),
+        };
         assert!(
             (diameter(got) / diameter(want) - 1.0).abs() < 0.03,
-            "{shape:?}: blur {:.2} px across, the circle of confusion {:.2}",
+            "{name}: blur {:.2} px across, the circle of confusion {:.2}",
             diameter(got),
             diameter(want)
         );

@@ -23,7 +23,8 @@ const F_NUMBER: f32 = 8.0;
 /// The repository's BK7 singlet (f = 97 mm) and BK7-F2 achromat (f = 99.5 mm), each
 /// behind a stop.
 const SINGLET: &str = "0 5 0 20\n100 4 1.5168 30 bk7\n-100 96.09 1 30\n";
-const ACHROMAT: &str = "0 5 0 20\n44.781 5 1.5168 30 bk7\n-44.781 2 1.6200 30 f2\n-810.62 94.57 1 30\n";
+const ACHROMAT: &str =
+    "0 5 0 20\n44.781 5 1.5168 30 bk7\n-44.781 2 1.6200 30 f2\n-810.62 94.57 1 30\n";
 
 fn scene(system: &LensSystem, focus: f32) -> Scene {
     let h = 0.5 * SIDE;
@@ -135,13 +136,18 @@ fn sharpest(system: &LensSystem, positions: &[f64], lambda: f64) -> f64 {
     } else {
         0.0
     };
-    eprintln!("{lambda} nm: moments {moments:.1?}, sharpest at {:.3} mm", positions[k] + offset * step);
+    eprintln!(
+        "{lambda} nm: moments {moments:.1?}, sharpest at {:.3} mm",
+        positions[k] + offset * step
+    );
     positions[k] + offset.clamp(-1.0, 1.0) * step
 }
 
 /// The image of the light (mm behind the prescription's film) at `lambda`.
 fn image_z(system: &LensSystem, lambda: f64) -> f64 {
-    system.focus_shift(f64::from(DISTANCE) * 1000.0, lambda).unwrap()
+    system
+        .focus_shift(f64::from(DISTANCE) * 1000.0, lambda)
+        .unwrap()
 }
 
 /// The rendered foci (film positions, mm) in the F, d and C lines through `prescription`
@@ -155,7 +161,10 @@ fn foci(prescription: &str) -> ([f64; 3], [f64; 3]) {
     let paraxial = lines.map(|l| image_z(&system, l));
     // Film positions from well before the F focus (spherical aberration brings every
     // best focus nearer the lens) to past the C focus.
-    let (first, last) = (paraxial[0].min(paraxial[2]) - 1.0, paraxial[0].max(paraxial[2]) + 0.4);
+    let (first, last) = (
+        paraxial[0].min(paraxial[2]) - 1.0,
+        paraxial[0].max(paraxial[2]) + 0.4,
+    );
     let positions: Vec<f64> = (0..11)
         .map(|i| first + f64::from(i) * (last - first) / 10.0)
         .collect();
@@ -185,7 +194,10 @@ fn a_singlet_focuses_blue_nearer_than_green_and_red_further() {
     }
     // And the colours' best foci lie near the paraxial ones.
     for (got, want) in found.iter().zip(paraxial) {
-        assert!((got - want).abs() < 0.8, "rendered {got:.3} mm, paraxial {want:.3} mm");
+        assert!(
+            (got - want).abs() < 0.8,
+            "rendered {got:.3} mm, paraxial {want:.3} mm"
+        );
     }
     // Through the achromat the F and C foci nearly meet.
     let (achromat, _) = foci(ACHROMAT);

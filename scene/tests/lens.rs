@@ -7,7 +7,9 @@ use std::f32::consts::PI;
 use glam::{Mat4, Vec2, Vec3};
 use prism_sampling::stats::chi_square_test;
 use prism_sampling::stream::{IndependentStream, SampleStream};
-use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Focus, Projection, ThinLens};
+use prism_scene::camera::{
+    ApertureImage, ApertureShape, ApertureSize, Camera, Focus, Projection, ThinLens,
+};
 use proptest::prelude::*;
 
 const SHAPES: [ApertureShape; 4] = [
@@ -74,6 +76,69 @@ fn apertures_are_sampled_uniformly_over_their_shapes() {
         let p = chi_square_test(&counts, &expected).p_value;
         assert!(p > 1e-3, "{shape:?}: p = {p:.2e}");
     }
+}
+
+/// An aperture image: a 24 x 24 grid of transmissions, graded across it, with a hole and
+/// a dark border, drawn in proportion to its transmission (16 bins that do not align with
+/// its pixels), with a density that integrates to one.
+#[test]
+fn aperture_images_are_sampled_by_their_transmission() {
+    let side = 24usize;
+    let values: Vec<f32> = (0..side * side)
+        .map(|k| {
+            let (i, j) = (k % side, k / side);
+            let (x, y) = (i as f32 / side as f32, j as f32 / side as f32);
+            if i == 0 || j == side - 1 || ((x - 0.6).powi(2) + (y - 0.4).powi(2)) < 0.02 {
+                0.0
+            } else {
+                0.2 + 0.8 * x * (1.0 - 0.5 * y)
+            }
+        })
+        .collect();
+    let image = ApertureImage::new(side, side, values).unwrap();
+    let shape = ApertureShape::Image(std::sync::Arc::new(image.clone()));
+    let (bins, n, sub) = (16usize, 400_000usize, 48usize);
+    let cell = 2.0 / bins as f32;
+    let mass: Vec<f64> = (0..bins * bins)
+        .map(|c| {
+            let (cx, cy) = ((c % bins) as f32, (c / bins) as f32);
+            (0..sub * sub)
+                .map(|s| {
+                    let p = Vec2::new(
+                        -1.0 + cell * (cx + ((s % sub) as f32 + 0.5) / sub as f32),
+                        -1.0 + cell * (cy + ((s / sub) as f32 + 0.5) / sub as f32),
+                    );
+                    f64::from(image.transmission(p))
+                })
+                .sum::<f64>()
+        })
+        .collect();
+    let total: f64 = mass.iter().sum();
+    let expected: Vec<f64> = mass.iter().map(|m| m / total * n as f64).collect();
+    let counts = histogram(|u| shape.sample(u), bins, n);
+    let p = chi_square_test(&counts, &expected).p_value;
+    assert!(p > 1e-3, "aperture image: p = {p:.2e}");
+    // Drawn upside down (rows read from the bottom), it fails.
+    let flipped = histogram(|u| shape.sample(u) * Vec2::new(1.0, -1.0), bins, n);
+    assert!(chi_square_test(&flipped, &expected).p_value < 1e-6);
+    // Its density integrates to one over the square.
+    let grid = 200;
+    let integral: f64 = (0..grid * grid)
+        .map(|k| {
+            let p = Vec2::new(
+                -1.0 + 2.0 * ((k % grid) as f32 + 0.5) / grid as f32,
+                -1.0 + 2.0 * ((k / grid) as f32 + 0.5) / grid as f32,
+            );
+            f64::from(image.pdf(p))
+        })
+        .sum::<f64>()
+        * 4.0
+        / (grid * grid) as f64;
+    assert!((integral - 1.0).abs() < 0.01, "{integral}");
+    // Black, ill-sized and out-of-range images are errors.
+    assert!(ApertureImage::new(2, 2, vec![0.0; 4]).is_err());
+    assert!(ApertureImage::new(2, 3, vec![1.0; 4]).is_err());
+    assert!(ApertureImage::new(2, 2, vec![1.0, 2.0, 0.5, f32::NAN]).is_err());
 }
 
 /// The test has power: a disk drawn at radius u (not sqrt u), denser at the centre, fails.

@@ -187,8 +187,13 @@ fn closing_the_stop_reaches_the_f_number() {
     }
     let err = system.stopped_to(1.4).unwrap_err();
     assert!(err.contains("wider than the lens opens"), "{err}");
-    let singlet = parse_prescription(include_str!("../../scenes/lenses/singlet.dat")).unwrap();
-    assert!(singlet.stopped_to(8.0).unwrap_err().contains("no aperture stop"));
+    let singlet = parse_prescription("100 4 1.5168 30 bk7\n-100 96.09 1 30\n").unwrap();
+    assert!(
+        singlet
+            .stopped_to(8.0)
+            .unwrap_err()
+            .contains("no aperture stop")
+    );
 }
 
 #[test]
@@ -196,7 +201,12 @@ fn impossible_films_and_focus_are_errors() {
     let system = dgauss();
     let near = FocusedSystem::new(&system, 36.0, 1.5, None, 30.0).unwrap_err();
     assert!(near.contains("cannot focus"), "{near}");
-    for (width, aspect) in [(0.0, 1.0), (36.0, 0.0), (f64::NAN, 1.0), (36.0, f64::INFINITY)] {
+    for (width, aspect) in [
+        (0.0, 1.0),
+        (36.0, 0.0),
+        (f64::NAN, 1.0),
+        (36.0, f64::INFINITY),
+    ] {
         assert!(FocusedSystem::new(&system, width, aspect, None, 1000.0).is_err());
     }
     // A diverging lens forms no image.
@@ -225,5 +235,47 @@ proptest! {
             prop_assert!((ray.direction.length() - 1.0).abs() < 1e-9);
             prop_assert!(w.is_finite() && w >= 0.0);
         }
+    }
+}
+
+/// How many camera rays pass through the double Gauss and the wide angle when aimed in
+/// the exit-pupil bounds, against aiming at the rear element's disk (what the bounds
+/// save; docs/trade-offs.md quotes it): `cargo test -p prism-scene --test lens_camera
+/// -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn exit_pupil_bounds_save_rays() {
+    for (name, system) in [("dgauss", dgauss()), ("wide", wide())] {
+        let lens = FocusedSystem::new(&system, 36.0, 1.5, None, 3000.0).unwrap();
+        let rear = lens.system().interfaces().last().unwrap();
+        let (rear_z, radius) = (-rear.thickness, rear.aperture_radius);
+        let (mut bounds_pass, mut disk_pass, mut total) = (0usize, 0usize, 0usize);
+        let mut numbers = Numbers(7);
+        for _ in 0..200_000 {
+            let film = Vec2::new(numbers.next() as f32, numbers.next() as f32);
+            let u = Vec2::new(numbers.next() as f32, numbers.next() as f32);
+            total += 1;
+            bounds_pass += usize::from(lens.ray(film, u, D_LINE_NM).is_some());
+            let (x, y) = (
+                (1.0 - 2.0 * f64::from(film.x)) * 18.0,
+                (2.0 * f64::from(film.y) - 1.0) * 12.0,
+            );
+            let point = DVec3::new(x, y, lens.film_z());
+            let (r, a) = (
+                radius * f64::from(u.x).sqrt(),
+                std::f64::consts::TAU * f64::from(u.y),
+            );
+            let target = DVec3::new(r * a.cos(), r * a.sin(), rear_z);
+            let ray = LensRay {
+                origin: point,
+                direction: (target - point).normalize(),
+            };
+            disk_pass += usize::from(lens.system().trace_from_film(ray, D_LINE_NM).is_some());
+        }
+        eprintln!(
+            "{name}: {:.1}% of rays aimed in the bounds pass, {:.1}% aimed at the rear element",
+            100.0 * bounds_pass as f64 / total as f64,
+            100.0 * disk_pass as f64 / total as f64
+        );
     }
 }

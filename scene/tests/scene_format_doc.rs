@@ -70,12 +70,17 @@ fn every_documented_example_loads() {
                 .as_array_mut()
                 .unwrap()
                 .push(json!(n));
-        } else if value.get("aperture").is_some() {
-            // A camera's thin lens: on the box's camera.
+        } else if value.get("aperture").is_some() || value.get("lens").is_some() {
+            // A camera's thin lens or lens system: on the box's camera (its files in the
+            // scenes folder).
             doc["extensionsUsed"] = json!(["PRISM_spectral"]);
             doc["cameras"][0]["extensions"] = json!({ "PRISM_spectral": value });
             let loaded = load(&doc, None).unwrap_or_else(|e| panic!("{e}:\n{example}"));
-            assert!(loaded.cameras[0].lens.is_some(), "{example}");
+            let camera = &loaded.cameras[0];
+            assert!(
+                camera.lens.is_some() != camera.system.is_some(),
+                "{example}"
+            );
         } else if let Some(extensions) = value["extensions"].as_object().filter(|e| {
             e.keys().any(|k| k.starts_with("KHR_materials_"))
                 && e.keys()

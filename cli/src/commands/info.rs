@@ -47,7 +47,11 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             outln!("lens           {}: {}", camera.name, describe_lens(lens));
         }
         if let Some(system) = &camera.system {
-            outln!("lens           {}: {}", camera.name, describe_system(system));
+            outln!(
+                "lens           {}: {}",
+                camera.name,
+                describe_system(system)
+            );
         }
     }
     outln!("bounds         {:?} .. {:?}", s.bounds.0, s.bounds.1);
@@ -159,9 +163,10 @@ fn describe_lens(lens: &prism_scene::camera::ThinLens) -> String {
         ApertureSize::FNumber(n) => format!("f/{n}"),
         ApertureSize::Radius(r) => format!("aperture radius {r} m"),
     };
-    let shape = match lens.shape {
+    let shape = match &lens.shape {
         ApertureShape::Disk => "round".to_string(),
         ApertureShape::Polygon { blades, .. } => format!("{blades} blades"),
+        ApertureShape::Image(_) => "shaped by an image".to_string(),
     };
     let focus = lens
         .focus_distance

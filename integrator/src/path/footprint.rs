@@ -18,7 +18,11 @@ pub(crate) struct Footprint {
 impl Footprint {
     /// For `camera` rendering `height` rows, seeing a vertical field of view `yfov` where
     /// its lens system sets it instead of its projection.
-    pub(crate) fn new(camera: &prism_scene::camera::Camera, yfov: Option<f32>, height: u32) -> Self {
+    pub(crate) fn new(
+        camera: &prism_scene::camera::Camera,
+        yfov: Option<f32>,
+        height: u32,
+    ) -> Self {
         let narrowing = 0.5;
         let rows = height.max(1) as f32;
         match camera.projection {

@@ -26,7 +26,7 @@ pub enum ApertureSize {
 }
 
 /// A thin lens as a scene describes it.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ThinLens {
     /// How large the aperture is.
     pub size: ApertureSize,
@@ -75,7 +75,7 @@ impl ThinLens {
             }
             _ => {}
         }
-        if let ApertureShape::Polygon { blades, rotation } = self.shape {
+        if let &ApertureShape::Polygon { blades, rotation } = &self.shape {
             if !(3..=64).contains(&blades) {
                 return Err(format!("{blades} aperture blades (3 to 64)"));
             }
@@ -100,7 +100,7 @@ impl ThinLens {
 
 /// A thin lens ready to render with: its aperture's radius (scene units) and shape, and
 /// the distance in focus along the view.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Focus {
     /// The aperture's radius (its shape's corners lie on it), scene units.
     pub radius: f32,

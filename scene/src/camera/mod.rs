@@ -6,7 +6,7 @@ mod aperture;
 mod lens;
 pub mod system;
 
-pub use aperture::ApertureShape;
+pub use aperture::{ApertureImage, ApertureShape};
 pub use lens::{ApertureSize, FULL_FRAME_WIDTH, Focus, ThinLens};
 pub use system::{FocusedSystem, MountedLens};
 
@@ -95,7 +95,7 @@ impl Camera {
     /// image's centre sees when the lens does not say (None there: focused at infinity).
     /// None for a pinhole, an orthographic camera or an aperture of radius 0.
     pub fn focus(&self, aspect: f32, auto_focus: impl FnOnce() -> Option<f32>) -> Option<Focus> {
-        let (Projection::Perspective { yfov }, Some(lens)) = (self.projection, self.lens) else {
+        let (Projection::Perspective { yfov }, Some(lens)) = (self.projection, &self.lens) else {
             return None;
         };
         let radius = lens.radius(yfov, aspect);
@@ -109,7 +109,7 @@ impl Camera {
             .unwrap_or(f32::INFINITY);
         Some(Focus {
             radius,
-            shape: lens.shape,
+            shape: lens.shape.clone(),
             distance,
         })
     }

@@ -296,7 +296,8 @@ pub fn load_scene(
             }
         }
         if let Some(camera) = node.camera() {
-            out.cameras.push(make_camera(&node, &camera, world, resolve)?);
+            out.cameras
+                .push(make_camera(&node, &camera, world, resolve)?);
         }
         if let Some(mesh) = node.mesh() {
             if node.skin().is_some() {
@@ -606,8 +607,7 @@ fn make_camera(
         crate::spectral::Optics::Thin(lens) => (Some(lens), None),
         crate::spectral::Optics::System(system) => (None, Some(system)),
     };
-    if (lens.is_some() || system.is_some())
-        && matches!(projection, Projection::Orthographic { .. })
+    if (lens.is_some() || system.is_some()) && matches!(projection, Projection::Orthographic { .. })
     {
         return Err(LoadError::Geometry(format!(
             "camera {name}: a lens needs a perspective camera"

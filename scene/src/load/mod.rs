@@ -6,7 +6,7 @@ mod base64;
 pub(crate) mod environment;
 mod extensions;
 mod geometry;
-mod images;
+pub(crate) mod images;
 mod instancing;
 mod lights;
 mod material_layers;

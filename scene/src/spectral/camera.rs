@@ -10,7 +10,9 @@ use serde_json::Value;
 
 use super::value::{number, only_keys};
 use crate::camera::system::parse_prescription;
-use crate::camera::{ApertureShape, ApertureSize, FULL_FRAME_WIDTH, MountedLens, ThinLens};
+use crate::camera::{
+    ApertureImage, ApertureShape, ApertureSize, FULL_FRAME_WIDTH, MountedLens, ThinLens,
+};
 
 /// The widest sensor prism takes, metres: wider is surely millimetres written as metres.
 const WIDEST_SENSOR: f64 = 1.0;
@@ -24,15 +26,12 @@ pub(crate) enum Optics {
 }
 
 /// Parses a camera's description, reading a lens system's file through `resolve`.
-pub(crate) fn optics(
-    value: &Value,
-    resolve: &crate::load::Resolver,
-) -> Result<Optics, String> {
+pub(crate) fn optics(value: &Value, resolve: &crate::load::Resolver) -> Result<Optics, String> {
     let map = value
         .as_object()
         .ok_or("must be an object {\"aperture\": .., \"focus_distance\": ..}")?;
     let Some(file) = map.get("lens") else {
-        return Ok(match thin_lens(value)? {
+        return Ok(match thin_lens(value, resolve)? {
             Some(lens) => Optics::Thin(lens),
             None => Optics::Pinhole,
         });
@@ -74,6 +73,27 @@ pub(crate) fn optics(
     Ok(Optics::System(mounted))
 }
 
+/// An aperture image from a PNG, JPEG or WebP file: its pixels' luminance (sRGB decoded)
+/// as transmission, times its alpha where it has one.
+fn aperture_image(bytes: &[u8]) -> Result<ApertureImage, String> {
+    let image = crate::load::images::decode(bytes)?;
+    let table = crate::world::Encoding::Srgb.table();
+    let transmission: Vec<f32> = image
+        .rgb
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let [r, g, b] = p.map(|c| table[usize::from(c)]);
+            let alpha = image
+                .alpha
+                .as_ref()
+                .map_or(1.0, |a| f32::from(a[i]) / 255.0);
+            ((0.2126 * r + 0.7152 * g + 0.0722 * b) * alpha).clamp(0.0, 1.0)
+        })
+        .collect();
+    ApertureImage::new(image.width as usize, image.height as usize, transmission)
+}
+
 /// A sensor's width, metres.
 fn sensor_width(w: &Value) -> Result<f32, String> {
     let w = number(w, "sensor_width")?;
@@ -88,8 +108,9 @@ fn sensor_width(w: &Value) -> Result<f32, String> {
     Ok(w as f32)
 }
 
-/// Parses a camera's description into its thin lens (None: no `aperture`, a pinhole).
-fn thin_lens(value: &Value) -> Result<Option<ThinLens>, String> {
+/// Parses a camera's description into its thin lens (None: no `aperture`, a pinhole),
+/// reading an aperture image through `resolve`.
+fn thin_lens(value: &Value, resolve: &crate::load::Resolver) -> Result<Option<ThinLens>, String> {
     let map = value
         .as_object()
         .ok_or("must be an object {\"aperture\": .., \"focus_distance\": ..}")?;
@@ -103,32 +124,50 @@ fn thin_lens(value: &Value) -> Result<Option<ThinLens>, String> {
     let aperture = aperture
         .as_object()
         .ok_or("aperture must be an object {\"f_number\": N} or {\"radius\": R}")?;
-    only_keys(aperture, &["f_number", "radius", "blades", "rotation"])?;
+    only_keys(
+        aperture,
+        &["f_number", "radius", "blades", "rotation", "image"],
+    )?;
     let size = match (aperture.get("f_number"), aperture.get("radius")) {
         (Some(n), None) => ApertureSize::FNumber(number(n, "aperture f_number")? as f32),
         (None, Some(r)) => ApertureSize::Radius(number(r, "aperture radius")? as f32),
         _ => return Err("aperture needs one of 'f_number' and 'radius'".into()),
     };
-    let shape = match aperture.get("blades") {
-        None => {
+    let shape = match (aperture.get("blades"), aperture.get("image")) {
+        (Some(_), Some(_)) => return Err("aperture takes 'blades' or 'image', not both".into()),
+        (None, Some(file)) => {
             if aperture.contains_key("rotation") {
                 return Err("aperture 'rotation' needs 'blades'".into());
             }
-            ApertureShape::Disk
+            let file = file
+                .as_str()
+                .ok_or("aperture 'image' must be an image's file name")?;
+            let bytes = resolve(file).map_err(|e| format!("aperture image {file}: {e}"))?;
+            ApertureShape::Image(std::sync::Arc::new(
+                aperture_image(&bytes).map_err(|e| format!("aperture image {file}: {e}"))?,
+            ))
         }
-        Some(b) => {
-            let blades = b.as_u64().filter(|b| (3..=64).contains(b)).ok_or_else(|| {
-                format!("aperture blades {b} must be a whole number from 3 to 64")
-            })?;
-            let rotation = match aperture.get("rotation") {
-                None => 0.0,
-                Some(r) => number(r, "aperture rotation")?.to_radians() as f32,
-            };
-            ApertureShape::Polygon {
-                blades: blades as u32,
-                rotation,
+        (b, None) => match b {
+            None => {
+                if aperture.contains_key("rotation") {
+                    return Err("aperture 'rotation' needs 'blades'".into());
+                }
+                ApertureShape::Disk
             }
-        }
+            Some(b) => {
+                let blades = b.as_u64().filter(|b| (3..=64).contains(b)).ok_or_else(|| {
+                    format!("aperture blades {b} must be a whole number from 3 to 64")
+                })?;
+                let rotation = match aperture.get("rotation") {
+                    None => 0.0,
+                    Some(r) => number(r, "aperture rotation")?.to_radians() as f32,
+                };
+                ApertureShape::Polygon {
+                    blades: blades as u32,
+                    rotation,
+                }
+            }
+        },
     };
     let focus_distance = match map.get("focus_distance") {
         None => None,

@@ -178,18 +178,26 @@ fn lens_overrides(args: &RenderArgs, cameras: &mut [Camera]) -> Result<bool, Str
     if let Some(path) = &args.lens {
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("--lens '{}': {e}", path.display()))?;
-        let system = parse_prescription(&text)
-            .map_err(|e| format!("--lens '{}': {e}", path.display()))?;
+        let system =
+            parse_prescription(&text).map_err(|e| format!("--lens '{}': {e}", path.display()))?;
         for camera in cameras
             .iter_mut()
             .filter(|c| matches!(c.projection, Projection::Perspective { .. }))
         {
+            // The film's size, the distance in focus and a lens system's f-number stay
+            // the camera's.
             let mounted = MountedLens {
+                f_number: camera.system.as_ref().and_then(|s| s.f_number),
+                focus_distance: camera
+                    .system
+                    .as_ref()
+                    .and_then(|s| s.focus_distance)
+                    .or(camera.lens.as_ref().and_then(|l| l.focus_distance)),
                 sensor_width: camera
                     .system
                     .as_ref()
                     .map(|s| s.sensor_width)
-                    .or(camera.lens.map(|l| l.sensor_width))
+                    .or(camera.lens.as_ref().map(|l| l.sensor_width))
                     .unwrap_or(prism_scene::camera::FULL_FRAME_WIDTH),
                 ..MountedLens::new(path.display().to_string(), system.clone())
             };
@@ -238,10 +246,10 @@ fn lens_overrides(args: &RenderArgs, cameras: &mut [Camera]) -> Result<bool, Str
         .iter_mut()
         .filter(|c| matches!(c.projection, Projection::Perspective { .. }))
     {
-        let mut lens = match (camera.lens, size) {
+        let mut lens = match (camera.lens.clone(), size) {
             (_, Some(size)) => ThinLens {
                 size,
-                ..camera.lens.unwrap_or(ThinLens::new(size))
+                ..camera.lens.clone().unwrap_or(ThinLens::new(size))
             },
             (Some(lens), None) => lens,
             (None, None) => {

@@ -264,7 +264,12 @@ impl FocusedSystem {
 }
 
 fn union(a: PupilBounds, b: PupilBounds) -> PupilBounds {
-    [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])]
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[2].max(b[2]),
+        a[3].max(b[3]),
+    ]
 }
 
 impl LensSystem {
