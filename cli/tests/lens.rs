@@ -213,3 +213,83 @@ fn lens_systems_from_the_command_line() {
     let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
     assert_one_line_errors(&borrowed);
 }
+
+/// Behind a lens system a polarized render's sample ranges merge into the render of all
+/// of them, and a part rendered through another lens does not merge with them.
+#[test]
+fn lens_system_renders_merge_and_polarize() {
+    let dir = temp_dir("lens-merge");
+    let path = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let (window, dgauss, achromat) = (
+        scene("window.gltf"),
+        scene("lenses/dgauss.50mm.dat"),
+        scene("lenses/achromat.dat"),
+    );
+    let common = [
+        window.as_str(),
+        "--width",
+        "12",
+        "--height",
+        "8",
+        "--seed",
+        "3",
+        "--polarized",
+        "--lens",
+        dgauss.as_str(),
+    ];
+    let run = |extra: &[&str]| prism_ok(&[&["render", "-q"], &common, extra]);
+    run(&["--spp", "4", "-o", &path("single.exr")]);
+    run(&["--sample-range", "0..1", "-o", &path("a.exr")]);
+    run(&["--sample-range", "1..4", "-o", &path("b.exr")]);
+    prism_ok(&[&[
+        "merge",
+        &path("a.exr"),
+        &path("b.exr"),
+        "-o",
+        &path("merged.exr"),
+    ]]);
+    let read =
+        |name: &str| prism_integrator::decode_exr(&std::fs::read(dir.join(name)).unwrap()).unwrap();
+    let (single, merged) = (read("single.exr"), read("merged.exr"));
+    for (a, b) in single.channels.iter().zip(&merged.channels) {
+        assert_eq!(a.0, b.0);
+        for (x, y) in a.1.iter().zip(&b.1) {
+            assert!(
+                (x - y).abs() <= 1e-5 * x.abs().max(1e-3),
+                "{}: {x} vs {y}",
+                a.0
+            );
+        }
+    }
+    let s0 = &single.channels.iter().find(|c| c.0 == "S0.G").unwrap().1;
+    assert!(s0.iter().any(|v| *v > 0.0));
+    // A part through the achromat is another render.
+    prism_ok(&[&[
+        "render",
+        "-q",
+        window.as_str(),
+        "--width",
+        "12",
+        "--height",
+        "8",
+        "--seed",
+        "3",
+        "--polarized",
+        "--lens",
+        achromat.as_str(),
+        "--sample-range",
+        "1..4",
+        "-o",
+        &path("c.exr"),
+    ]]);
+    let out = common::prism(&[
+        "merge",
+        &path("a.exr"),
+        &path("c.exr"),
+        "-o",
+        &path("never.exr"),
+    ]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("lens="), "{stderr}");
+}
