@@ -126,6 +126,14 @@ fn info_describes_a_cameras_lens() {
         ),
         "{text}"
     );
+    let out = prism_ok(&[&["info", scene("lens-chart.gltf").as_str()]]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains(
+            "lens           camera: lens system lenses/singlet.dat (97.4 mm f/3.25 wide open, stopped to f/5.6, 3 interfaces, dispersive glass), focused at 3 m, sensor 36 mm wide"
+        ),
+        "{text}"
+    );
 }
 
 /// `--lens FILE` renders through a prescription: the film moves to focus on what the
