@@ -1,5 +1,5 @@
 """Writes scenes/bokeh.gltf: depth of field through a thin lens with a six-bladed
-aperture (README, "Depth of field").
+aperture (docs/guide/cameras.md, "Depth of field").
 
 - A gold sphere and a glass sphere on a dark floor, 2.5 m from the camera, in focus.
 - Behind them, 6 to 15 m away, and one in front, 1.2 m away, small lamps: warm 2700 K

@@ -1,5 +1,5 @@
 """Writes scenes/glow.gltf: glow-in-the-dark objects in a room whose lamp switches off,
-for `prism render --at SECONDS` (README, "Phosphorescence").
+for `prism render --at SECONDS` (docs/guide/time.md, "Phosphorescence").
 
 - A small grey room lit by a daylight ceiling panel that is on from 0 s to 10 s.
 - On the floor, a sphere and a star-shaped block painted with a strontium-aluminate-like

@@ -1,5 +1,5 @@
 """Writes scenes/lens-chart.gltf: a chart of small white lights, for comparing real lenses
-(README, "Lenses"): through an uncorrected singlet each light is a sharp core in a
+(docs/guide/cameras.md, "Real lenses"): through an uncorrected singlet each light is a sharp core in a
 coloured halo (the F and C lines focus before and behind the d line) and the chart's
 edges show colour fringes; through a cemented achromat the lights stay white and sharp.
 

@@ -1,5 +1,5 @@
 """Writes scenes/media.gltf: what only participating media can show, per wavelength
-(README, "Participating media").
+(docs/guide/media.md, "Participating media").
 
 - Left, a column of dilute milk (an `interface` cylinder: a glass wall would bend the
   beam into a caustic, which only light paths find, and they stay off in scenes with

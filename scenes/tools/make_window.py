@@ -1,6 +1,6 @@
 """Writes scenes/window.gltf: a shop window on a sunny street, seen at Brewster's angle,
 where the reflection of the street in the glass is polarized: what a polarizing filter
-on a camera removes (README, "Polarization").
+on a camera removes (docs/guide/polarization.md, "Polarization").
 
 - The window: a pane of smooth glass (index 1.52, 1 cm thick) in the plane z = 0, the
   shop behind it (z < 0): a dim room lit by a warm lamp, with a display of coloured

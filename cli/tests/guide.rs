@@ -1,0 +1,194 @@
+//! The README and the guide (`docs/guide/`) as a user meets them: every `prism` command in
+//! their `sh` blocks runs and writes what it names (renders made small: 12 x 8 pixels, 2
+//! samples per pixel unless the command renders sample ranges), and every relative link
+//! leads to a file that exists, and to a heading of it where it names one.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// The documents: the README and every page of the guide.
+fn documents() -> Vec<PathBuf> {
+    let mut pages: Vec<PathBuf> = std::fs::read_dir(root().join("docs/guide"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    pages.sort();
+    pages.insert(0, root().join("README.md"));
+    pages
+}
+
+/// The lines of a document's fenced blocks tagged `lang`, block by block.
+fn blocks(text: &str, lang: &str) -> Vec<Vec<String>> {
+    let (mut out, mut current): (Vec<Vec<String>>, Option<Vec<String>>) = (Vec::new(), None);
+    for line in text.lines() {
+        match (&mut current, line.trim_start()) {
+            (None, l) if l == format!("```{lang}") => current = Some(Vec::new()),
+            (Some(_), "```") => out.push(current.take().unwrap()),
+            (Some(lines), _) => lines.push(line.to_string()),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// A command's arguments made small and pointed at `dir` for what it writes (and reads of
+/// what an earlier command wrote).
+fn small(args: &[&str], dir: &Path) -> Vec<String> {
+    let ranges = args.contains(&"--sample-range");
+    let mut out: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < args.len() {
+        let (arg, value) = (args[i], args.get(i + 1).copied());
+        match (arg, value) {
+            ("--width", Some(_)) | ("--height", Some(_)) => i += 2,
+            ("--spp", Some(_)) if !ranges => i += 2,
+            ("-o" | "--polarization-png", Some(v)) => {
+                out.push(arg.to_string());
+                out.push(dir.join(v).to_string_lossy().into_owned());
+                i += 2;
+            }
+            _ => {
+                out.push(if dir.join(arg).exists() {
+                    dir.join(arg).to_string_lossy().into_owned()
+                } else {
+                    arg.to_string()
+                });
+                i += 1;
+            }
+        }
+    }
+    if out.first().is_some_and(|c| c == "render") {
+        out.extend(["--width", "12", "--height", "8", "-q"].map(String::from));
+        if !ranges {
+            out.extend(["--spp", "2"].map(String::from));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_command_in_the_guide_runs() {
+    let mut ran = 0;
+    for document in documents() {
+        let text = std::fs::read_to_string(&document).unwrap();
+        let dir = common::temp_dir("guide");
+        for block in blocks(&text, "sh") {
+            for line in block {
+                let command = line.split(" #").next().unwrap().trim();
+                let Some(rest) = command.strip_prefix("prism ") else {
+                    continue;
+                };
+                let args: Vec<&str> = rest.split_whitespace().collect();
+                let args = small(&args, &dir);
+                let out = Command::new(env!("CARGO_BIN_EXE_prism"))
+                    .args(&args)
+                    .current_dir(root())
+                    .output()
+                    .unwrap();
+                assert!(
+                    out.status.success(),
+                    "{}: `{command}` failed: {}",
+                    document.display(),
+                    String::from_utf8_lossy(&out.stderr)
+                );
+                for (i, a) in args.iter().enumerate() {
+                    if a == "-o" {
+                        assert!(
+                            Path::new(&args[i + 1]).exists(),
+                            "{}: `{command}` wrote no {}",
+                            document.display(),
+                            args[i + 1]
+                        );
+                    }
+                }
+                ran += 1;
+            }
+        }
+    }
+    assert!(ran >= 20, "only {ran} commands found");
+}
+
+/// GitHub's anchor for a heading: lower case, punctuation other than '-' and '_' dropped,
+/// spaces as '-'.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || *c == '-' || *c == '_' || *c == ' ')
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+fn anchors(text: &str) -> Vec<String> {
+    let mut fenced = false;
+    text.lines()
+        .filter(|l| {
+            if l.trim_start().starts_with("```") {
+                fenced = !fenced;
+            }
+            !fenced
+        })
+        .filter_map(|l| l.strip_prefix('#'))
+        .map(|l| anchor(l.trim_start_matches('#')))
+        .collect()
+}
+
+#[test]
+fn every_link_in_the_guide_resolves() {
+    let link = |text: &str| -> Vec<String> {
+        let mut out = Vec::new();
+        let mut rest = text;
+        while let Some(i) = rest.find("](") {
+            let after = &rest[i + 2..];
+            let end = after.find(')').unwrap_or(after.len());
+            out.push(after[..end].to_string());
+            rest = &after[end..];
+        }
+        out
+    };
+    let mut checked = 0;
+    for document in documents()
+        .into_iter()
+        .chain([root().join("docs/scene-format.md")])
+    {
+        let text = std::fs::read_to_string(&document).unwrap();
+        for target in link(&text) {
+            if target.starts_with("http") {
+                continue;
+            }
+            let (file, heading) = match target.split_once('#') {
+                Some((f, h)) => (f, Some(h)),
+                None => (target.as_str(), None),
+            };
+            let path = if file.is_empty() {
+                document.clone()
+            } else {
+                document.parent().unwrap().join(file)
+            };
+            assert!(
+                path.exists(),
+                "{}: the link to {target} leads nowhere",
+                document.display()
+            );
+            if let Some(h) = heading {
+                let text = std::fs::read_to_string(&path).unwrap();
+                assert!(
+                    anchors(&text).iter().any(|a| a == h),
+                    "{}: {} has no heading #{h}",
+                    document.display(),
+                    path.display()
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 30, "only {checked} links found");
+}
