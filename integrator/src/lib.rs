@@ -10,6 +10,46 @@
 //! spectral radiance becomes XYZ with its wavelengths' densities and is accumulated on an
 //! f64 [`Film`]; the film is encoded as EXR or PNG bytes.
 //!
+//! ## Where things are
+//!
+//! The hero-wavelength path tracer (`path/`: the bounce loop in `mod.rs`; a continuation's
+//! state, its scattering and Russian roulette in `walk.rs`; the light it meets,
+//! MIS-weighed, in `light.rs`; fluorescent vertices in `fluorescence.rs`; texture
+//! footprints in `footprint.rs`), written once over what a path carries (`throughput.rs`: a
+//! spectrum, or for `--polarized` per-lane Mueller matrices with their reference frame;
+//! each specialization compiled apart, so unpolarized renders run the code they always
+//! did), an instant or exposure of the scene's clock (`path::Clock`: per-lane times,
+//! phosphors' delays, sources gated by their schedules), splitting at the first vertex,
+//! path reuse across tiles of pixels (`reuse/`: each pixel's first vertex gathers its
+//! tile's second vertices by multiple importance sampling, in `gather.rs` eight first
+//! vertices at a time in SIMD lanes over `prism_sampling::lanes::real::Real`, their shadow
+//! rays leaving from origins offset once per side (`Hit::departure`); a `REUSE`
+//! specialization of the path tracer records them; a tile's paths share one package of
+//! wavelengths and one cache of the spectra evaluated at them), and the automatic choice
+//! among them by a pilot (`splits.rs`), the batch tracer (`batch/`, `Tracing::Lanes`: the
+//! paths of neighbouring pixels of a row in lanes as wide as the CPU's vectors, bounce by
+//! bounce; `lane.rs` a lane's path (the path tracer's `Walk`) and what it does alone with
+//! the path tracer's functions: its ray, the light it meets, non-Lambertian vertices;
+//! `lambertian.rs` the Lambertian vertices lane-wide over the code the path tracer runs for
+//! one path (`Frames`, `lambertian_sample`/`lambertian_pdf`, `power_heuristic_of`,
+//! `path::roulette`), compiled per width for AVX-512/AVX2/baseline; `paths.rs` the bounce
+//! loop; the path tracer's images to the bit; unpolarized, 4-16 wavelengths, unsplit,
+//! without reuse), the volumetric path tracer for scenes with media (`volume/`, beside
+//! `path/`: the bounce loop in `mod.rs`; a flight through one stretch of medium, collisions
+//! chosen by the hero with every lane's density kept as ratios, in `segment.rs`; collisions
+//! in a medium with a fluorescent dye, chosen among scattering, re-emission and null
+//! collisions with absorption as a weight, in `dye.rs`; the ratios and their
+//! balance-heuristic weights over lanes and strategies in `ratios.rs`; met light and
+//! next-event estimation in `light.rs`, its shadow rays' ratio tracking through interfaces
+//! in `shadow.rs`; the nesting of volumes in `stack.rs`), light paths for caustics seen
+//! directly (`light_path.rs`, unpolarized renders only), the f64 film and its filters,
+//! EXR/PNG encoding (and the polarization PNG) and lossless accumulation files of every
+//! film channel: XYZ or raw, bands, energy, Stokes components (bytes only).
+//!
+//! Key types: `RenderSettings`, `Splits`, `Reuse`, `Tracing`, `Renderer`, `render`,
+//! `render_into`, `Film`, `Filter`, `encode_exr`, `encode_png`, `encode_polarization_png`,
+//! `encode_accumulation`, `decode_accumulation`, `merge_accumulations`.
+//!
 //! ## Why it is designed so
 //! - **Deterministic by construction.** Every random number is a pure function of (seed,
 //!   pixel, sample index, dimension) (`prism-sampling`'s Owen-scrambled Sobol stream) and

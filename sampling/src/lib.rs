@@ -20,6 +20,23 @@
 //! - [`decay`]: phosphorescent delays, single and multi-exponential, restricted to the
 //!   times light sources were on.
 //!
+//! ## Where things are
+//!
+//! Monte Carlo machinery with no knowledge of scenes or spectrum types: distributions,
+//! warps, deterministic sample streams (and `SobolLanes`, W consecutive samples drawn at
+//! once, bit-identical to W scalar streams), lanes (`lanes`: `Lanes<T, W>`, the type a
+//! batch tracer's per-path code is to be written over, `Word` for code shared by one word
+//! and lanes of them, `Real` and `V3` for arithmetic shared by one `f32` and lanes of them
+//! (`Reals<W, EXACT>`; the cosine-hemisphere, concentric-disk and spherical-triangle warps
+//! are written once over it, libm for `f32`, the branch-free `lanes::trig` sine, arcsine
+//! and arctangent for lanes), `native_width()` from the CPU), wavelength samplers and hero
+//! packages, re-radiation sampling, phosphorescent delays (`decay`), MIS, chi-square
+//! statistics.
+//!
+//! Key types: `PiecewiseConstant1D`, `AliasTable`, `SobolStream`, `SobolLanes`, `Lanes`,
+//! `Real`, `Reals`, `IndependentStream`, `WavelengthDistribution`, `WavelengthPackage<N>`,
+//! `PackageScheme`, `ReradiationSampler`, `decay::Decay`, `stats::chi_square_test`.
+//!
 //! ## Why it is designed so
 //! - **Determinism by construction.** Streams are pure functions of (seed, pixel, sample,
 //!   dimension); no generator state crosses samples, so threads and tiles cannot change an

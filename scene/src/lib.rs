@@ -21,6 +21,80 @@
 //! hits it; each triangle is chosen by the light of its own texels). Occlusion textures are
 //! ignored: they fake what a path tracer computes.
 //!
+//! ## Where things are
+//!
+//! The world: glTF loading (`load`: geometry, cameras, materials, area and punctual lights;
+//! a mesh primitive's attributes read, checked against each other and placed in the world
+//! (`primitive`); every accessor checked (`accessor`) before it is read, float or quantized
+//! (`KHR_mesh_quantization`) through one reader, and what the node graph instances counted
+//! (`instancing`) before anything is instanced; which extensions prism reads and the error
+//! or warning for the others (`extensions`: warnings travel in `LoadedGeometry::warnings`
+//! for the CLI to print); HDR environment images decoded (`environment`: OpenEXR,
+//! Radiance), `EXT_meshopt_compression` views decoded (`meshopt`), MikkTSpace tangents
+//! (`tangents`), which texture coordinate sets a material's textures read
+//! (`tex_coord_sets`: the base colour's first), spectral descriptions (`spectral`: the
+//! `PRISM_spectral` extension and TOML overlays, one parser, documented in
+//! docs/scene-format.md), BVH (an eight-wide tree with leaves of triangle packets,
+//! collapsed by a surface-area-cost plan from the binary tree obvhs builds; single-ray
+//! traversal whose node test is four lanes wide (SSE) or, where the CPU has AVX2, eight
+//! wide in a traversal compiled for x86-64-v3 (`avx`), chosen at run time (`NodeLanes`) and
+//! equal to the bit), cameras (`camera/`: pinhole and orthographic projections, the thin
+//! lens (`lens`: aperture size by radius or f-number, focus) and its aperture shapes
+//! (`aperture`: disk, bladed polygon, image), real lens systems (`system/`: prescriptions
+//! in pbrt-v4's format with a glass per element, tracing per wavelength in f64, first-order
+//! properties by near-axis rays, focus by the thick-lens approximation, exit-pupil bounds;
+//! `MountedLens` is a scene's lens on a camera, `FocusedSystem` the lens made ready for a
+//! film, making camera rays and their weights)), the local shading frame the integrator and
+//! the scene share (`geometry::Frame`), BSDFs (`bsdf`; `thin_film`: the exact Airy
+//! reflectance of a film over a dielectric or conductor, per wavelength;
+//! `metallic_roughness`: the glTF base with `KHR_materials_specular`'s remapped Fresnel,
+//! anisotropic GGX and the film; `layered`: sheen (`sheen`, the Charlie lobe and its albedo
+//! table) and clear coat (`clearcoat`, its own normal) over the base by albedo scaling per
+//! wavelength; `coating_albedo`: directional albedos of the dielectric and mirror lobes,
+//! `table`: their lookups), and the render-ready scene (`world`: materials to per-hit
+//! BSDFs, lights chosen by power, or by power at the path's wavelengths when their spectra
+//! differ in narrow bands or the ultraviolet (`light_choice`), near triangles sampled by
+//! solid angle, emission and light densities for MIS, a per-path cache of emission spectra
+//! at the path's wavelengths, features; textures: base colour and emission upsampled per
+//! lookup, metallic-roughness and normal maps read as linear data, emissive textures read
+//! where lights are sampled and hit; base colour and metallic-roughness mipmapped
+//! (`mipmap`) and read at each hit's footprint (`Scene::set_footprint`); two texture
+//! coordinate sets per triangle, each texture reading its own (`tex_coords`: a hit's
+//! `TexCoords`, with a footprint per set); alpha coverage (`alpha`: MASK cut-outs and BLEND
+//! stochastic transparency, intersected through only in scenes that have them); vertex
+//! colours tinting the base colour (`Scene::bsdf`); `layers/`: the glTF material extensions
+//! as described (specular, anisotropy, clear coat, sheen, iridescence), each becoming its
+//! part of the BSDF at a hit, oriented by the hit's tangent frame where it needs one
+//! (`SurfaceFrame`); the loader reads them in `load/material_layers`) ; polarization has
+//! its own room (`polarization/`: Stokes vectors, Mueller matrices of interfaces from
+//! complex Fresnel amplitudes, polarizers, retarders, frame rotations, the s-p frames of a
+//! surface interaction (`surface`), iridescent films' amplitudes (`ThinFilm::amplitudes`),
+//! every BSDF's per-lane interactions (`bsdf`: Fresnel at the microfacet normal for
+//! dielectrics and conductors, the sheets' elements, depolarizers for the rest), media's
+//! phase functions (`phase`: Rayleigh's Mueller matrix; Henyey-Greenstein depolarizes) and
+//! polarized light emission (`light`), in Mitsuba 3's conventions; the polarizing sheets
+//! (`bsdf::Sheet`, materials `Polarizer` and `Retarder`) are thin delta BSDFs that
+//! unpolarized renders see as grey filters).
+//!
+//! Key types: `geometry::{Ray, Bvh}`, `load::{load_geometry, load_scene, LoadedGeometry,
+//! LightDesc}`, `spectral::{Overlay, SpectralMaterial}`, `camera::Camera` (`look_at` for
+//! cameras in code), `bsdf::*`, `world::{Scene, SceneParts, SceneBuilder (scenes in code:
+//! materials, triangles, emitters as lights), Material, Bsdf, Light, SceneSpectrum,
+//! EmissionCache, Features, SpectralTexture, NormalMap, TexCoords, Environment,
+//! EnvironmentMap}`; light from infinity has its own room (`world/environment/`: the
+//! uniform environment, the environment image with its importance sampler, the
+//! emissive-colour convention and the default light of a scene without one); so has time
+//! (`world/time/`: `Schedule`, when a source shines, and `Timeline`, the scene's schedules
+//! by light and decay laws by material, with the union of the times anything shines);
+//! participating media have theirs (`medium/`: `Medium` (spectral sigma_a, sigma_s,
+//! emission; optional density and temperature grids and a fluorescent dye
+//! (`fluorescence`)), `Media` (which material holds which medium, and the world's fog),
+//! phase functions (`phase`: Henyey-Greenstein, Rayleigh), grids with their coarse majorant
+//! grids and DDA (`grid`), grid files: OpenVDB's `.vdb` (`vdb/`: the header and grid
+//! descriptors, the 5-4-3 tree, node values, Blosc buffers) and Mitsuba's `.vol` (`vol`),
+//! tracking against the majorant (`track::sample_majorant`)); the scene format parses them
+//! in `spectral/medium.rs`, `KHR_materials_volume_scatter` in `load/volume_scatter.rs`.
+//!
 //! ## Why it is designed so
 //! - **Watertight and robust by construction.** Rays through shared edges and vertices hit
 //!   exactly one of the adjacent triangles (Woop, Benthin and Wald 2013), and spawned rays

@@ -22,6 +22,16 @@
 //! - [`optics`]: photon energy, photometry, Sellmeier and Cauchy indices, Abbe numbers as
 //!   glTF `KHR_materials_dispersion` defines them, a glass catalogue, measured metals.
 //!
+//! ## Where things are
+//!
+//! Spectra and colorimetry: CIE observers and illuminants (embedded tables with
+//! provenance), blackbody, XYZ, xy/uv, CIELAB, CIEDE2000, CCT, RGB colour spaces, chromatic
+//! adaptation, transfer functions, tone mapping, photon energy, photometry, IOR models,
+//! glass and metal catalogues.
+//!
+//! Key types: `Spectrum`, `SampledWavelengths<N>`, `SampledSpectrum<N>`, `PiecewiseLinear`,
+//! `Blackbody`, `Observer`, `Xyz`, `Lab`, `RgbColorSpace`, `Sellmeier`, `ComplexIor`.
+//!
 //! ## Why it is designed so
 //! - **`f64` for colorimetry, `f32` lanes for rendering.** [`Spectrum::evaluate`] works in
 //!   `f64` so that chromaticities match independent references to 1e-5 and better;

@@ -19,6 +19,17 @@
 //!   smoothstep-remapped brightness, two ratios), fitted in parallel with warm starts,
 //!   with trilinear, batch and refined lookups and a versioned, checksummed file format.
 //!
+//! ## Where things are
+//!
+//! RGB to spectrum (Jakob and Hanika 2019): the stable sigmoid, sigmoid-polynomial spectra,
+//! the exact fitter, RGB spectrum kinds, coefficient tables (`shipped`: the 32^3 linear
+//! sRGB table embedded in the crate, feature `srgb-table`, so sRGB never needs a fit;
+//! `table`: fit and single lookups; `table_batch`: batch lookups with four colours in SSE2
+//! lanes, bit-identical; `lanes`: the four-float node arithmetic) and their file format.
+//!
+//! Key types: `SigmoidPolynomial`, `FitContext`, `RgbSpectrum`, `RgbKind`,
+//! `CoefficientTable`.
+//!
 //! ## Why it is designed so
 //! - **Fit in normalized wavelength.** The optimizer works with t = (l - 360) / 470, where
 //!   the three coefficients have similar magnitudes and the normal equations are well
