@@ -370,6 +370,26 @@ impl<'a> Renderer<'a> {
         }))
     }
 
+    /// One light path per pixel under `seed` (the light paths of one pass), splatted into
+    /// a film of the render's size: what light paths add to each pixel's estimate, and the
+    /// rays they traced. For the splits pilot (`splits::LightPilot`).
+    pub(crate) fn light_pass(&self, seed: u64) -> (Film, u64) {
+        let tracer = self.tracer(1);
+        let rows = self.rows(seed, 0..1);
+        let mut pass = Film::for_settings(&self.settings);
+        let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
+        self.add_light_paths(
+            &tracer,
+            &rows,
+            &mut pass,
+            &AtomicBool::new(false),
+            &rays,
+            &nonfinite,
+        );
+        pass.finish_pass(1, nonfinite.into_inner());
+        (pass, rays.into_inner())
+    }
+
     /// Traces the light paths of the caustics seen directly (`light_path.rs`) for one pass
     /// and splats them into `pass`, counting their rays and rejected samples.
     fn add_light_paths(

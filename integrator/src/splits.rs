@@ -13,6 +13,12 @@
 //! the effects stage, a render's time is within 5% of proportional to its rays), so the
 //! choice is a pure function of the scene, the image size, the settings and the seed:
 //! every thread count and every machine of a farm makes the same one.
+//!
+//! Where light paths carry caustics, what they add to a pixel neither splits nor depends
+//! on the splits: their variance adds to the prefix's, their rays to the prefix's cost
+//! (`LightPilot`, one light path per pixel under each pilot seed). Left out, a caustic
+//! scene's pilot saw only the camera paths' part of the error and split where one
+//! continuation reached an error sooner.
 
 use crate::path::Tracer;
 use crate::render::{Renderer, Rows, trace_sample};
@@ -38,6 +44,64 @@ const TRIMMED: f64 = 0.02;
 /// The pilot's two seeds (each combined with the render's), other than the render's own so
 /// that the pilot's samples are not the render's first ones.
 const PILOT_SEEDS: [u64; 2] = [0x5b11_7e5a_a1e5_0001, 0x5b11_7e5a_a1e5_0002];
+
+/// What light paths add to the pilot's pixels: per seed, the light paths' estimate of
+/// every pixel from one light path per pixel, and their rays per light path.
+pub(crate) struct LightPilot {
+    width: u32,
+    values: [Vec<[f64; 3]>; 2],
+    rays: f64,
+}
+
+impl LightPilot {
+    /// Traces one pass of light paths under each pilot seed for `renderer` (None where
+    /// its render traces no light paths).
+    pub(crate) fn trace(renderer: &Renderer) -> Option<Self> {
+        if !renderer.light_caustics() {
+            return None;
+        }
+        let settings = renderer.settings();
+        let (width, height) = (settings.width, settings.height);
+        let mut rays = 0u64;
+        let values = PILOT_SEEDS.map(|s| {
+            let (film, r) = renderer.light_pass(settings.seed ^ s);
+            rays += r;
+            (0..height)
+                .flat_map(|y| (0..width).map(move |x| (x, y)))
+                .map(|(x, y)| {
+                    let xyz = film.xyz(x, y);
+                    [xyz.x, xyz.y, xyz.z]
+                })
+                .collect()
+        });
+        let paths = 2.0 * f64::from(width) * f64::from(height);
+        Some(Self {
+            width,
+            values,
+            rays: rays as f64 / paths,
+        })
+    }
+
+    /// What light paths add to pixel (`x`, `y`)'s error of a mean of `SAMPLES` samples
+    /// (one light path's variance over `SAMPLES`), each channel weighted with the pixel's
+    /// whole value, `camera` (its camera paths' mean) plus the light paths' mean.
+    fn variance(&self, x: u32, y: u32, camera: [f64; 3]) -> f64 {
+        let i = (y * self.width + x) as usize;
+        let (a, b) = (self.values[0][i], self.values[1][i]);
+        (0..3)
+            .map(|k| {
+                let mean = camera[k] + 0.5 * (a[k] + b[k]);
+                channel_error(a[k], b[k], mean) / SAMPLES as f64
+            })
+            .sum()
+    }
+}
+
+/// The mean over modes and seeds of a pixel's camera estimates.
+fn camera_mean(means: &[[[f64; 3]; 2]]) -> [f64; 3] {
+    let n = (2 * means.len()) as f64;
+    std::array::from_fn(|k| means.iter().flatten().map(|m| m[k]).sum::<f64>() / n)
+}
 
 /// What a pilot measured: the relative-MSE-weighted squared error of a pixel's mean,
 /// unsplit and split in two (the variance of a sample, as Sobol samples realize it), and
@@ -95,6 +159,7 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     let (columns, rows) = (width.min(GRID), height.min(GRID));
     let tracers = [renderer.tracer(1), renderer.tracer(2)];
     let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
+    let light = LightPilot::trace(renderer);
     let per_pixel: Vec<Pilot> = (0..columns * rows)
         .into_par_iter()
         .map(|i| {
@@ -103,7 +168,15 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             let y = ((2 * (i / columns) + 1) * height / (2 * rows)).min(height - 1);
             let (means, rays) =
                 pixel_estimates::<N, FLUORESCENCE, T>(renderer, &tracers, &seeds, x, y);
-            weighted_errors(&means, rays)
+            let mut pixel = weighted_errors(&means, rays);
+            if let Some(light) = &light {
+                let added = light.variance(x, y, camera_mean(&means));
+                for mode in 0..2 {
+                    pixel.variance[mode] += added;
+                    pixel.rays[mode] += light.rays * (2 * SAMPLES) as f64;
+                }
+            }
+            pixel
         })
         .collect();
     summarize(&per_pixel)
@@ -129,6 +202,10 @@ const REUSE_MARGIN: f64 = 0.85;
 pub(crate) struct ModePilot {
     pub variance: [f64; 4],
     pub rays: [f64; 4],
+    /// What light paths add to every mode's variance and rays per sample (a cell's;
+    /// folded into the modes when cells are summarized).
+    pub light_variance: f64,
+    pub light_rays: f64,
 }
 
 impl ModePilot {
@@ -170,6 +247,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     let (columns, rows) = (width.min(REUSE_GRID), height.min(REUSE_GRID));
     let tracers = [renderer.tracer(1), renderer.tracer(2)];
     let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
+    let light = LightPilot::trace(renderer);
     let corner = |i: u32| {
         (
             (i % columns) * width / columns,
@@ -183,6 +261,11 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         for mode in 0..2 {
             cell.variance[mode] = weighted_error(&means[mode]);
             cell.rays[mode] = rays[mode] / (2 * SAMPLES) as f64;
+        }
+        // Light paths add to every mode alike (the cell's corner pixel stands for it).
+        if let Some(light) = &light {
+            cell.light_variance = light.variance(x, y, camera_mean(&means));
+            cell.light_rays = light.rays;
         }
     };
     // Mode 2 + j: the tile of side REUSE_CHOICES[j] at the cell's corner, with reuse.
@@ -254,9 +337,10 @@ fn summarize_modes(per_cell: &[ModePilot], modes: usize) -> ModePilot {
     let n = kept.len() as f64;
     let mut total = ModePilot::default();
     for &i in &kept {
+        let cell = &per_cell[i];
         for mode in 0..modes {
-            total.variance[mode] += per_cell[i].variance[mode] / n;
-            total.rays[mode] += per_cell[i].rays[mode] / n;
+            total.variance[mode] += (cell.variance[mode] + cell.light_variance) / n;
+            total.rays[mode] += (cell.rays[mode] + cell.light_rays) / n;
         }
     }
     total
