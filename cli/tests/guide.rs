@@ -157,7 +157,10 @@ fn every_link_in_the_guide_resolves() {
     let mut checked = 0;
     for document in documents()
         .into_iter()
-        .chain([root().join("docs/scene-format.md")])
+        .chain(
+            ["docs/scene-format.md", "docs/trade-offs.md", "ARCHITECTURE.md"]
+                .map(|d| root().join(d)),
+        )
     {
         let text = std::fs::read_to_string(&document).unwrap();
         for target in link(&text) {
