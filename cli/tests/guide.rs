@@ -155,13 +155,14 @@ fn every_link_in_the_guide_resolves() {
         out
     };
     let mut checked = 0;
-    for document in documents()
-        .into_iter()
-        .chain(
-            ["docs/scene-format.md", "docs/trade-offs.md", "ARCHITECTURE.md"]
-                .map(|d| root().join(d)),
-        )
-    {
+    for document in documents().into_iter().chain(
+        [
+            "docs/scene-format.md",
+            "docs/trade-offs.md",
+            "ARCHITECTURE.md",
+        ]
+        .map(|d| root().join(d)),
+    ) {
         let text = std::fs::read_to_string(&document).unwrap();
         for target in link(&text) {
             if target.starts_with("http") {
