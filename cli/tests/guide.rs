@@ -1,7 +1,9 @@
-//! The README and the guide (`docs/guide/`) as a user meets them: every `prism` command in
-//! their `sh` blocks runs and writes what it names (renders made small: 12 x 8 pixels, 2
-//! samples per pixel unless the command renders sample ranges), and every relative link
-//! leads to a file that exists, and to a heading of it where it names one.
+//! The README, ARCHITECTURE.md and everything in `docs/` as a user meets them: every
+//! `prism` command in their `sh` blocks runs and writes what it names (renders made
+//! small: 12 x 8 pixels, 2 samples per pixel unless the command renders sample ranges); a
+//! block with any other command says why it is not run (`# not run by the tests: ...`);
+//! every relative link leads to a file that exists, and to a heading of it where it names
+//! one; and no document names a round of work.
 
 mod common;
 
@@ -12,17 +14,28 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
-/// The documents: the README and every page of the guide.
+/// The documents: the README, ARCHITECTURE.md and every Markdown file under `docs/`.
 fn documents() -> Vec<PathBuf> {
-    let mut pages: Vec<PathBuf> = std::fs::read_dir(root().join("docs/guide"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .collect();
+    fn markdown_under(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                markdown_under(&path, out);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                out.push(path);
+            }
+        }
+    }
+    let mut pages = Vec::new();
+    markdown_under(&root().join("docs"), &mut pages);
     pages.sort();
+    pages.insert(0, root().join("ARCHITECTURE.md"));
     pages.insert(0, root().join("README.md"));
     pages
 }
+
+/// The marker of a block whose commands the tests do not run, followed by the reason.
+const NOT_RUN: &str = "# not run by the tests: ";
 
 /// The lines of a document's fenced blocks tagged `lang`, block by block.
 fn blocks(text: &str, lang: &str) -> Vec<Vec<String>> {
@@ -80,10 +93,32 @@ fn every_command_in_the_guide_runs() {
         let text = std::fs::read_to_string(&document).unwrap();
         let dir = common::temp_dir("guide");
         for block in blocks(&text, "sh") {
+            if let Some(marker) = block.iter().find(|l| l.trim().starts_with(NOT_RUN)) {
+                assert!(
+                    marker.trim().len() > NOT_RUN.len() + 10,
+                    "{}: a block not run says why",
+                    document.display()
+                );
+                continue;
+            }
+            let prompted = block.iter().any(|l| l.trim_start().starts_with("$ "));
             for line in block {
+                let line = line.trim();
+                if line.is_empty() || line.starts_with('#') {
+                    continue;
+                }
+                // In a block with prompts, the lines without one are output.
+                let line = match (prompted, line.strip_prefix("$ ")) {
+                    (true, None) => continue,
+                    (true, Some(command)) => command,
+                    (false, _) => line,
+                };
                 let command = line.split(" #").next().unwrap().trim();
                 let Some(rest) = command.strip_prefix("prism ") else {
-                    continue;
+                    panic!(
+                        "{}: `{command}` is not a prism command: run it in a test or mark its block `{NOT_RUN}<why>`",
+                        document.display()
+                    );
                 };
                 let args: Vec<&str> = rest.split_whitespace().collect();
                 let args = small(&args, &dir);
@@ -113,6 +148,22 @@ fn every_command_in_the_guide_runs() {
         }
     }
     assert!(ran >= 20, "only {ran} commands found");
+}
+
+/// Documents say what is true now; rounds of work belong to git and the issues.
+#[test]
+fn no_document_names_a_round_of_work() {
+    for document in documents() {
+        let text = std::fs::read_to_string(&document).unwrap().to_lowercase();
+        for (n, line) in text.lines().enumerate() {
+            let named = line.contains("this session")
+                || line.contains("last session")
+                || line
+                    .match_indices("session ")
+                    .any(|(i, _)| line[i + 8..].starts_with(|c: char| c.is_ascii_digit()));
+            assert!(!named, "{}:{}: {line}", document.display(), n + 1);
+        }
+    }
 }
 
 /// GitHub's anchor for a heading: lower case, punctuation other than '-' and '_' dropped,
@@ -155,14 +206,7 @@ fn every_link_in_the_guide_resolves() {
         out
     };
     let mut checked = 0;
-    for document in documents().into_iter().chain(
-        [
-            "docs/scene-format.md",
-            "docs/trade-offs.md",
-            "ARCHITECTURE.md",
-        ]
-        .map(|d| root().join(d)),
-    ) {
+    for document in documents() {
         let text = std::fs::read_to_string(&document).unwrap();
         for target in link(&text) {
             if target.starts_with("http") {
