@@ -2,8 +2,10 @@
 //! has the thin-lens circle of confusion's size (its second moment, for a disk and for a
 //! hexagonal aperture), and a light on the plane in focus stays sharp.
 
+mod common;
+
 use glam::{Mat4, Vec3};
-use prism_integrator::{Film, LambdaSampler, RenderSettings, render};
+use prism_integrator::{LambdaSampler, RenderSettings, render};
 use prism_scene::camera::{
     ApertureImage, ApertureShape, ApertureSize, Camera, Projection, ThinLens,
 };
@@ -61,28 +63,6 @@ fn scene(depth: f32, focus: f32, radius: f32, shape: ApertureShape) -> Scene {
     .unwrap()
 }
 
-/// The luminance-weighted mean of r^2 about the image's centroid, in pixels^2.
-fn second_moment(film: &Film) -> f64 {
-    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
-    for y in 0..SIZE {
-        for x in 0..SIZE {
-            let w = film.xyz(x, y).y;
-            sum += w;
-            sx += w * (f64::from(x) + 0.5);
-            sy += w * (f64::from(y) + 0.5);
-        }
-    }
-    let (cx, cy) = (sx / sum, sy / sum);
-    let mut m = 0.0;
-    for y in 0..SIZE {
-        for x in 0..SIZE {
-            let (dx, dy) = (f64::from(x) + 0.5 - cx, f64::from(y) + 0.5 - cy);
-            m += film.xyz(x, y).y * (dx * dx + dy * dy);
-        }
-    }
-    m / sum
-}
-
 fn blur(depth: f32, focus: f32, radius: f32, shape: ApertureShape) -> f64 {
     let settings = RenderSettings::default()
         .width(SIZE)
@@ -90,7 +70,7 @@ fn blur(depth: f32, focus: f32, radius: f32, shape: ApertureShape) -> f64 {
         .samples(0..1024)
         .wavelengths(4)
         .lambda_sampler(LambdaSampler::Visible);
-    second_moment(
+    common::second_moment(
         &render(&scene(depth, focus, radius, shape), &settings)
             .unwrap()
             .0,

@@ -4,8 +4,10 @@
 //! and in the C line (656 nm) furthest back, by about the singlet's paraxial focal shifts;
 //! through a cemented achromat the three foci nearly coincide.
 
+mod common;
+
 use glam::{Mat4, Vec3};
-use prism_integrator::{Film, LambdaSampler, RenderSettings, render};
+use prism_integrator::{LambdaSampler, RenderSettings, render};
 use prism_scene::camera::system::{D_LINE_NM, LensSystem, parse_prescription};
 use prism_scene::camera::{Camera, MountedLens, Projection};
 use prism_scene::geometry::BvhQuality;
@@ -68,29 +70,6 @@ fn scene(system: &LensSystem, focus: f32) -> Scene {
     .unwrap()
 }
 
-/// The luminance-weighted mean of r^2 about the image's centroid, in pixels^2.
-fn second_moment(film: &Film) -> f64 {
-    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
-    for y in 0..SIZE {
-        for x in 0..SIZE {
-            let w = film.xyz(x, y).y;
-            sum += w;
-            sx += w * (f64::from(x) + 0.5);
-            sy += w * (f64::from(y) + 0.5);
-        }
-    }
-    assert!(sum > 0.0, "the light is not seen");
-    let (cx, cy) = (sx / sum, sy / sum);
-    let mut m = 0.0;
-    for y in 0..SIZE {
-        for x in 0..SIZE {
-            let (dx, dy) = (f64::from(x) + 0.5 - cx, f64::from(y) + 0.5 - cy);
-            m += film.xyz(x, y).y * (dx * dx + dy * dy);
-        }
-    }
-    m / sum
-}
-
 /// The spot's second moment with the lens focused at `focus` (metres), seen in the 10 nm
 /// around `lambda`.
 fn spot(system: &LensSystem, focus: f32, lambda: f64) -> f64 {
@@ -101,7 +80,7 @@ fn spot(system: &LensSystem, focus: f32, lambda: f64) -> f64 {
         .wavelengths(4)
         .lambda_sampler(LambdaSampler::Uniform)
         .range(((lambda - 5.0) as f32, (lambda + 5.0) as f32));
-    second_moment(&render(&scene(system, focus), &settings).unwrap().0)
+    common::second_moment(&render(&scene(system, focus), &settings).unwrap().0)
 }
 
 /// The focus distance (metres) that puts the film at `film_z` (mm, d line), by bisection

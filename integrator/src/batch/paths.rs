@@ -25,11 +25,7 @@ pub(super) fn trace_batch<'s, const N: usize, const W: usize>(
     code: &LaneCode<N>,
     space: &mut Space<'s, N>,
 ) -> [PathResult; W] {
-    let mut results: [PathResult; W] = std::array::from_fn(|_| PathResult {
-        valid: false,
-        rays: 0,
-        covered: false,
-    });
+    let mut results: [PathResult; W] = std::array::from_fn(|_| PathResult::nothing(false));
     let Space { lanes, at } = space;
     for (i, (lane, value)) in lanes.iter_mut().zip(values.iter_mut()).enumerate() {
         value.clear();

@@ -92,6 +92,18 @@ pub(crate) struct PathResult {
     pub covered: bool,
 }
 
+impl PathResult {
+    /// A path that traced nothing: a sample of invalid wavelengths (not `valid`, not
+    /// counted), or one whose camera ray a lens stopped (`valid`: a black sample).
+    pub(crate) const fn nothing(valid: bool) -> Self {
+        Self {
+            valid,
+            rays: 0,
+            covered: false,
+        }
+    }
+}
+
 /// Beer-Lambert absorption of the segment `ray` just traced to `hit`, if it ran inside an
 /// absorbing volume (the ray meets the inside of its boundary).
 pub(crate) fn absorb<const N: usize>(
@@ -199,21 +211,13 @@ impl<'a> Tracer<'a> {
     ) -> PathResult {
         let first_package = *first_package;
         let Some(first_lambdas) = wavelengths(&first_package) else {
-            return PathResult {
-                valid: false,
-                rays: 0,
-                covered: false,
-            };
+            return PathResult::nothing(false);
         };
         let first_times = self.clock.map(|clock| [clock.time(stream); N]);
         let Some((camera_ray, lens_weight)) =
             self.camera_ray(film, aspect, stream, first_package.lambda[0])
         else {
-            return PathResult {
-                valid: true,
-                rays: 0,
-                covered: false,
-            };
+            return PathResult::nothing(true);
         };
         let mut rays = 0u64;
         let mut covered = false;

@@ -183,11 +183,7 @@ impl<'a> Tracer<'a> {
                     tile.pixels.push(TilePixel {
                         x,
                         y,
-                        result: PathResult {
-                            valid: false,
-                            rays: 0,
-                            covered: false,
-                        },
+                        result: PathResult::nothing(false),
                         value: SampleValue::default(),
                         record: Record::new(SampledSpectrum::splat(0.0)),
                     });

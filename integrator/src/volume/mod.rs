@@ -83,21 +83,13 @@ impl<'a> Tracer<'a> {
         numbers: &mut FlightNumbers,
     ) -> PathResult {
         let Some(first_lambdas) = wavelengths(first_package) else {
-            return PathResult {
-                valid: false,
-                rays: 0,
-                covered: false,
-            };
+            return PathResult::nothing(false);
         };
         let times = self.clock.map(|clock| [clock.time(stream); N]);
         let Some((camera_ray, lens_weight)) =
             self.camera_ray(film, aspect, stream, first_package.lambda[0])
         else {
-            return PathResult {
-                valid: true,
-                rays: 0,
-                covered: false,
-            };
+            return PathResult::nothing(true);
         };
         let mut walk = Walk::<N, T>::new(
             *first_package,

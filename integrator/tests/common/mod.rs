@@ -346,3 +346,28 @@ pub fn mean_stokes(film: &Film) -> [f64; 4] {
     }
     sum.map(|v| v / f64::from(film.width() * film.height()))
 }
+
+/// The luminance-weighted mean of r^2 about the image's centroid, in pixels^2: the size of
+/// a blur spot.
+pub fn second_moment(film: &Film) -> f64 {
+    let (w, h) = (film.width(), film.height());
+    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for y in 0..h {
+        for x in 0..w {
+            let v = film.xyz(x, y).y;
+            sum += v;
+            sx += v * (f64::from(x) + 0.5);
+            sy += v * (f64::from(y) + 0.5);
+        }
+    }
+    assert!(sum > 0.0, "the light is not seen");
+    let (cx, cy) = (sx / sum, sy / sum);
+    let mut m = 0.0;
+    for y in 0..h {
+        for x in 0..w {
+            let (dx, dy) = (f64::from(x) + 0.5 - cx, f64::from(y) + 0.5 - cy);
+            m += film.xyz(x, y).y * (dx * dx + dy * dy);
+        }
+    }
+    m / sum
+}

@@ -48,6 +48,36 @@ pub struct FilmPoint {
     pub importance: f32,
 }
 
+impl FilmPoint {
+    /// `point` seen at `film` from `origin` (on the camera's lens or pinhole), the ray
+    /// making cosine `cos(direction)` with the view's axis, by a perspective camera whose image plane
+    /// at distance 1 is 2 `h` high and `aspect` times as wide. The importance is a
+    /// pinhole's per unit film area, normalized so that the film's unit square integrates
+    /// to one: 1 / (A cos^3) per unit solid angle with the cosine at the camera already
+    /// folded in (Veach 1997, §10.2; *PBR* 4th ed. §5.1.6), A = the image plane's area.
+    fn seen(
+        film: Vec2,
+        origin: Vec3,
+        point: Vec3,
+        cos: impl FnOnce(Vec3) -> f32,
+        h: f32,
+        aspect: f32,
+    ) -> Option<Self> {
+        let to = point - origin;
+        let distance = to.length();
+        let direction = to / distance;
+        let cos = cos(direction);
+        let area = 4.0 * h * h * aspect;
+        let importance = 1.0 / (area * cos * cos * cos);
+        (distance > 0.0 && importance.is_finite()).then_some(FilmPoint {
+            film,
+            direction,
+            distance,
+            importance,
+        })
+    }
+}
+
 /// A camera: a projection and its placement (glTF convention: looking down -z, +y up).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
@@ -208,22 +238,12 @@ impl Camera {
         if !(film.x >= 0.0 && film.x < 1.0 && film.y >= 0.0 && film.y < 1.0) {
             return None;
         }
-        let origin = self.to_world.transform_point3(lens);
-        let to = point - origin;
-        let distance = to.length();
-        let direction = to / distance;
         // As for the pinhole, with the cosine of this ray (*PBR* 4th ed. §5.4.1: the
         // thin lens's importance 1 / (A A_lens cos^4) times the lens's cosine and area,
         // its sampling density being uniform over the aperture).
         let cos = -v.z / v.length();
-        let area = 4.0 * h * h * aspect;
-        let importance = 1.0 / (area * cos * cos * cos);
-        (distance > 0.0 && importance.is_finite()).then_some(FilmPoint {
-            film,
-            direction,
-            distance,
-            importance,
-        })
+        let origin = self.to_world.transform_point3(lens);
+        FilmPoint::seen(film, origin, point, |_| cos, h, aspect)
     }
 
     /// Where a light path's vertex `point` is seen on the film of an output of aspect ratio
@@ -245,26 +265,18 @@ impl Camera {
             return None;
         }
         let origin = self.to_world.transform_point3(Vec3::ZERO);
-        let to = point - origin;
-        let distance = to.length();
-        let direction = to / distance;
         let axis = self
             .to_world
             .transform_vector3(-Vec3::Z)
             .normalize_or(-Vec3::Z);
-        let cos = direction.dot(axis);
-        // The importance of a pinhole per unit film area, normalized so that the film's
-        // unit square integrates to one: 1 / (A cos^3) per unit solid angle with the
-        // cosine at the camera already folded in (Veach 1997, §10.2; *PBR* 4th ed.
-        // §5.1.6), A = the image plane's area at distance 1.
-        let area = 4.0 * h * h * aspect;
-        let importance = 1.0 / (area * cos * cos * cos);
-        (distance > 0.0 && importance.is_finite()).then_some(FilmPoint {
+        FilmPoint::seen(
             film,
-            direction,
-            distance,
-            importance,
-        })
+            origin,
+            point,
+            |direction| direction.dot(axis),
+            h,
+            aspect,
+        )
     }
 
     /// A perspective camera at `eye` looking at `target`, `up` giving the view's vertical

@@ -116,35 +116,14 @@ impl LensSystem {
         let mut z = -self.length();
         let mut eta_before = 1.0;
         for interface in &self.interfaces {
-            let (t, normal) = if interface.radius == 0.0 {
-                if ray.direction.z == 0.0 {
-                    return None;
-                }
-                ((z - ray.origin.z) / ray.direction.z, DVec3::Z)
-            } else {
-                intersect_sphere(&ray, z + interface.radius, interface.radius)?
-            };
-            if !(t.is_finite() && t >= 0.0) {
-                return None;
-            }
-            let hit = ray.origin + t * ray.direction;
-            if hit.x * hit.x + hit.y * hit.y > interface.aperture_radius * interface.aperture_radius
-            {
-                return None;
-            }
-            ray.origin = hit;
-            if interface.radius != 0.0 {
-                let eta_after = interface.medium.index(lambda_nm);
-                ray.direction = refract(ray.direction, normal, eta_before / eta_after)?;
-                eta_before = eta_after;
-            }
+            let eta_after = interface.medium.index(lambda_nm);
+            ray = cross(ray, interface, z, eta_before / eta_after)?;
+            eta_before = eta_after;
             z += interface.thickness;
         }
         Some(ray)
     }
-}
 
-impl LensSystem {
     /// Traces a ray from the film's side (starting behind the last interface, towards
     /// -z) through every interface back to front at `lambda_nm`: the ray leaving the
     /// first, or None where an aperture stops it or it is totally reflected.
@@ -153,34 +132,46 @@ impl LensSystem {
         let mut z = 0.0;
         for (i, interface) in self.interfaces.iter().enumerate().rev() {
             z -= interface.thickness;
-            let (t, normal) = if interface.radius == 0.0 {
-                if ray.direction.z == 0.0 {
-                    return None;
-                }
-                ((z - ray.origin.z) / ray.direction.z, DVec3::Z)
-            } else {
-                intersect_sphere(&ray, z + interface.radius, interface.radius)?
+            let eta_before = interface.medium.index(lambda_nm);
+            let eta_after = match i {
+                0 => 1.0,
+                _ => self.interfaces[i - 1].medium.index(lambda_nm),
             };
-            if !(t.is_finite() && t >= 0.0) {
-                return None;
-            }
-            let hit = ray.origin + t * ray.direction;
-            if hit.x * hit.x + hit.y * hit.y > interface.aperture_radius * interface.aperture_radius
-            {
-                return None;
-            }
-            ray.origin = hit;
-            if interface.radius != 0.0 {
-                let eta_before = interface.medium.index(lambda_nm);
-                let eta_after = match i {
-                    0 => 1.0,
-                    _ => self.interfaces[i - 1].medium.index(lambda_nm),
-                };
-                ray.direction = refract(ray.direction, normal, eta_before / eta_after)?;
-            }
+            ray = cross(ray, interface, z, eta_before / eta_after)?;
         }
         Some(ray)
     }
+}
+
+/// `ray` across `interface`, whose vertex is at `z`, from index ratio `eta` = n_before /
+/// n_after (either direction): where it meets the surface (the stop's plane, or the
+/// spherical cap), refracted there; None where it misses, the aperture stops it, or it is
+/// totally reflected. The stop does not bend it.
+fn cross(ray: LensRay, interface: &Interface, z: f64, eta: f64) -> Option<LensRay> {
+    let (t, normal) = if interface.radius == 0.0 {
+        if ray.direction.z == 0.0 {
+            return None;
+        }
+        ((z - ray.origin.z) / ray.direction.z, DVec3::Z)
+    } else {
+        intersect_sphere(&ray, z + interface.radius, interface.radius)?
+    };
+    if !(t.is_finite() && t >= 0.0) {
+        return None;
+    }
+    let hit = ray.origin + t * ray.direction;
+    if hit.x * hit.x + hit.y * hit.y > interface.aperture_radius * interface.aperture_radius {
+        return None;
+    }
+    let direction = if interface.radius == 0.0 {
+        ray.direction
+    } else {
+        refract(ray.direction, normal, eta)?
+    };
+    Some(LensRay {
+        origin: hit,
+        direction,
+    })
 }
 
 /// Where a ray meets the sphere of `radius` (signed) centred on the axis at `centre_z`,
