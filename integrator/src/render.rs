@@ -150,7 +150,6 @@ impl<'a> Renderer<'a> {
         }
         if scene.features().media {
             crate::volume::check_settings(settings)?;
-            return Ok(renderer);
         }
         if let Tracing::Lanes(_) = settings.tracing {
             (renderer.splits, renderer.reuse) = lanes_modes(settings)?;
@@ -166,6 +165,12 @@ impl<'a> Renderer<'a> {
             );
         (renderer.splits, renderer.reuse) = match (settings.splits, settings.reuse) {
             (_, Reuse::Fixed(t)) if t > 1 => (1, if shareable { t } else { 1 }),
+            // The volumetric tracer does not split (`volume::check_settings`).
+            _ if scene.features().media
+                && !(shareable && matches!(settings.reuse, Reuse::Auto)) =>
+            {
+                (1, 1)
+            }
             (Splits::Fixed(k), _) => (k, 1),
             (Splits::Auto, Reuse::Auto) if shareable => {
                 let pilot = specialized!(renderer, mode_pilot);
@@ -681,13 +686,14 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
     };
     if tracer.scene.features().media {
         let pixel = u64::from(y) * u64::from(w) + u64::from(x);
-        return tracer.trace_volume::<N, FLUORESCENCE, T>(
+        return tracer.trace_volume::<N, FLUORESCENCE, false, T>(
             &mut stream,
             FIRST_BOUNCE_DIMENSION,
             &tracer.package(u_lambda),
             film,
             aspect,
             &mut sink,
+            &mut Record::new(T::black()),
             &mut EmissionCache::new(),
             &mut FlightNumbers::new(settings.seed, pixel, s),
         );

@@ -48,6 +48,7 @@ use crate::filter::FilterSampler;
 use crate::path::{FIRST_BOUNCE_DIMENSION, Frame, PathResult, Tracer};
 use crate::render::{Rows, camera_sample};
 use crate::sample_value::SampleValue;
+use crate::volume::FlightNumbers;
 
 /// A path's first vertex, recorded when it is Lambertian: the technique that can reach
 /// other pixels' second vertices.
@@ -196,19 +197,35 @@ impl<'a> Tracer<'a> {
                 here.record.first = None;
                 here.record.second = None;
                 let value = &mut here.value;
-                here.result = self.trace::<N, false, false, true, SampledSpectrum<N>>(
-                    &mut stream,
-                    FIRST_BOUNCE_DIMENSION,
-                    &package,
-                    film,
-                    aspect,
-                    &mut |radiance: &SampledSpectrum<N>, l: &SampledWavelengths<N>| {
-                        lambdas = Some(*l);
-                        value.add(self, rows.outputs, radiance, l);
-                    },
-                    &mut here.record,
-                    &mut tile.emission,
-                );
+                let mut sink = |radiance: &SampledSpectrum<N>, l: &SampledWavelengths<N>| {
+                    lambdas = Some(*l);
+                    value.add(self, rows.outputs, radiance, l);
+                };
+                here.result = if self.scene.features().media {
+                    let pixel = u64::from(y) * u64::from(w) + u64::from(x);
+                    self.trace_volume::<N, false, true, SampledSpectrum<N>>(
+                        &mut stream,
+                        FIRST_BOUNCE_DIMENSION,
+                        &package,
+                        film,
+                        aspect,
+                        &mut sink,
+                        &mut here.record,
+                        &mut tile.emission,
+                        &mut FlightNumbers::new(rows.seed, pixel, s),
+                    )
+                } else {
+                    self.trace::<N, false, false, true, SampledSpectrum<N>>(
+                        &mut stream,
+                        FIRST_BOUNCE_DIMENSION,
+                        &package,
+                        film,
+                        aspect,
+                        &mut sink,
+                        &mut here.record,
+                        &mut tile.emission,
+                    )
+                };
             }
         }
         if let Some(lambdas) = lambdas {

@@ -28,14 +28,15 @@ use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::geometry::Ray;
 use prism_scene::medium::Phase;
-use prism_scene::world::EmissionCache;
+use prism_scene::world::{EmissionCache, Material};
 use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightNumbers;
 pub(crate) use stack::MediumStack;
 
 use crate::path::{DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk};
 use crate::path::{absorb, roulette, wavelengths};
-use crate::settings::{Reuse, Splits, Tracing};
+use crate::reuse::{First, Record};
+use crate::settings::{Splits, Tracing};
 use crate::throughput::{Throughput, Vertex};
 use crate::{RenderError, RenderSettings};
 use light::Scatterer;
@@ -54,9 +55,8 @@ pub(crate) fn check_settings(settings: &RenderSettings) -> Result<(), RenderErro
     if let Tracing::Lanes(_) = settings.tracing {
         return refuse("by the batch tracer (use --tracer paths)");
     }
-    match (settings.splits, settings.reuse) {
-        (Splits::Fixed(k), _) if k > 1 => refuse("with splitting (use --splits 1 or auto)"),
-        (_, Reuse::Fixed(t)) if t > 1 => refuse("with path reuse (use --reuse 1 or auto)"),
+    match settings.splits {
+        Splits::Fixed(k) if k > 1 => refuse("with splitting (use --splits 1 or auto)"),
         _ => Ok(()),
     }
 }
@@ -71,7 +71,12 @@ impl<'a> Tracer<'a> {
     /// flights through media draw from `numbers`.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn trace_volume<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    pub(crate) fn trace_volume<
+        const N: usize,
+        const FLUORESCENCE: bool,
+        const REUSE: bool,
+        T: Throughput<N>,
+    >(
         &self,
         stream: &mut SobolStream,
         sample_base: u64,
@@ -79,6 +84,7 @@ impl<'a> Tracer<'a> {
         film: Vec2,
         aspect: f32,
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
+        record: &mut Record<'a, N, T::Radiance>,
         emission: &mut EmissionCache<N>,
         numbers: &mut FlightNumbers,
     ) -> PathResult {
@@ -162,6 +168,18 @@ impl<'a> Tracer<'a> {
             };
             let wo_world = -direction;
             self.add_volume_hit_emission(&hit, wo_world, &mut walk, &ratios, emission);
+            // Path reuse shares second vertices met in vacuum, straight from a first
+            // vertex in vacuum: ratios are one there, and the light from the second vertex
+            // on does not depend on the path before it.
+            if REUSE
+                && walk.depth == 1
+                && interfaces == 0
+                && record.first.is_some()
+                && media.current().is_none()
+                && self.scene.reflects_alike(&hit)
+            {
+                walk.restart_at_second(&hit, wo_world, &self.camera_frame, record);
+            }
             if self.scene.is_interface(&hit) {
                 // Light crosses unchanged: the path goes on into the next medium, at the
                 // same bounce, its last vertex still the one light sampling left from.
@@ -173,7 +191,8 @@ impl<'a> Tracer<'a> {
                 walk.ray = hit.spawn(direction);
                 continue;
             }
-            interfaces = 0;
+            // Whether the ray to this vertex crossed no boundary of a medium.
+            let unbounded = std::mem::take(&mut interfaces) == 0;
             absorb(self.scene, &walk.ray, &hit, &walk.transport, &mut walk.beta);
             if walk.depth >= self.max_depth {
                 break;
@@ -214,6 +233,23 @@ impl<'a> Tracer<'a> {
             if !positive_finite(pdf) {
                 break;
             }
+            if REUSE
+                && walk.depth == 0
+                && unbounded
+                && media.current().is_none()
+                && !sample.delta
+                && !sample.wavelength_dependent
+                && matches!(self.scene.material(&hit), Material::Diffuse { .. })
+            {
+                record.first = Some(First {
+                    hit,
+                    frame,
+                    wo,
+                    bsdf: bsdf.clone(),
+                    wi: sample.wi,
+                    pdf,
+                });
+            }
             if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, false, sink) {
                 break;
             }
@@ -225,7 +261,12 @@ impl<'a> Tracer<'a> {
                 break;
             }
         }
-        sink(&walk.radiance, &walk.lambdas);
+        if REUSE && record.second.is_some() {
+            sink(&record.own, &walk.lambdas);
+            record.reflected = walk.radiance;
+        } else {
+            sink(&walk.radiance, &walk.lambdas);
+        }
         PathResult {
             valid: true,
             rays,

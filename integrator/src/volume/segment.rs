@@ -118,7 +118,14 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
         }
         let factor = t_maj / t_maj[0];
         walk.beta.scale(factor);
-        ratios.scale(&factor);
+        if medium.transmittance_in_closed_form() {
+            // Light sampling crosses such a medium by the closed form, with density 1
+            // (`shadow`): its ratio is one over the hero's density of flying through.
+            ratios.r_u *= factor;
+            ratios.r_l *= 1.0 / t_maj[0];
+        } else {
+            ratios.scale(&factor);
+        }
         if !alive(walk, ratios) {
             return Flight::Ended;
         }

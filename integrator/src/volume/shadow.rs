@@ -2,12 +2,15 @@
 //! surface blocks it), and its transmittance through each medium on the way is estimated
 //! by ratio tracking against the majorant, with the ratios of both strategies
 //! (*PBR* 4th ed. §14.2.3 `SampleLd`; Novák, Selle and Jarosz 2014 for ratio tracking),
-//! and Russian roulette where little is left.
+//! and Russian roulette where little is left. Through a medium whose majorant is its
+//! extinction (homogeneous, neither glowing nor dyed) ratio tracking could only say all or
+//! nothing, so the transmittance there is the closed form exp(-sigma_t d), as Mitsuba 3's
+//! `volpath` does for homogeneous media; the path side's ratios match it (`segment`).
 
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::SampleStream;
 use prism_scene::geometry::Ray;
-use prism_scene::medium::track::sample_majorant;
+use prism_scene::medium::track::{self, sample_majorant};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::dye::straight_density;
@@ -53,7 +56,21 @@ impl Tracer<'_> {
             {
                 return (None, rays);
             }
-            if let Some(m) = media.current() {
+            if let Some(m) = media.current()
+                && self.scene.media().get(m).transmittance_in_closed_form()
+            {
+                // Light sampling crosses the stretch with density 1 and the exact
+                // transmittance; unidirectional sampling would have flown through it with
+                // density T per lane (no null collisions to meet in such a medium).
+                let medium = self.scene.media().get(m);
+                let length = hit.as_ref().map_or(ray.t_max, |h| h.t);
+                let crossed = track::transmittance(&medium.extinction(wavelengths), length);
+                transmittance *= crossed;
+                ratios.r_u *= crossed;
+                if transmittance.is_black() {
+                    return (None, rays);
+                }
+            } else if let Some(m) = media.current() {
                 let medium = self.scene.media().get(m);
                 let dyed = medium.fluorescence().is_some();
                 let length = hit.as_ref().map_or(ray.t_max, |h| h.t);

@@ -210,6 +210,25 @@ impl Medium {
         self.emission.is_some() || self.temperature.is_some()
     }
 
+    /// Whether light crosses the medium by a closed form: homogeneous, with a majorant
+    /// that is its extinction (no emission to gather, no dye to re-emit), so that tracking
+    /// meets only real collisions and the transmittance over a distance d is exactly
+    /// exp(-sigma_t d) per lane ([`track::transmittance`]). Shadow rays use the closed
+    /// form instead of ratio tracking's estimate, which in such a medium is all or nothing
+    /// (a track-length estimator: a collision zeroes it).
+    pub fn transmittance_in_closed_form(&self) -> bool {
+        self.density.is_none() && self.emission.is_none() && self.fluorescence.is_none()
+    }
+
+    /// The extinction sigma_a + sigma_s per lane where the density is 1.
+    pub fn extinction<const N: usize>(
+        &self,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        let point = self.at(wavelengths);
+        point.sigma_a + point.sigma_s
+    }
+
     /// The coefficients at `wavelengths` where the density is 1 (everywhere in a
     /// homogeneous medium).
     pub fn at<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> MediumPoint<N> {
