@@ -6,7 +6,7 @@
 
 /// The features the build assumes that this CPU lacks, by name (empty: all present, or a
 /// build that assumes none of them).
-pub(crate) fn missing_features() -> Vec<&'static str> {
+pub fn missing_features() -> Vec<&'static str> {
     #[allow(unused_mut)]
     let mut missing = Vec::new();
     #[cfg(target_arch = "x86_64")]
@@ -26,7 +26,7 @@ pub(crate) fn missing_features() -> Vec<&'static str> {
 }
 
 /// The one-line error for a CPU without `missing`.
-pub(crate) fn unsupported(missing: &[&str]) -> String {
+pub fn unsupported(missing: &[&str]) -> String {
     format!(
         "this build of prism needs CPU instructions this machine lacks ({}); rebuild it with \
          RUSTFLAGS=\"-C target-cpu=native\" cargo build --release",

@@ -4,26 +4,9 @@
 //! and composes the library crates. Every failure is one line on stderr and a non-zero exit
 //! code: 2 for a malformed command line, 1 for anything else.
 
-// The doc comments of the argument structs are clap's --help text, where `reinhard[:WHITE]`
-// means an optional argument, not a link; escaping it would print the backslash.
-#![allow(rustdoc::broken_intra_doc_links)]
-
-// First: the modules below print with its `outln!`.
-#[macro_use]
-mod stdout;
-
-mod commands;
-mod cpu;
-mod memory;
-mod output;
-mod scene_file;
-mod session;
-mod space_arg;
-mod spectrum_spec;
-mod svg_plot;
-mod table_cache;
-
 use std::process::ExitCode;
+
+use prism_cli::{commands, cpu, stdout};
 
 use clap::{Parser, Subcommand};
 

@@ -20,9 +20,9 @@ use prism_spectrum::color::RgbSpaceId;
 use crate::output::write_atomically;
 use crate::session::{self, Outcome};
 
-pub use outputs::{check_outputs, write_images};
+pub use outputs::{check_outputs, stats_json, write_images, write_render};
 
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 #[command(
     after_help = "Examples:\n  prism render -o effects.png\n  prism render scenes/cornell-bunny.gltf --spp 256 -o bunny.exr -o bunny.png --stats\n\nOutputs are chosen by extension: .exr (linear f32 RGB in --space, with chromaticities) or\n.png (tone mapped, 8-bit). The image depends only on the scene, the settings and --seed."
 )]
@@ -236,7 +236,64 @@ pub struct RenderArgs {
     pub stats: bool,
 }
 
+/// A render done: what it rendered, with the settings, colour space and white balance its
+/// outputs are written with.
+pub struct Rendered {
+    pub outcome: Outcome,
+    pub settings: prism_integrator::RenderSettings,
+    pub space: RgbSpaceId,
+    pub white_balance: Option<prism_spectrum::color::Mat3>,
+    /// The samples asked for (a range of them for farms).
+    pub range: std::ops::Range<u64>,
+    /// Whether only a sample range was rendered (accumulation outputs).
+    pub samples_only: bool,
+    pub fingerprint: String,
+    pub started: Instant,
+}
+
 pub fn run(args: &RenderArgs) -> Result<(), String> {
+    let cancel = Arc::new(AtomicBool::new(false));
+    session::stop_on_signals(&cancel)?;
+    let rendered = render(args, None, &cancel)?;
+    let Rendered {
+        outcome,
+        settings,
+        space,
+        white_balance,
+        range,
+        samples_only,
+        fingerprint,
+        started,
+    } = &rendered;
+    let Outcome { film, stats, .. } = outcome;
+    if *samples_only {
+        let done = range.start..range.start + film.samples();
+        let bytes = encode_accumulation(film, done, fingerprint).map_err(|e| e.to_string())?;
+        for out in &args.outputs {
+            write_atomically(out, &bytes)?;
+        }
+    } else {
+        outputs::write_render(args, film, settings, stats, *space, white_balance.as_ref())?;
+    }
+    if stats.nonfinite > 0 {
+        eprintln!(
+            "prism: warning: {} non-finite samples were rejected",
+            stats.nonfinite
+        );
+    }
+    if args.stats {
+        outln!("{}", outputs::stats_json(args, settings, outcome, *started));
+    }
+    outputs::finish(args, outcome, range)
+}
+
+/// Renders as `prism render` does, the scene `loaded` (None: the one `args` names) with
+/// `args`' settings, until done or `cancel` is set; writes nothing (checkpoints aside).
+pub fn render(
+    args: &RenderArgs,
+    loaded: Option<prism_scene::load::LoadedGeometry>,
+    cancel: &Arc<AtomicBool>,
+) -> Result<Rendered, String> {
     // The flags that need no scene are checked before it is loaded.
     let space = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
     let lambda_sampler =
@@ -245,7 +302,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     check_outputs(&args.outputs)?;
     let samples_only = settings::samples_only(args)?;
     let started = Instant::now();
-    let (scene, camera) = scene::prepare(args)?;
+    let (scene, camera) = scene::prepare(args, loaded)?;
     let (width, height) = scene::image_size(args.width, args.height, scene.camera().aspect_ratio);
     let settings = settings::render_settings(
         args,
@@ -271,27 +328,15 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         Some(path) => checkpoint::resume(path, &fingerprint, &range)?,
     };
     let options = settings::session_options(args, fingerprint.clone())?;
-    let cancel = Arc::new(AtomicBool::new(false));
-    session::stop_on_signals(&cancel)?;
-    let outcome = session::run(&scene, &settings, range.clone(), film, &options, &cancel)?;
-    let Outcome { film, stats, .. } = &outcome;
-    if samples_only.is_some() {
-        let done = range.start..range.start + film.samples();
-        let bytes = encode_accumulation(film, done, &fingerprint).map_err(|e| e.to_string())?;
-        for out in &args.outputs {
-            write_atomically(out, &bytes)?;
-        }
-    } else {
-        outputs::write_render(args, film, &settings, stats, space, white_balance.as_ref())?;
-    }
-    if stats.nonfinite > 0 {
-        eprintln!(
-            "prism: warning: {} non-finite samples were rejected",
-            stats.nonfinite
-        );
-    }
-    if args.stats {
-        outputs::print_stats(args, &settings, &outcome, started);
-    }
-    outputs::finish(args, &outcome, &range)
+    let outcome = session::run(&scene, &settings, range.clone(), film, &options, cancel)?;
+    Ok(Rendered {
+        outcome,
+        settings,
+        space,
+        white_balance,
+        range,
+        samples_only: samples_only.is_some(),
+        fingerprint,
+        started,
+    })
 }

@@ -17,7 +17,7 @@ use crate::session::{Ending, Outcome};
 
 /// The rendered image to every output, adapted to the white balance if one is asked for,
 /// with the facts that reproduce it; and the polarization PNG.
-pub(super) fn write_render(
+pub fn write_render(
     args: &RenderArgs,
     film: &Film,
     settings: &RenderSettings,
@@ -65,20 +65,20 @@ pub(super) fn write_render(
     Ok(())
 }
 
-/// --stats: one JSON object on stdout.
-pub(super) fn print_stats(
+/// --stats: the statistics of a render as one JSON object.
+pub fn stats_json(
     args: &RenderArgs,
     settings: &RenderSettings,
     outcome: &Outcome,
     started: Instant,
-) {
+) -> serde_json::Value {
     let Outcome {
         film,
         stats,
         ending,
         seconds,
     } = outcome;
-    let json = serde_json::json!({
+    serde_json::json!({
         "spp": film.samples(),
         "width": settings.width,
         "height": settings.height,
@@ -103,8 +103,7 @@ pub(super) fn print_stats(
         "camera_polarizer": settings.camera_polarizer,
         "at": settings.at,
         "shutter": settings.shutter,
-    });
-    outln!("{json}");
+    })
 }
 
 /// How the render ended, said where it did not complete; an interrupted render exits 130

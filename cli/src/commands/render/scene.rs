@@ -23,8 +23,14 @@ const DEFAULT_GLTF: &[u8] = include_bytes!("../../../../scenes/effects.gltf");
 /// The scene, and the camera response to render it with (the command line's, else the
 /// scene's own, else none: the CIE observer). Notes on stderr what the render will not
 /// show of it, or where it adds light.
-pub(super) fn prepare(args: &RenderArgs) -> Result<(Scene, Option<CameraResponse>), String> {
-    let loaded = load(args.scene.as_deref(), args.scene_index)?;
+pub(super) fn prepare(
+    args: &RenderArgs,
+    loaded: Option<LoadedGeometry>,
+) -> Result<(Scene, Option<CameraResponse>), String> {
+    let loaded = match loaded {
+        Some(loaded) => loaded,
+        None => load(args.scene.as_deref(), args.scene_index)?,
+    };
     let quality = match args.bvh.as_str() {
         "medium" => BvhQuality::Medium,
         "slow" => BvhQuality::Slow,
