@@ -96,10 +96,21 @@ pub fn render(
     settings: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Render> {
     if spp < 1 {
-        return Err(PyValueError::new_err(format!("spp {spp}: expected at least 1")));
+        return Err(PyValueError::new_err(format!(
+            "spp {spp}: expected at least 1"
+        )));
     }
-    let mut line = vec!["--spp".to_string(), spp.to_string(), "--seed".into(), seed.to_string()];
-    for (flag, value) in [("--width", width), ("--height", height), ("--threads", threads)] {
+    let mut line = vec![
+        "--spp".to_string(),
+        spp.to_string(),
+        "--seed".into(),
+        seed.to_string(),
+    ];
+    for (flag, value) in [
+        ("--width", width),
+        ("--height", height),
+        ("--threads", threads),
+    ] {
         if let Some(v) = value {
             line.extend([flag.to_string(), v.to_string()]);
         }
@@ -110,7 +121,10 @@ pub fn render(
     if let Some(settings) = settings {
         for (key, value) in settings.iter() {
             let name: String = key.extract()?;
-            if matches!(name.as_str(), "output" | "outputs" | "stats" | "scene" | "sample_range" | "resume" | "checkpoint") {
+            if matches!(
+                name.as_str(),
+                "output" | "outputs" | "stats" | "scene" | "sample_range" | "resume" | "checkpoint"
+            ) {
                 return Err(PyValueError::new_err(format!(
                     "'{name}' is not a setting of prism.render (files are written by Render.save)"
                 )));
@@ -127,7 +141,8 @@ pub fn render(
     let mut interrupt: Option<PyErr> = None;
     let result = py.detach(|| {
         std::thread::scope(|s| {
-            let worker = s.spawn(|| prism_cli::commands::render::render(&args, Some(loaded), &cancel));
+            let worker =
+                s.spawn(|| prism_cli::commands::render::render(&args, Some(loaded), &cancel));
             while !worker.is_finished() {
                 std::thread::sleep(Duration::from_millis(50));
                 if interrupt.is_none()
@@ -149,7 +164,9 @@ pub fn render(
                 .cloned()
                 .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_default();
-            return Err(PyRuntimeError::new_err(format!("prism panicked (a bug): {why}")));
+            return Err(PyRuntimeError::new_err(format!(
+                "prism panicked (a bug): {why}"
+            )));
         }
     };
     let shown = match &rendered.white_balance {
@@ -266,7 +283,8 @@ impl Render {
             &self.rendered.outcome,
             self.rendered.started,
         );
-        py.import("json")?.call_method1("loads", (json.to_string(),))
+        py.import("json")?
+            .call_method1("loads", (json.to_string(),))
     }
 
     /// Writes the image as `prism render -o PATH` writes it: .exr (linear RGB and alpha in

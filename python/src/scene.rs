@@ -43,7 +43,11 @@ impl Scene {
     /// The names of the scene's materials, in the file's order.
     #[getter]
     fn materials(&self) -> Vec<String> {
-        self.loaded.materials.iter().map(|m| m.name.clone()).collect()
+        self.loaded
+            .materials
+            .iter()
+            .map(|m| m.name.clone())
+            .collect()
     }
 
     /// The scene's lights, one short description each (emissive meshes, then punctual

@@ -109,7 +109,10 @@ impl Spectrum {
     /// A piecewise-linear spectrum through (wavelengths[i], values[i]), nm, increasing
     /// wavelengths, zero outside them.
     #[staticmethod]
-    pub fn from_samples(wavelengths: &Bound<'_, PyAny>, values: &Bound<'_, PyAny>) -> PyResult<Self> {
+    pub fn from_samples(
+        wavelengths: &Bound<'_, PyAny>,
+        values: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
         let w = f64_array(wavelengths, "wavelengths")?;
         let v = f64_array(values, "values")?;
         if w.ndim() != 1 || v.ndim() != 1 {
@@ -120,8 +123,12 @@ impl Spectrum {
             )));
         }
         let n = w.len();
-        let table = PiecewiseLinear::new(w.into_raw_vec_and_offset().0, v.into_raw_vec_and_offset().0, Extrapolation::Zero)
-            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let table = PiecewiseLinear::new(
+            w.into_raw_vec_and_offset().0,
+            v.into_raw_vec_and_offset().0,
+            Extrapolation::Zero,
+        )
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(Self::new(Kind::Table(table), format!("{n} samples")))
     }
 
@@ -161,14 +168,19 @@ impl Spectrum {
     fn to_colour<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let colour = py.import("colour")?;
         let wavelengths: Vec<f64> = (360..=830).map(f64::from).collect();
-        let values: Vec<f64> = wavelengths.iter().map(|&nm| self.kind.evaluate(nm)).collect();
+        let values: Vec<f64> = wavelengths
+            .iter()
+            .map(|&nm| self.kind.evaluate(nm))
+            .collect();
         let numpy = py.import("numpy")?;
         let domain = numpy.call_method1("asarray", (wavelengths,))?;
         let data = numpy.call_method1("asarray", (values,))?;
         let kwargs = pyo3::types::PyDict::new(py);
         kwargs.set_item("domain", domain)?;
         kwargs.set_item("name", &self.description)?;
-        colour.getattr("SpectralDistribution")?.call((data,), Some(&kwargs))
+        colour
+            .getattr("SpectralDistribution")?
+            .call((data,), Some(&kwargs))
     }
 
     fn __repr__(&self) -> String {

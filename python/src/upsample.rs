@@ -106,7 +106,11 @@ pub fn upsample<'py>(
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let upsampler = Upsampler::new(space, kind, method)?;
     let (rows, leading) = triples(rgb, "rgb")?;
-    let width = if upsampler.kind == RgbKind::Albedo { 3 } else { 4 };
+    let width = if upsampler.kind == RgbKind::Albedo {
+        3
+    } else {
+        4
+    };
     let fitted: Result<Vec<[f64; 4]>, String> = py.detach(|| {
         rows.par_iter()
             .map(|&c| {
