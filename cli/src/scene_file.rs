@@ -19,6 +19,17 @@ pub fn load_with(
     scene: Option<usize>,
     upsampling: Upsampling,
 ) -> Result<LoadedGeometry, String> {
+    load_edited(path, scene, upsampling, None)
+}
+
+/// [`load_with`], with `edits` applied over the file's own descriptions (and over an
+/// overlay file's): a material, light or scene key `edits` describes replaces theirs.
+pub fn load_edited(
+    path: &Path,
+    scene: Option<usize>,
+    upsampling: Upsampling,
+    edits: Option<&Overlay>,
+) -> Result<LoadedGeometry, String> {
     let read = |p: &Path| crate::output::read_file(p);
     let is_overlay = path
         .extension()
@@ -39,6 +50,22 @@ pub fn load_with(
         )
     } else {
         (path.to_path_buf(), None)
+    };
+    let overlay = match (overlay, edits) {
+        (overlay, None) => overlay,
+        (None, Some(edits)) => Some(edits.clone()),
+        (Some(mut file), Some(edits)) => {
+            let replaced = |entries: &mut Vec<(String, serde_json::Value)>,
+                            by: &[(String, serde_json::Value)]| {
+                entries.retain(|(name, _)| by.iter().all(|(n, _)| n != name));
+                entries.extend(by.iter().cloned());
+            };
+            replaced(&mut file.materials, &edits.materials);
+            replaced(&mut file.lights, &edits.lights);
+            file.scene
+                .extend(edits.scene.iter().map(|(k, v)| (k.clone(), v.clone())));
+            Some(file)
+        }
     };
     let bytes = read(&gltf_path)?;
     let dir = gltf_path.parent().unwrap_or(Path::new(".")).to_path_buf();

@@ -25,6 +25,9 @@ pub struct SessionOptions {
     pub quiet: bool,
     /// The settings fingerprint recorded in checkpoints.
     pub fingerprint: String,
+    /// Samples per pixel done so far in this session, for whoever watches (Python's
+    /// progress callback).
+    pub done: std::sync::Arc<std::sync::atomic::AtomicU64>,
 }
 
 /// Why a session ended.
@@ -104,6 +107,7 @@ pub fn run(
         }
         let done = s + 1 - range.start;
         let total = range.end - range.start;
+        options.done.store(s + 1 - first, Ordering::Relaxed);
         if let Some((every, path)) = &options.checkpoint
             && last_checkpoint.elapsed() >= *every
             && s + 1 < range.end

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
 use clap::Parser;
@@ -76,13 +76,14 @@ pub struct Render {
 /// setting of `prism render` as a keyword in snake_case (`max_depth=8`, `wavelengths=4`,
 /// `polarized=True`, `at=0.5`, `bands=16`, `band_range="400:700"`, `space="acescg"`...).
 /// The image depends only on the scene, the settings and the seed, and equals the command
-/// line's. `progress=True` prints the command line's progress line on stderr.
+/// line's. `progress=True` prints the command line's progress line on stderr;
+/// `progress=callable` calls it with (samples per pixel done, asked for) after passes.
 ///
 /// The GIL is released while it renders. Ctrl-C stops it at the next whole sample per
 /// pixel and raises KeyboardInterrupt whose second argument is the `Render` of what was
 /// done.
 #[pyfunction]
-#[pyo3(signature = (scene, spp = 16, width = Some(64), height = Some(64), seed = 0, threads = None, progress = false, **settings))]
+#[pyo3(signature = (scene, spp = 16, width = Some(64), height = Some(64), seed = 0, threads = None, progress = None, **settings))]
 #[allow(clippy::too_many_arguments)]
 pub fn render(
     py: Python<'_>,
@@ -92,7 +93,7 @@ pub fn render(
     height: Option<i64>,
     seed: i64,
     threads: Option<i64>,
-    progress: bool,
+    progress: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Render> {
     if spp < 1 {
@@ -115,7 +116,17 @@ pub fn render(
             line.extend([flag.to_string(), v.to_string()]);
         }
     }
-    if !progress {
+    // progress: True shows the command line's progress line; a callable is called with
+    // (samples per pixel done, asked for) as passes finish.
+    let callback: Option<Py<PyAny>> = match progress {
+        Some(p) if p.is_callable() => Some(p.clone().unbind()),
+        Some(p) if p.is_truthy()? => None,
+        _ => {
+            line.push("--quiet".into());
+            None
+        }
+    };
+    if callback.is_some() {
         line.push("--quiet".into());
     }
     if let Some(settings) = settings {
@@ -138,19 +149,38 @@ pub fn render(
         .args;
     let loaded = scene.loaded.clone();
     let cancel = Arc::new(AtomicBool::new(false));
+    let done = Arc::new(AtomicU64::new(0));
     let mut interrupt: Option<PyErr> = None;
+    let mut reported = 0u64;
+    let total = spp as u64;
     let result = py.detach(|| {
         std::thread::scope(|s| {
-            let worker =
-                s.spawn(|| prism_cli::commands::render::render(&args, Some(loaded), &cancel));
-            while !worker.is_finished() {
-                std::thread::sleep(Duration::from_millis(50));
-                if interrupt.is_none()
-                    && let Err(e) = Python::attach(|py| py.check_signals())
-                {
-                    cancel.store(true, Ordering::Relaxed);
-                    interrupt = Some(e);
+            let worker = s
+                .spawn(|| prism_cli::commands::render::render(&args, Some(loaded), &cancel, &done));
+            loop {
+                let finished = worker.is_finished();
+                let now = done.load(Ordering::Relaxed);
+                if interrupt.is_none() {
+                    // Signals first (Ctrl-C), then the callback with what is new.
+                    let checked = Python::attach(|py| {
+                        py.check_signals()?;
+                        if let Some(callback) = &callback
+                            && now != reported
+                        {
+                            callback.call1(py, (now, total))?;
+                        }
+                        Ok::<(), PyErr>(())
+                    });
+                    reported = now;
+                    if let Err(e) = checked {
+                        cancel.store(true, Ordering::Relaxed);
+                        interrupt = Some(e);
+                    }
                 }
+                if finished {
+                    break;
+                }
+                std::thread::sleep(Duration::from_millis(50));
             }
             worker.join()
         })

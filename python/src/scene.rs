@@ -3,17 +3,90 @@
 
 use std::path::PathBuf;
 
-use prism_scene::load::{LightDesc, LoadedGeometry};
+use prism_scene::load::{LightDesc, LoadedGeometry, Upsampling};
+use prism_scene::spectral::Overlay;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use serde_json::{Map, Value};
 
 use crate::SceneError;
+use crate::spectrum::{Kind, as_spectrum};
 
-/// A loaded scene: render it with `prism.render(scene, ...)`.
-#[pyclass(module = "prism", frozen)]
+/// A loaded scene: render it with `prism.render(scene, ...)`; replace its materials',
+/// lights' and environment's descriptions with `set_material`, `set_light` and
+/// `set_environment`.
+#[pyclass(module = "prism")]
 pub struct Scene {
     pub loaded: LoadedGeometry,
     pub path: PathBuf,
     pub index: Option<usize>,
+    /// What Python replaced, applied over the file as an overlay is.
+    edits: Overlay,
+}
+
+impl Scene {
+    /// Reads the file again with `edits`; on an error the scene stays as it was.
+    fn reload(&mut self, py: Python<'_>, edits: Overlay) -> PyResult<()> {
+        let (path, index) = (self.path.clone(), self.index);
+        let loaded = py
+            .detach(|| {
+                prism_cli::scene_file::load_edited(&path, index, Upsampling::Exact, Some(&edits))
+            })
+            .map_err(SceneError::new_err)?;
+        self.loaded = loaded;
+        self.edits = edits;
+        Ok(())
+    }
+}
+
+/// The scene format's JSON for a Python value: dicts, lists, strings, numbers, booleans,
+/// and spectra (a named spectrum stays its name; any other is sampled every nanometre from
+/// 300 to 1000 nm as [[nm, value], ...]).
+fn to_json(value: &Bound<'_, PyAny>) -> PyResult<Value> {
+    if value.is_none() {
+        return Ok(Value::Null);
+    }
+    if let Ok(b) = value.cast::<PyBool>() {
+        return Ok(Value::Bool(b.is_true()));
+    }
+    if value.is_instance_of::<PyInt>() {
+        return Ok(Value::from(value.extract::<i64>()?));
+    }
+    if value.is_instance_of::<PyFloat>() {
+        let x: f64 = value.extract()?;
+        return serde_json::Number::from_f64(x)
+            .map(Value::Number)
+            .ok_or_else(|| PyValueError::new_err(format!("{x} is not a finite number")));
+    }
+    if value.is_instance_of::<PyString>() {
+        return Ok(Value::String(value.extract()?));
+    }
+    if let Ok(dict) = value.cast::<PyDict>() {
+        let mut map = Map::new();
+        for (k, v) in dict.iter() {
+            map.insert(k.extract::<String>()?, to_json(&v)?);
+        }
+        return Ok(Value::Object(map));
+    }
+    if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        return value
+            .try_iter()?
+            .map(|item| to_json(&item?))
+            .collect::<PyResult<Vec<_>>>()
+            .map(Value::Array);
+    }
+    let spectrum = as_spectrum(value)?;
+    if let Kind::Named(_) = spectrum.kind.as_ref() {
+        return Ok(Value::String(spectrum.description().to_string()));
+    }
+    let samples = (300..=1000)
+        .map(|nm| {
+            let v = prism_spectrum::Spectrum::evaluate(spectrum.kind.as_ref(), f64::from(nm));
+            serde_json::json!([nm, v])
+        })
+        .collect();
+    Ok(Value::Array(samples))
 }
 
 /// Loads a .gltf or .glb file, or a .toml overlay naming one (`scene`: which of the file's
@@ -29,11 +102,55 @@ pub fn load(py: Python<'_>, path: PathBuf, scene: Option<usize>) -> PyResult<Sce
         loaded,
         path,
         index: scene,
+        edits: Overlay::default(),
     })
 }
 
 #[pymethods]
 impl Scene {
+    /// Replaces material `name`'s spectral description (the scene format's
+    /// `PRISM_spectral` object, as a dict: `{"type": "diffuse", "reflectance": spectrum}`,
+    /// `{"emission": {"spectrum": "illuminant:A", "scale": 20.0}}`...; spectra may be
+    /// `prism.Spectrum`s, colour-science distributions, names or numbers). The scene is
+    /// read again; an unknown name or key raises `prism.SceneError` and changes nothing.
+    fn set_material(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        description: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let mut edits = self.edits.clone();
+        edits.materials.retain(|(n, _)| n != name);
+        edits
+            .materials
+            .push((name.to_string(), to_json(description)?));
+        self.reload(py, edits)
+    }
+
+    /// Replaces punctual light `name`'s spectral description (`{"spectrum": ...,
+    /// "scale": ...}`; see `set_material`). Area lights are materials' `emission`.
+    fn set_light(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        description: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        let mut edits = self.edits.clone();
+        edits.lights.retain(|(n, _)| n != name);
+        edits.lights.push((name.to_string(), to_json(description)?));
+        self.reload(py, edits)
+    }
+
+    /// Replaces the environment: a spectrum (uniform light from every direction), a
+    /// number, or `{"image": "sky.hdr", "rotation": 90}` (relative to the glTF file).
+    fn set_environment(&mut self, py: Python<'_>, environment: &Bound<'_, PyAny>) -> PyResult<()> {
+        let mut edits = self.edits.clone();
+        edits
+            .scene
+            .insert("environment".into(), to_json(environment)?);
+        self.reload(py, edits)
+    }
+
     /// The names of the scene's cameras, in the file's order (the first renders by default).
     #[getter]
     fn cameras(&self) -> Vec<String> {

@@ -59,6 +59,11 @@ pub struct Spectrum {
 }
 
 impl Spectrum {
+    /// What the spectrum is: a named spectrum's name, or a short description.
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
     pub fn new(kind: Kind, description: String) -> Self {
         Self {
             kind: Arc::new(kind),

@@ -210,6 +210,66 @@ def test_images_equal_the_command_lines(tmp_path):
     assert (tmp_path / "python.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
 
 
+def test_edited_materials_equal_an_overlay_file(tmp_path):
+    scene = prism.load(SCENES / "cornell-box.gltf")
+    before = prism.render(scene, spp=2, width=12, height=12)
+    scene.set_material("white-emitter", {"emission": {"spectrum": "illuminant:A", "scale": 17.0}})
+    scene.set_material("green", {"type": "diffuse", "reflectance": prism.Spectrum.from_samples([400, 550, 700], [0.1, 0.8, 0.1])})
+    after = prism.render(scene, spp=2, width=12, height=12)
+    assert not np.array_equal(before.rgb, after.rgb)
+    after.save(tmp_path / "python.exr")
+    table = ", ".join(f"[{nm}, {v!r}]" for nm, v in zip(range(300, 1001), prism.Spectrum.from_samples([400, 550, 700], [0.1, 0.8, 0.1])(np.arange(300.0, 1001.0))))
+    overlay = tmp_path / "edited.toml"
+    overlay.write_text(
+        f'gltf = "{SCENES / "cornell-box.gltf"}"\n'
+        '[materials.white-emitter]\nemission = { spectrum = "illuminant:A", scale = 17.0 }\n'
+        f'[materials.green]\ntype = "diffuse"\nreflectance = [{table}]\n'
+    )
+    subprocess.run([prism_bin(), "render", str(overlay), "--spp", "2", "--width", "12", "--height", "12",
+                    "-o", str(tmp_path / "cli.exr"), "--quiet"], check=True)
+    assert (tmp_path / "python.exr").read_bytes() == (tmp_path / "cli.exr").read_bytes()
+    with pytest.raises(prism.SceneError, match="nope"):
+        scene.set_material("nope", {"reflectance": 0.5})
+    with pytest.raises(prism.SceneError):
+        scene.set_material("red", {"type": "diffuse", "reflectance": -1.0})
+    assert np.array_equal(prism.render(scene, spp=2, width=12, height=12).rgb, after.rgb)
+    scene.set_environment(0.0)
+
+
+def test_progress_callbacks_and_stopping():
+    scene = prism.load(SCENES / "cornell-box.gltf")
+    calls = []
+    prism.render(scene, spp=6, width=8, height=8, progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1] == (6, 6) and all(t == 6 for _, t in calls)
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls)
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop()
+
+    with pytest.raises(Stop):
+        prism.render(scene, spp=2000, width=64, height=64, progress=stop)
+
+
+def test_ctrl_c_stops_a_render_and_keeps_it():
+    import signal
+    import threading
+
+    scene = prism.load(SCENES / "cornell-box.gltf")
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        prism.render(scene, spp=100000, width=64, height=64)
+    timer.cancel()
+    partial = stopped.value.args[1]
+    assert isinstance(partial, prism.Render)
+    assert 0 < partial.stats["spp"] < 100000
+    assert partial.stats["ending"] == "Interrupted"
+    assert np.isfinite(partial.rgb).all() and partial.rgb.mean() > 0
+
+
 def test_bad_settings_are_value_errors():
     scene = prism.load(SCENES / "cornell-box.gltf")
     with pytest.raises(ValueError, match="spp"):

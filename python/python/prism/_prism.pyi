@@ -1,7 +1,7 @@
 """Type stubs of prism's native module (re-exported by `prism`)."""
 
 from os import PathLike
-from typing import Any, Optional, Protocol, Sequence, Tuple, Union
+from typing import Any, Callable, Optional, Protocol, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -72,6 +72,12 @@ class Scene:
     @property
     def path(self) -> str:
         """The file the scene was read from."""
+    def set_material(self, name: str, description: dict[str, Any]) -> None:
+        """Replaces material name's PRISM_spectral description (spectra may be Spectrum objects); raises SceneError and changes nothing on a bad one."""
+    def set_light(self, name: str, description: dict[str, Any]) -> None:
+        """Replaces punctual light name's PRISM_spectral description."""
+    def set_environment(self, environment: Any) -> None:
+        """Replaces the environment: a spectrum, a number or {"image": ..., "rotation": ...}."""
 
 def load(path: Union[str, PathLike[str]], scene: Optional[int] = None) -> Scene:
     """Loads a .gltf, .glb or .toml overlay; raises SceneError naming the file."""
@@ -109,7 +115,7 @@ def render(
     height: Optional[int] = 64,
     seed: int = 0,
     threads: Optional[int] = None,
-    progress: bool = False,
+    progress: Union[bool, Callable[[int, int], Any], None] = None,
     **settings: Any,
 ) -> Render:
-    """Renders scene with prism render's settings as keywords (max_depth=8, bands=16, ...)."""
+    """Renders scene with prism render's settings as keywords (max_depth=8, bands=16, ...); progress=True shows the progress line, a callable gets (done, total) samples per pixel."""

@@ -254,7 +254,7 @@ pub struct Rendered {
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let cancel = Arc::new(AtomicBool::new(false));
     session::stop_on_signals(&cancel)?;
-    let rendered = render(args, None, &cancel)?;
+    let rendered = render(args, None, &cancel, &Default::default())?;
     let Rendered {
         outcome,
         settings,
@@ -288,11 +288,13 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
 }
 
 /// Renders as `prism render` does, the scene `loaded` (None: the one `args` names) with
-/// `args`' settings, until done or `cancel` is set; writes nothing (checkpoints aside).
+/// `args`' settings, until done or `cancel` is set, counting the samples per pixel done in
+/// `done`; writes nothing (checkpoints aside).
 pub fn render(
     args: &RenderArgs,
     loaded: Option<prism_scene::load::LoadedGeometry>,
     cancel: &Arc<AtomicBool>,
+    done: &Arc<std::sync::atomic::AtomicU64>,
 ) -> Result<Rendered, String> {
     // The flags that need no scene are checked before it is loaded.
     let space = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
@@ -327,7 +329,8 @@ pub fn render(
         None => Film::for_settings(&settings),
         Some(path) => checkpoint::resume(path, &fingerprint, &range)?,
     };
-    let options = settings::session_options(args, fingerprint.clone())?;
+    let mut options = settings::session_options(args, fingerprint.clone())?;
+    options.done = done.clone();
     let outcome = session::run(&scene, &settings, range.clone(), film, &options, cancel)?;
     Ok(Rendered {
         outcome,

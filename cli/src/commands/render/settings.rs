@@ -120,6 +120,7 @@ pub(super) fn session_options(
         checkpoint,
         quiet: args.quiet,
         fingerprint,
+        done: Default::default(),
     })
 }
 
