@@ -155,8 +155,16 @@ pub fn render(
     let total = spp as u64;
     let result = py.detach(|| {
         std::thread::scope(|s| {
-            let worker = s
-                .spawn(|| prism_cli::commands::render::render(&args, Some(loaded), &cancel, &done));
+            // The worker wakes this thread when it is done, so that a render returns as
+            // soon as it ends rather than at the next poll.
+            let watcher = std::thread::current();
+            let (args, cancel, done) = (&args, &cancel, &done);
+            let worker = s.spawn(move || {
+                let rendered =
+                    prism_cli::commands::render::render(args, Some(loaded), cancel, done);
+                watcher.unpark();
+                rendered
+            });
             loop {
                 let finished = worker.is_finished();
                 let now = done.load(Ordering::Relaxed);
@@ -180,7 +188,7 @@ pub fn render(
                 if finished {
                     break;
                 }
-                std::thread::sleep(Duration::from_millis(50));
+                std::thread::park_timeout(Duration::from_millis(50));
             }
             worker.join()
         })
