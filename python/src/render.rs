@@ -66,6 +66,8 @@ fn flags_of(name: &str, value: &Bound<'_, PyAny>, out: &mut Vec<String>) -> PyRe
 #[pyclass(module = "prism", frozen)]
 pub struct Render {
     args: RenderArgs,
+    /// `--stats`' JSON, taken when the render ended (its total time is the render's).
+    stats: String,
     rendered: Rendered,
     /// The film as the outputs show it (white-balanced where asked).
     shown: Film,
@@ -211,8 +213,16 @@ pub fn render(
         Some(m) => rendered.outcome.film.adapted(m),
         None => rendered.outcome.film.clone(),
     };
+    let stats = stats_json(
+        &args,
+        &rendered.settings,
+        &rendered.outcome,
+        rendered.started,
+    )
+    .to_string();
     let done = Render {
         args,
+        stats,
         rendered,
         shown,
     };
@@ -315,14 +325,8 @@ impl Render {
     /// The statistics `prism render --stats` prints, as a dict.
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let json = stats_json(
-            &self.args,
-            &self.rendered.settings,
-            &self.rendered.outcome,
-            self.rendered.started,
-        );
         py.import("json")?
-            .call_method1("loads", (json.to_string(),))
+            .call_method1("loads", (self.stats.as_str(),))
     }
 
     /// Writes the image as `prism render -o PATH` writes it: .exr (linear RGB and alpha in

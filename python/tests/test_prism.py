@@ -9,6 +9,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 import warnings
 from pathlib import Path
 
@@ -179,6 +180,9 @@ def test_render_arrays_and_stats():
     assert image.xyz.shape == (10, 12, 3)
     assert image.spectral is None and image.wavelengths is None
     assert image.stats["spp"] == 2 and image.stats["width"] == 12
+    total = image.stats["total_seconds"]
+    time.sleep(0.05)
+    assert image.stats["total_seconds"] == total  # taken when the render ended
     assert np.isfinite(image.rgb).all() and image.rgb.mean() > 0
     np.testing.assert_allclose(prism.xyz_to_rgb(image.xyz), image.rgb, rtol=1e-4, atol=1e-6)
     again = prism.render(scene, spp=2, width=12, height=10, seed=3, threads=1)
