@@ -40,6 +40,12 @@ impl Scene {
     }
 }
 
+/// Sets the description of `name` among named `entries` (an overlay's materials or lights).
+fn replace(entries: &mut Vec<(String, Value)>, name: &str, description: Value) {
+    entries.retain(|(n, _)| n != name);
+    entries.push((name.to_string(), description));
+}
+
 /// The scene format's JSON for a Python value: dicts, lists, strings, numbers, booleans,
 /// and spectra (a named spectrum stays its name; any other is sampled every nanometre from
 /// 300 to 1000 nm as [[nm, value], ...]).
@@ -120,10 +126,7 @@ impl Scene {
         description: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let mut edits = self.edits.clone();
-        edits.materials.retain(|(n, _)| n != name);
-        edits
-            .materials
-            .push((name.to_string(), to_json(description)?));
+        replace(&mut edits.materials, name, to_json(description)?);
         self.reload(py, edits)
     }
 
@@ -136,8 +139,7 @@ impl Scene {
         description: &Bound<'_, PyAny>,
     ) -> PyResult<()> {
         let mut edits = self.edits.clone();
-        edits.lights.retain(|(n, _)| n != name);
-        edits.lights.push((name.to_string(), to_json(description)?));
+        replace(&mut edits.lights, name, to_json(description)?);
         self.reload(py, edits)
     }
 

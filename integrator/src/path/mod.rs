@@ -13,7 +13,7 @@ use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::{PackageScheme, WavelengthDistribution, WavelengthPackage};
 use prism_scene::geometry::Ray;
-use prism_scene::world::{EmissionCache, Material, Scene};
+use prism_scene::world::{EmissionCache, Scene};
 use prism_spectrum::colorimetry::Observer;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -343,20 +343,8 @@ impl<'a> Tracer<'a> {
                 if !positive_finite(pdf) {
                     break;
                 }
-                if REUSE
-                    && walk.depth == 0
-                    && !sample.delta
-                    && !sample.wavelength_dependent
-                    && matches!(material, Material::Diffuse { .. })
-                {
-                    record.first = Some(First {
-                        hit,
-                        frame,
-                        wo,
-                        bsdf: bsdf.clone(),
-                        wi: sample.wi,
-                        pdf,
-                    });
+                if REUSE && walk.depth == 0 {
+                    record.first = First::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
                 }
                 let caustic_start = self.light_caustics && !material.fluorescent();
                 if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, caustic_start, sink)

@@ -36,8 +36,9 @@
 
 use glam::Vec3;
 use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_scene::bsdf::BsdfSample;
 use prism_scene::geometry::Ray;
-use prism_scene::world::{Bsdf, EmissionCache, Hit, Scene};
+use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, Scene};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 mod gather;
@@ -61,6 +62,35 @@ pub(crate) struct First<'s, const N: usize> {
     /// The direction sampled (local) and its density.
     pub wi: Vec3,
     pub pdf: f32,
+}
+
+impl<'s, const N: usize> First<'s, N> {
+    /// The first vertex `hit` (of `material`, with `bsdf` in `frame`, seen from `wo`) whose
+    /// bounce `sample` drew with density `pdf`, where it is one that can reach other
+    /// pixels' second vertices: a Lambertian material, sampled neither as a delta nor per
+    /// wavelength. None elsewhere.
+    #[inline(always)]
+    pub(crate) fn recorded(
+        material: &Material,
+        hit: Hit,
+        frame: Frame,
+        wo: Vec3,
+        bsdf: &Bsdf<'s, N>,
+        sample: &BsdfSample<N>,
+        pdf: f32,
+    ) -> Option<Self> {
+        let shares = !sample.delta
+            && !sample.wavelength_dependent
+            && matches!(material, Material::Diffuse { .. });
+        shares.then(|| Self {
+            hit,
+            frame,
+            wo,
+            bsdf: bsdf.clone(),
+            wi: sample.wi,
+            pdf,
+        })
+    }
 }
 
 /// A path's second vertex, recorded when it reflects alike in every direction.

@@ -28,7 +28,7 @@ use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::geometry::Ray;
 use prism_scene::medium::Phase;
-use prism_scene::world::{EmissionCache, Material};
+use prism_scene::world::EmissionCache;
 use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightNumbers;
 pub(crate) use stack::MediumStack;
@@ -233,22 +233,9 @@ impl<'a> Tracer<'a> {
             if !positive_finite(pdf) {
                 break;
             }
-            if REUSE
-                && walk.depth == 0
-                && unbounded
-                && media.current().is_none()
-                && !sample.delta
-                && !sample.wavelength_dependent
-                && matches!(self.scene.material(&hit), Material::Diffuse { .. })
-            {
-                record.first = Some(First {
-                    hit,
-                    frame,
-                    wo,
-                    bsdf: bsdf.clone(),
-                    wi: sample.wi,
-                    pdf,
-                });
+            if REUSE && walk.depth == 0 && unbounded && media.current().is_none() {
+                let material = self.scene.material(&hit);
+                record.first = First::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
             }
             if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, false, sink) {
                 break;
