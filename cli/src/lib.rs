@@ -18,6 +18,7 @@ pub mod stdout;
 
 pub mod commands;
 pub mod cpu;
+pub mod denoise;
 mod memory;
 pub mod output;
 pub mod scene_file;

@@ -7,8 +7,8 @@
 //! Besides XYZ (or a camera's raw channels) a file holds the coverage counts
 //! (`Coverage.*`, the alpha channel's) and whatever else the film accumulates: per-band spectral sums (`S0000.hi`, ...; the bands in the facts) and energy
 //! sums (`Energy.*` radiance, `Photons.*` photon radiance) and Stokes sums (`S1X.*` ...
-//! `S3Z.*`), so spectral, energy and polarized renders checkpoint, resume and merge like
-//! any other.
+//! `S3Z.*`) and AOV sums (`Aov*`), so spectral, energy, polarized and AOV renders
+//! checkpoint, resume and merge like any other.
 
 use std::io::Cursor;
 use std::ops::Range;
@@ -20,7 +20,7 @@ use exr::prelude::{
 };
 
 use crate::compare::read_flat;
-use crate::{Film, RenderError, SpectralBands};
+use crate::{AovSums, Aovs, Film, RenderError, SpectralBands};
 
 const XYZ: [&str; 3] = ["X", "Y", "Z"];
 const ENERGY: [&str; 2] = ["Energy", "Photons"];
@@ -156,6 +156,14 @@ pub fn encode_accumulation(
     }
     if film.is_raw() {
         extra += "raw=1;";
+    }
+    let aovs = film.aovs();
+    if !aovs.set().is_empty() {
+        for (name, values) in aovs.columns() {
+            list.extend(split_channels(&name, values.into_iter()));
+        }
+        // Names joined by '+' (',' would not matter, but ';' and '=' end a fact).
+        extra += &format!("aovs={};", aovs.set().to_string().replace(',', "+"));
     }
     let layer = Layer::new(
         (w, h),
@@ -330,6 +338,20 @@ pub fn decode_accumulation(bytes: &[u8]) -> Result<Accumulation, RenderError> {
     }
     if fact(&facts, "raw") == Some("1") {
         film = film.with_raw_channels();
+    }
+    if let Some(text) = fact(&facts, "aovs") {
+        let set: Aovs = text.replace('+', ",").parse().map_err(bad)?;
+        let sums =
+            AovSums::from_columns(set, size.area(), &mut |name| values(name).ok()).map_err(bad)?;
+        if sums
+            .columns()
+            .iter()
+            .flat_map(|(_, v)| v)
+            .any(|v| !v.is_finite())
+        {
+            return Err(bad("non-finite AOV sums".into()));
+        }
+        film = film.with_aov_sums(sums);
     }
     Ok(Accumulation {
         film,

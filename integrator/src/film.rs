@@ -6,6 +6,7 @@
 use prism_spectrum::color::RgbColorSpace;
 
 use crate::SpectralBands;
+use crate::aov::{AovSums, Aovs};
 use prism_spectrum::colorimetry::Xyz;
 use prism_spectrum::saturating_f32;
 
@@ -16,6 +17,8 @@ pub(crate) struct FilmSums<'a> {
     pub energy: &'a mut [[f64; 2]],
     pub stokes: &'a mut [[[f64; 3]; 3]],
     pub coverage: &'a mut [f64],
+    /// The products of each sample's colour channels (empty without the variance AOV).
+    pub moments: &'a mut [[f64; 6]],
 }
 
 /// Accumulated XYZ per pixel, row-major from the top-left.
@@ -46,6 +49,8 @@ pub struct Film {
     /// Whether the three sums are a camera's raw channels (shown as they are) rather
     /// than XYZ.
     raw: bool,
+    /// The feature buffers' sums (empty without AOVs).
+    aovs: AovSums,
 }
 
 impl Film {
@@ -62,7 +67,35 @@ impl Film {
             energy: None,
             stokes: None,
             raw: false,
+            aovs: AovSums::default(),
         }
+    }
+
+    /// This film, also recording the AOVs `set`.
+    pub fn with_aovs(mut self, set: Aovs) -> Self {
+        self.aovs = AovSums::new(set, self.sums.len());
+        self
+    }
+
+    /// The AOVs' sums.
+    pub fn aovs(&self) -> &AovSums {
+        &self.aovs
+    }
+
+    pub(crate) fn aovs_mut(&mut self) -> &mut AovSums {
+        &mut self.aovs
+    }
+
+    /// This film with `aovs` as its AOV sums (read from an accumulation file).
+    pub(crate) fn with_aov_sums(mut self, aovs: AovSums) -> Self {
+        self.aovs = aovs;
+        self
+    }
+
+    /// The AOV images in `space` (see [`AovSums`]), as named EXR channels (`albedo.R`,
+    /// ...) with their values, row-major.
+    pub fn aov_images(&self, space: &RgbColorSpace) -> Vec<(String, Vec<f32>)> {
+        self.aovs.images(self.samples, space, &self.sums)
     }
 
     /// This film, also recording the Stokes components S1, S2, S3 per pixel.
@@ -168,6 +201,7 @@ impl Film {
         } else {
             film
         };
+        let film = film.with_aovs(settings.aovs);
         if settings.camera.is_some() {
             film.with_raw_channels()
         } else {
@@ -214,6 +248,7 @@ impl Film {
             energy: None,
             stokes: None,
             raw: false,
+            aovs: AovSums::default(),
         })
     }
 
@@ -228,6 +263,7 @@ impl Film {
             energy: self.energy.as_ref().map(|e| vec![[0.0; 2]; e.len()]),
             stokes: self.stokes.as_ref().map(|e| vec![[[0.0; 3]; 3]; e.len()]),
             raw: self.raw,
+            aovs: AovSums::new(self.aovs.set(), self.sums.len()),
             ..Self::new(self.width, self.height)
         }
     }
@@ -364,6 +400,7 @@ impl Film {
             energy,
             stokes,
             coverage: &mut self.coverage,
+            moments: &mut self.aovs.moments,
         }
     }
 
@@ -420,6 +457,7 @@ impl Film {
         for s in film.stokes.iter_mut().flatten().flatten() {
             *s = m.apply(*s);
         }
+        film.aovs.adapt(m);
         film
     }
 
@@ -513,6 +551,9 @@ impl Film {
                 *acc += v;
             }
         }
+        self.aovs
+            .merge(&other.aovs)
+            .map_err(crate::RenderError::Merge)?;
         for (a, b) in self.coverage.iter_mut().zip(&other.coverage) {
             *a += b;
         }

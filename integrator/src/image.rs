@@ -63,6 +63,9 @@ crate::settings::setters!(ExrMetadata {
 /// polarized along the image's rows, S2 > 0 along the diagonal from its bottom left to
 /// top right, S3 > 0 circular of positive helicity about the direction of travel).
 ///
+/// A film with AOVs adds their layers (`albedo.R`, ..., `normal.X`, ..., `depth.Z`,
+/// `position.X`, ..., `material_id.ID`, `variance.R`, ...; see [`crate::Aovs`]).
+///
 /// prism's facts (`spp=N;...`) go in the typed `comments` attribute: the exr crate keeps
 /// other attributes in a HashMap whose order changes per process, so each of its maps holds
 /// at most one entry and the file's bytes stay a function of the image.
@@ -164,6 +167,9 @@ pub fn encode_exr(
             list.push(AnyChannel::new(name, FlatSamples::F32(values)));
         }
     }
+    for (name, values) in film.aov_images(space) {
+        list.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
+    }
     let mut facts = format!("spp={}", metadata.spp);
     for (k, v) in &metadata.strings {
         facts.push_str(&format!(";{k}={v}"));
@@ -242,18 +248,35 @@ impl Default for DisplaySettings {
 /// or RGBA when `display.alpha`: the colour of each pixel is then its film colour over its
 /// coverage (PNG's alpha is straight), tone mapped, and the alpha its coverage.
 pub fn encode_png(film: &Film, space: &RgbColorSpace, display: DisplaySettings) -> Vec<u8> {
-    let (w, h) = (film.width(), film.height());
+    encode_png_rgb(
+        film.width(),
+        film.height(),
+        &film.to_rgb(space),
+        &film.alphas(),
+        space,
+        display,
+    )
+}
+
+/// A `w` x `h` image of linear RGB in `space` (`rgb`, row-major) with its coverage
+/// (`alphas`), as [`encode_png`] encodes a film's (a denoised image, say).
+pub fn encode_png_rgb(
+    w: u32,
+    h: u32,
+    rgb: &[[f32; 3]],
+    alphas: &[f32],
+    space: &RgbColorSpace,
+    display: DisplaySettings,
+) -> Vec<u8> {
     let weights = space.luminance_weights();
     let transfer = space.transfer();
-    let rgb = film.to_rgb(space);
-    let alphas = film.alphas();
     let channels = if display.alpha { 4 } else { 3 };
     // Each scanline starts with filter type 0 (none).
     let mut raw = Vec::with_capacity((w as usize * channels + 1) * h as usize);
-    for (y, row) in rgb.chunks(w as usize).enumerate() {
+    for (y, row) in rgb.chunks(w.max(1) as usize).enumerate() {
         raw.push(0u8);
         for (x, p) in row.iter().enumerate() {
-            let alpha = f64::from(alphas[y * w as usize + x]);
+            let alpha = f64::from(alphas.get(y * w as usize + x).copied().unwrap_or(1.0));
             let unpremultiply = if display.alpha && alpha > 0.0 {
                 1.0 / alpha
             } else {

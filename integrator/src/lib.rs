@@ -88,10 +88,13 @@
 
 #[cfg(feature = "exr")]
 mod accumulation;
+mod aov;
 mod bands;
 mod batch;
 mod camera_response;
 mod compare;
+#[cfg(feature = "exr")]
+mod denoised;
 mod error;
 mod film;
 mod filter;
@@ -119,15 +122,18 @@ pub use accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
     settings_difference,
 };
+pub use aov::{Aov, AovSums, Aovs};
 pub use bands::SpectralBands;
 pub use camera_response::{CameraResponse, ResponseCurve};
 #[cfg(feature = "exr")]
 pub use compare::decode_exr;
 pub use compare::{ChannelImage, Comparison, compare_images};
+#[cfg(feature = "exr")]
+pub use denoised::{NOISY_LAYER, replace_rgb_exr};
 pub use error::RenderError;
 pub use film::Film;
 pub use filter::Filter;
-pub use image::{DisplaySettings, encode_png, encode_polarization_png};
+pub use image::{DisplaySettings, encode_png, encode_png_rgb, encode_polarization_png};
 #[cfg(feature = "exr")]
 pub use image::{ExrMetadata, encode_exr};
 pub use render::{RenderStats, Renderer, render, render_into};

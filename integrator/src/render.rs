@@ -12,6 +12,7 @@ use prism_scene::world::{EmissionCache, Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
+use crate::aov::features_pass;
 use crate::batch::row_tracer;
 use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
@@ -355,6 +356,18 @@ impl<'a> Renderer<'a> {
                 nonfinite.fetch_add(n, Ordering::Relaxed);
             });
         });
+        if settings.aovs.traced() {
+            let features = match settings.wavelengths {
+                1 => features_pass::<1>,
+                2 => features_pass::<2>,
+                4 => features_pass::<4>,
+                8 => features_pass::<8>,
+                _ => features_pass::<16>,
+            };
+            self.pool.install(|| {
+                features(&tracer, &self.filter, &rows, pass.aovs_mut(), cancel);
+            });
+        }
         if self.light_caustics() {
             self.add_light_paths(&tracer, &rows, &mut pass, cancel, &rays, &nonfinite);
         }
@@ -512,19 +525,22 @@ fn row_outputs(pass: &mut Film, width: usize, height: u32) -> Vec<RowOutput<'_>>
         energy,
         stokes,
         coverage,
+        moments,
     } = pass.sums_mut();
     xyz.chunks_mut(width)
         .zip(rows_of(spectral, spectral_width, height))
         .zip(rows_of(energy, width, height))
         .zip(rows_of(stokes, width, height))
         .zip(coverage.chunks_mut(width))
+        .zip(rows_of(moments, width, height))
         .map(
-            |((((xyz, spectral), energy), stokes), coverage)| RowOutput {
+            |(((((xyz, spectral), energy), stokes), coverage), moments)| RowOutput {
                 xyz,
                 spectral,
                 energy,
                 stokes,
                 coverage,
+                moments,
             },
         )
         .collect()
@@ -547,6 +563,8 @@ pub(crate) struct RowOutput<'a> {
     energy: &'a mut [[f64; 2]],
     stokes: &'a mut [[[f64; 3]; 3]],
     coverage: &'a mut [f64],
+    /// The products of the samples' colour channels (empty without the variance AOV).
+    moments: &'a mut [[f64; 6]],
 }
 
 impl RowOutput<'_> {
@@ -568,13 +586,20 @@ impl RowOutput<'_> {
             .spectral
             .get_mut(x * band_count..(x + 1) * band_count)
             .unwrap_or_default();
+        let scale = value.clamp_scale(rows.clamp);
         value.add_to(
-            value.clamp_scale(rows.clamp),
+            scale,
             &mut self.xyz[x],
             spectral,
             self.energy.get_mut(x),
             self.stokes.get_mut(x),
         );
+        if let Some(m) = self.moments.get_mut(x) {
+            let colour = value.xyz.map(|v| v * scale);
+            for (a, b) in m.iter_mut().zip(crate::aov::products(&colour)) {
+                *a += b;
+            }
+        }
         false
     }
 }

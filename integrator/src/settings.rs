@@ -152,6 +152,9 @@ pub struct RenderSettings {
     /// Which tracer runs the camera paths: one path at a time (the default), or the
     /// batch tracer's lanes of paths (issue 30; the same images where it serves a scene).
     pub tracing: Tracing,
+    /// The feature buffers the film records besides radiance (`crate::Aovs`; none by
+    /// default, which costs nothing).
+    pub aovs: crate::Aovs,
 }
 
 impl Default for RenderSettings {
@@ -182,6 +185,7 @@ impl Default for RenderSettings {
             at: None,
             shutter: None,
             tracing: Tracing::Paths,
+            aovs: crate::Aovs::NONE,
         }
     }
 }
@@ -212,6 +216,7 @@ setters!(RenderSettings {
     at: Option<f64>,
     shutter: Option<(f64, f64)>,
     tracing: Tracing,
+    aovs: crate::Aovs,
 });
 
 /// The most worker threads a render may ask for.

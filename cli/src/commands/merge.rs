@@ -73,5 +73,5 @@ pub fn run(args: &MergeArgs) -> Result<(), String> {
         .exposure(args.exposure)
         .tone_map(ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?)
         .alpha(args.transparent);
-    write_images(&merged.film, &args.outputs, space, display, facts)
+    write_images(&merged.film, &args.outputs, space, display, facts, None)
 }

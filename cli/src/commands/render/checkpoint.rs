@@ -11,7 +11,12 @@ use super::RenderArgs;
 /// the estimate or what the film accumulates (bands, energy, a camera's channels). Not
 /// `--splits`: every choice estimates the same image, only with more or less noise per
 /// sample, so parts split differently merge into an unbiased whole.
-pub(super) fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String {
+pub(super) fn fingerprint(
+    args: &RenderArgs,
+    width: u32,
+    height: u32,
+    aovs: prism_integrator::Aovs,
+) -> String {
     let bands = args
         .spectral_bands
         .map_or("none".into(), |n| format!("{n}@{}", args.spectral_range));
@@ -41,6 +46,16 @@ pub(super) fn fingerprint(args: &RenderArgs, width: u32, height: u32) -> String 
         args.aperture_radius,
         args.focus_distance
     ) + &later_settings_fingerprint(args)
+        + &aovs_fingerprint(aovs)
+}
+
+/// The AOVs' part: empty without them, so that earlier checkpoints still resume.
+fn aovs_fingerprint(aovs: prism_integrator::Aovs) -> String {
+    if aovs.is_empty() {
+        String::new()
+    } else {
+        format!(";aovs={aovs}")
+    }
 }
 
 /// The polarization and time settings' part of the fingerprint: empty for a render without,

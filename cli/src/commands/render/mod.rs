@@ -228,6 +228,25 @@ pub struct RenderArgs {
     /// the uninterrupted render.
     #[arg(long, value_name = "CHECKPOINT")]
     pub resume: Option<PathBuf>,
+    /// Feature buffers (AOVs) EXR outputs also get, comma-separated: albedo (the first
+    /// non-specular surface's reflectance, through mirrors and glass), normal (its shading
+    /// normal, world space), depth (camera distance), position (world space), material_id
+    /// (1 + the material's index, 0 for none), variance (of each pixel's mean, R G B), or
+    /// all. They share the radiance's film, filter, merges and checkpoints.
+    #[arg(long, value_name = "LIST")]
+    pub aov: Option<String>,
+    /// Denoise with Intel Open Image Denoise (its HDR filter, guided by the albedo and
+    /// normal buffers, which it adds to EXR outputs, themselves denoised first). Denoising
+    /// works on the RGB image, after the spectral film, never on spectral bands. The
+    /// outputs show the denoised image; EXR outputs keep the noisy one as noisy.R, noisy.G,
+    /// noisy.B. Needs the OIDN library: `pip install pyoidn` (or PRISM_OIDN=its path).
+    #[arg(long)]
+    pub denoise: bool,
+    /// Show the render as it converges in the tev image viewer listening at HOST[:PORT]
+    /// (port 14158 by default): the image and its AOVs, updated every few seconds and at
+    /// the end. A viewer that is not there is one warning, and the render goes on.
+    #[arg(long, value_name = "HOST[:PORT]")]
+    pub tev: Option<String>,
     /// No progress output.
     #[arg(long, short)]
     pub quiet: bool,
@@ -302,6 +321,10 @@ pub fn render(
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
     let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
     check_outputs(&args.outputs)?;
+    if args.denoise {
+        // Before the render, not after it: a missing library is said at once.
+        crate::denoise::find_library()?;
+    }
     let samples_only = settings::samples_only(args)?;
     let started = Instant::now();
     let (scene, camera) = scene::prepare(args, loaded)?;
@@ -322,9 +345,9 @@ pub fn render(
         .as_deref()
         .map(|spec| settings::white_balance(spec, space))
         .transpose()?;
-    settings::check_film_memory(width, height)?;
+    settings::check_film_memory(width, height, settings.aovs)?;
     let range = settings.samples.clone();
-    let fingerprint = checkpoint::fingerprint(args, width, height);
+    let fingerprint = checkpoint::fingerprint(args, width, height, settings.aovs);
     let film = match &args.resume {
         None => Film::for_settings(&settings),
         Some(path) => checkpoint::resume(path, &fingerprint, &range)?,

@@ -7,11 +7,12 @@ use std::time::Instant;
 
 use prism_integrator::{
     DisplaySettings, ExrMetadata, Film, RenderSettings, RenderStats, encode_exr, encode_png,
-    encode_polarization_png,
+    encode_png_rgb, encode_polarization_png, replace_rgb_exr,
 };
 use prism_spectrum::color::{Mat3, RgbSpaceId, ToneMap};
 
 use super::RenderArgs;
+use crate::denoise::Denoiser;
 use crate::output::{check_writable, write_atomically};
 use crate::session::{Ending, Outcome};
 
@@ -56,7 +57,20 @@ pub fn write_render(
         Some(m) => film.adapted(m),
         None => film.clone(),
     };
-    write_images(&shown, &args.outputs, space, display(args)?, facts)?;
+    let denoised = if args.denoise {
+        facts.push(("denoised".into(), "oidn".into()));
+        Some(denoise_film(&shown, space)?)
+    } else {
+        None
+    };
+    write_images(
+        &shown,
+        &args.outputs,
+        space,
+        display(args)?,
+        facts,
+        denoised.as_deref(),
+    )?;
     if let Some(path) = &args.polarization_png
         && let Some(bytes) = encode_polarization_png(&shown, space.space(), display(args)?)
     {
@@ -103,6 +117,8 @@ pub fn stats_json(
         "camera_polarizer": settings.camera_polarizer,
         "at": settings.at,
         "shutter": settings.shutter,
+        "aovs": settings.aovs.iter().map(|a| a.name()).collect::<Vec<_>>(),
+        "denoised": args.denoise,
     })
 }
 
@@ -186,13 +202,15 @@ fn display(args: &RenderArgs) -> Result<DisplaySettings, String> {
 }
 
 /// Writes `film` to every output: .exr as linear RGB and alpha in `space` with prism's
-/// facts, .png as `display` says.
+/// facts, .png as `display` says; where the image was `denoised` (RGB in `space`), that
+/// is what they show, and EXR outputs keep the film's as `noisy.R`, `noisy.G`, `noisy.B`.
 pub fn write_images(
     film: &Film,
     outputs: &[PathBuf],
     space: RgbSpaceId,
     display: DisplaySettings,
     facts: Vec<(String, String)>,
+    denoised: Option<&[[f32; 3]]>,
 ) -> Result<(), String> {
     let space = space.space();
     for out in outputs {
@@ -200,11 +218,48 @@ pub fn write_images(
             let metadata = ExrMetadata::default()
                 .spp(film.samples())
                 .strings(facts.clone());
-            encode_exr(film, space, &metadata).map_err(|e| e.to_string())?
+            let bytes = encode_exr(film, space, &metadata).map_err(|e| e.to_string())?;
+            match denoised {
+                Some(rgb) => replace_rgb_exr(&bytes, rgb).map_err(|e| e.to_string())?,
+                None => bytes,
+            }
         } else {
-            encode_png(film, space, display)
+            match denoised {
+                Some(rgb) => {
+                    let (w, h) = (film.width(), film.height());
+                    encode_png_rgb(w, h, rgb, &film.alphas(), space, display)
+                }
+                None => encode_png(film, space, display),
+            }
         };
         write_atomically(out, &bytes)?;
     }
     Ok(())
+}
+
+/// `film`'s image in `space`, denoised by Open Image Denoise with its albedo and normal
+/// buffers (which the film must record: `--denoise` asks for them).
+pub fn denoise_film(film: &Film, space: RgbSpaceId) -> Result<Vec<[f32; 3]>, String> {
+    let space = space.space();
+    let aovs = film.aov_images(space);
+    let buffer = |layer: &str, names: [&str; 3]| -> Result<Vec<[f32; 3]>, String> {
+        let channels: Vec<&Vec<f32>> = names
+            .iter()
+            .map(|n| {
+                let name = format!("{layer}.{n}");
+                aovs.iter()
+                    .find(|(c, _)| *c == name)
+                    .map(|(_, v)| v)
+                    .ok_or_else(|| format!("denoising needs the {layer} AOV"))
+            })
+            .collect::<Result<_, _>>()?;
+        Ok((0..channels[0].len())
+            .map(|i| [channels[0][i], channels[1][i], channels[2][i]])
+            .collect())
+    };
+    let albedo = buffer("albedo", ["R", "G", "B"])?;
+    let normal = buffer("normal", ["X", "Y", "Z"])?;
+    let denoiser = Denoiser::load()?;
+    let (w, h) = (film.width() as usize, film.height() as usize);
+    denoiser.denoise(w, h, &film.to_rgb(space), &albedo, &normal)
 }
