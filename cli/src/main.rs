@@ -30,6 +30,8 @@ enum Command {
     Merge(commands::merge::MergeArgs),
     /// Compare an image with a reference: RMSE, relative MSE, PSNR, mean ratios.
     Compare(commands::compare::CompareArgs),
+    /// Denoise a render that has albedo and normal AOVs (Intel Open Image Denoise).
+    Denoise(commands::denoise::DenoiseArgs),
     /// Describe a glTF scene: geometry, materials, lights, cameras, memory.
     Info(commands::info::InfoArgs),
     /// A lens prescription's focal length, back focal distance, pupil and f-number per
@@ -59,6 +61,7 @@ fn main() -> ExitCode {
         Command::Render(args) => commands::render::run(&args),
         Command::Merge(args) => commands::merge::run(&args),
         Command::Compare(args) => commands::compare::run(&args),
+        Command::Denoise(args) => commands::denoise::run(&args),
         Command::Table(command) => commands::table::run(&command),
         Command::Trade(args) => commands::trade::run(&args),
         Command::Lens(args) => commands::lens::run(&args),

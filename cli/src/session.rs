@@ -4,7 +4,6 @@
 //! uninterrupted render makes: the film adds each pass's sums in sample order, which is
 //! the order a single render adds them in.
 
-use std::io::IsTerminal;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -14,6 +13,8 @@ use prism_integrator::{Film, RenderSettings, RenderStats, Renderer, encode_accum
 use prism_scene::world::Scene;
 
 use crate::output::write_atomically;
+use crate::progress::Progress;
+use crate::tev::TevPreview;
 
 /// How a session runs besides the render settings.
 pub struct SessionOptions {
@@ -28,6 +29,9 @@ pub struct SessionOptions {
     /// Samples per pixel done so far in this session, for whoever watches (Python's
     /// progress callback).
     pub done: std::sync::Arc<std::sync::atomic::AtomicU64>,
+    /// Where to stream the image as it converges: tev's address (HOST:PORT), the image's
+    /// name there, and the colour space it is shown in.
+    pub tev: Option<(String, String, prism_spectrum::color::RgbSpaceId)>,
 }
 
 /// Why a session ended.
@@ -62,9 +66,13 @@ pub fn run(
     let started = Instant::now();
     let mut stats = RenderStats::default();
     let mut last_checkpoint = Instant::now();
-    let mut last_log = Instant::now();
-    let terminal = std::io::stderr().is_terminal();
     let first = range.start + film.samples();
+    let total = range.end - range.start;
+    let mut progress = Progress::new(options.quiet, first - range.start, total);
+    let mut tev = options
+        .tev
+        .as_ref()
+        .map(|(address, name, space)| TevPreview::connect(address, name, *space));
     let renderer = Renderer::new(scene, settings).map_err(|e| e.to_string())?;
     stats.splits = renderer.splits();
     stats.reuse = renderer.reuse();
@@ -106,7 +114,6 @@ pub fn run(
             }
         }
         let done = s + 1 - range.start;
-        let total = range.end - range.start;
         options.done.store(s + 1 - first, Ordering::Relaxed);
         if let Some((every, path)) = &options.checkpoint
             && last_checkpoint.elapsed() >= *every
@@ -115,29 +122,22 @@ pub fn run(
             write_checkpoint(&film, range.start, path, &options.fingerprint)?;
             last_checkpoint = Instant::now();
         }
-        if !options.quiet {
-            let elapsed = started.elapsed().as_secs_f64();
-            let rendered = (s + 1 - first) as f64;
-            let eta = elapsed / rendered * (range.end - s - 1) as f64;
-            let rate = stats.paths as f64 / elapsed.max(1e-9) / 1e6;
-            if terminal {
-                let width = 30;
-                let filled = (done * width / total) as usize;
-                eprint!(
-                    "\r[{}{}] {done}/{total} spp  {rate:.2} M paths/s  ETA {eta:.0} s   ",
-                    "#".repeat(filled),
-                    " ".repeat(width as usize - filled)
-                );
-            } else if last_log.elapsed() >= Duration::from_secs(10) || s + 1 == range.end {
-                eprintln!(
-                    "prism: {done}/{total} spp, {elapsed:.1} s, {rate:.2} M paths/s, ETA {eta:.0} s"
-                );
-                last_log = Instant::now();
-            }
+        progress.update(
+            done,
+            total,
+            s + 1 - first,
+            started.elapsed().as_secs_f64(),
+            stats.rays,
+            stats.paths,
+            &film,
+        );
+        if let Some(tev) = &mut tev {
+            tev.show(&film, false);
         }
     }
-    if terminal && !options.quiet {
-        eprintln!();
+    progress.finish();
+    if let Some(tev) = &mut tev {
+        tev.show(&film, true);
     }
     // Also when complete: a checkpoint can be resumed with a larger --spp.
     if let Some((_, path)) = &options.checkpoint {

@@ -92,6 +92,12 @@ impl Film {
         self
     }
 
+    /// The relative MSE the image is expected to have against the converged one (per XYZ
+    /// channel, as `compare_images` measures), from its variance AOV; None without it.
+    pub fn estimated_relmse(&self) -> Option<f64> {
+        self.aovs.estimated_relmse(self.samples, &self.sums)
+    }
+
     /// The AOV images in `space` (see [`AovSums`]), as named EXR channels (`albedo.R`,
     /// ...) with their values, row-major.
     pub fn aov_images(&self, space: &RgbColorSpace) -> Vec<(String, Vec<f32>)> {

@@ -2,6 +2,7 @@
 
 pub mod color;
 pub mod compare;
+pub mod denoise;
 pub mod info;
 pub mod lens;
 pub mod merge;

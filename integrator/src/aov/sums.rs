@@ -303,6 +303,35 @@ impl AovSums {
     }
 }
 
+impl AovSums {
+    /// The relative MSE the image's mean is expected to have, from the variance AOV: the
+    /// mean over pixels and X, Y, Z of Var(mean) / (mean^2 + 0.01), the measure `prism
+    /// compare` reports against a reference. None without the variance AOV or below two
+    /// samples.
+    pub(crate) fn estimated_relmse(&self, samples: u64, xyz: &[[f64; 3]]) -> Option<f64> {
+        if self.moments.is_empty() || samples < 2 || xyz.is_empty() {
+            return None;
+        }
+        let n = samples as f64;
+        let total: f64 = self
+            .moments
+            .iter()
+            .zip(xyz)
+            .map(|(m, s)| {
+                let variance = variance_of_mean(m, s, n, &Mat3::IDENTITY);
+                (0..3)
+                    .map(|k| {
+                        let mean = s[k] / n;
+                        variance[k] / (mean * mean + 0.01)
+                    })
+                    .sum::<f64>()
+            })
+            .sum();
+        let value = total / (3 * xyz.len()) as f64;
+        value.is_finite().then_some(value)
+    }
+}
+
 /// The 3 x 3 symmetric matrix of packed moments (XX, YY, ZZ, XY, XZ, YZ).
 fn covariance_matrix(s: &[f64; 6]) -> Mat3 {
     Mat3([[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]])

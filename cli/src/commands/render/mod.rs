@@ -20,7 +20,9 @@ use prism_spectrum::color::RgbSpaceId;
 use crate::output::write_atomically;
 use crate::session::{self, Outcome};
 
-pub use outputs::{check_outputs, stats_json, write_images, write_render};
+pub use outputs::{
+    check_outputs, denoise_film, has_extension, stats_json, write_images, write_render,
+};
 
 #[derive(Debug, Clone, Args)]
 #[command(

@@ -175,7 +175,7 @@ fn energy_stats(film: &Film, range: (f32, f32)) -> serde_json::Value {
     })
 }
 
-pub(super) fn has_extension(path: &Path, extension: &str) -> bool {
+pub fn has_extension(path: &Path, extension: &str) -> bool {
     path.extension().and_then(|e| e.to_str()) == Some(extension)
 }
 

@@ -158,7 +158,23 @@ pub(super) fn session_options(
         quiet: args.quiet,
         fingerprint,
         done: Default::default(),
+        tev: tev_target(args)?,
     })
+}
+
+/// --tev: the viewer's address, and the image's name there (the scene file's name).
+fn tev_target(args: &RenderArgs) -> Result<Option<(String, String, RgbSpaceId)>, String> {
+    let Some(spec) = &args.tev else {
+        return Ok(None);
+    };
+    let address = crate::tev::address(spec)?;
+    let scene = args
+        .scene
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map_or("effects".into(), |n| n.to_string_lossy().into_owned());
+    let space = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
+    Ok(Some((address, format!("prism: {scene}"), space)))
 }
 
 /// A span in seconds. Duration::from_secs_f64 panics past u64 seconds (1e300 did); such a
