@@ -52,9 +52,10 @@ impl Tracer<'_> {
         let Some((mut ray, _)) = self.camera_ray(film, aspect, &stream, package.lambda[0]) else {
             return out;
         };
-        let one = SampledSpectrum::<N>::splat(1.0)
-            .to_xyz(&lambdas, self.observer)
-            .y;
+        // Each channel over the same wavelengths' estimate of a white's: a grey surface's
+        // albedo is exact in every sample, and XYZ is relative to the equal-energy white,
+        // whose X, Y and Z integrals are equal (CIE 015:2018 §7.1).
+        let white = SampledSpectrum::<N>::splat(1.0).to_xyz(&lambdas, self.observer);
         let mut weight = SampledSpectrum::<N>::splat(1.0);
         let (mut travelled, mut depth) = (0.0f64, 0u64);
         for _ in 0..MAX_VERTICES {
@@ -85,9 +86,12 @@ impl Tracer<'_> {
             let bounce = sample.f * (sample.wi.z.abs() / pdf);
             if !bsdf.is_delta() {
                 let albedo = (weight * bounce).to_xyz(&lambdas, self.observer);
-                if one > 0.0 {
-                    out.albedo = [albedo.x, albedo.y, albedo.z].map(|v| v / one);
-                }
+                let ratio = |a: f64, w: f64| if w > 0.0 { a / w } else { 0.0 };
+                out.albedo = [
+                    ratio(albedo.x, white.x),
+                    ratio(albedo.y, white.y),
+                    ratio(albedo.z, white.z),
+                ];
                 out.normal = hit
                     .shading_normal
                     .normalize_or_zero()
