@@ -10,7 +10,9 @@ use std::time::Duration;
 use clap::Parser;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
-use prism_cli::commands::render::{RenderArgs, Rendered, stats_json, write_render};
+use prism_cli::commands::render::{
+    RenderArgs, Rendered, denoised_image, stats_json, write_render,
+};
 use prism_integrator::Film;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -71,6 +73,8 @@ pub struct Render {
     rendered: Rendered,
     /// The film as the outputs show it (white-balanced where asked).
     shown: Film,
+    /// The denoised image (`denoise=True`), RGB in the render's space.
+    denoised: Option<Vec<[f32; 3]>>,
 }
 
 /// Renders `scene` with `spp` samples per pixel at `width` x `height` (None: from the
@@ -220,11 +224,18 @@ pub fn render(
         rendered.started,
     )
     .to_string();
+    let denoised = if interrupt.is_none() {
+        py.detach(|| denoised_image(&args, &shown, rendered.space))
+            .map_err(SceneError::new_err)?
+    } else {
+        None
+    };
     let done = Render {
         args,
         stats,
         rendered,
         shown,
+        denoised,
     };
     if let Some(e) = interrupt {
         if !e.is_instance_of::<PyKeyboardInterrupt>(py) {
@@ -258,19 +269,74 @@ impl Render {
     fn size(&self) -> (usize, usize) {
         (self.shown.height() as usize, self.shown.width() as usize)
     }
-}
 
-#[pymethods]
-impl Render {
-    /// Linear RGB in the render's space (`space=`, default srgb): float32, (H, W, 3).
-    #[getter]
-    fn rgb<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    /// `rgb` (row-major) as an (H, W, 3) array.
+    fn image<'py>(
+        &self,
+        py: Python<'py>,
+        rgb: Vec<[f32; 3]>,
+    ) -> PyResult<Bound<'py, PyArray3<f32>>> {
         let (h, w) = self.size();
-        let rgb = self.shown.to_rgb(self.rendered.space.space());
         let flat: Vec<f32> = rgb.into_iter().flatten().collect();
         let array = Array3::from_shape_vec((h, w, 3), flat)
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         Ok(array.into_pyarray(py))
+    }
+}
+
+#[pymethods]
+impl Render {
+    /// Linear RGB in the render's space (`space=`, default srgb): float32, (H, W, 3); the
+    /// denoised image where the render was (`denoise=True`).
+    #[getter]
+    fn rgb<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        match &self.denoised {
+            Some(rgb) => self.image(py, rgb.clone()),
+            None => self.noisy(py),
+        }
+    }
+
+    /// The film's own RGB, before any denoising: float32, (H, W, 3).
+    #[getter]
+    fn noisy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        self.image(py, self.shown.to_rgb(self.rendered.space.space()))
+    }
+
+    /// The names of the AOVs the render recorded (`aov="albedo,normal"`, `denoise=True`).
+    #[getter]
+    fn aovs(&self) -> Vec<&'static str> {
+        self.rendered.settings.aovs.iter().map(|a| a.name()).collect()
+    }
+
+    /// AOV `name` as the EXR holds it: float32, (H, W, 3) for albedo, normal, position and
+    /// variance, (H, W) for depth and material_id. KeyError for one not recorded.
+    fn aov<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let (h, w) = self.size();
+        let images = self.shown.aov_images(self.rendered.space.space());
+        let layer: Vec<&Vec<f32>> = images
+            .iter()
+            .filter(|(n, _)| n.split_once('.').is_some_and(|(l, _)| l == name))
+            .map(|(_, v)| v)
+            .collect();
+        match layer.len() {
+            0 => Err(pyo3::exceptions::PyKeyError::new_err(format!(
+                "no AOV '{name}' in this render (recorded: {})",
+                self.aovs().join(", ")
+            ))),
+            1 => Ok(Array2::from_shape_vec((h, w), layer[0].clone())
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+                .into_pyarray(py)
+                .into_any()),
+            _ => {
+                let flat: Vec<f32> = (0..h * w)
+                    .flat_map(|i| layer.iter().map(move |c| c[i]))
+                    .collect();
+                Ok(Array3::from_shape_vec((h, w, layer.len()), flat)
+                    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+                    .into_pyarray(py)
+                    .into_any())
+            }
+        }
     }
 
     /// Coverage (the share of each pixel's samples that met the scene): float32, (H, W).
@@ -346,6 +412,7 @@ impl Render {
                 &r.outcome.stats,
                 r.space,
                 r.white_balance.as_ref(),
+                self.denoised.as_deref(),
             )
         })
         .map_err(PyRuntimeError::new_err)

@@ -214,6 +214,51 @@ def test_images_equal_the_command_lines(tmp_path):
     assert (tmp_path / "python.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
 
 
+def test_aovs_are_arrays_and_equal_the_command_lines(tmp_path):
+    scene_path = SCENES / "cornell-box.gltf"
+    image = prism.render(prism.load(scene_path), spp=2, width=16, height=12, aov="albedo,depth,material_id")
+    assert image.aovs == ["albedo", "depth", "material_id"]
+    assert image.aov("albedo").shape == (12, 16, 3) and image.aov("depth").shape == (12, 16)
+    ids = image.aov("material_id")
+    assert ids.min() >= 0 and ids.max() <= len(prism.load(scene_path).materials) and (ids == np.round(ids)).all()
+    with pytest.raises(KeyError, match="normal"):
+        image.aov("normal")
+    assert np.array_equal(image.rgb, image.noisy)
+    ours, theirs = tmp_path / "python.exr", tmp_path / "cli.exr"
+    image.save(ours)
+    subprocess.run(
+        [prism_bin(), "render", str(scene_path), "--spp", "2", "--width", "16", "--height", "12",
+         "--aov", "albedo,depth,material_id", "-o", str(theirs), "--quiet"],
+        check=True,
+    )
+    assert ours.read_bytes() == theirs.read_bytes()
+
+
+def oidn_required():
+    """Whether this run must denoise (CI sets PRISM_REQUIRE_OIDN and PRISM_OIDN)."""
+    return bool(os.environ.get("PRISM_REQUIRE_OIDN"))
+
+
+def test_denoised_renders(tmp_path):
+    if not os.environ.get("PRISM_OIDN") and not oidn_required():
+        pytest.skip("set PRISM_OIDN to libOpenImageDenoise (pip install pyoidn)")
+    scene_path = SCENES / "cornell-box.gltf"
+    image = prism.render(prism.load(scene_path), spp=4, width=64, height=48, denoise=True)
+    assert image.aovs == ["albedo", "normal"]
+    assert not np.array_equal(image.rgb, image.noisy)
+    # Denoising smooths: neighbouring pixels differ less.
+    roughness = lambda a: float(np.abs(np.diff(a, axis=1)).mean())
+    assert roughness(image.rgb) < 0.7 * roughness(image.noisy)
+    ours, theirs = tmp_path / "python.exr", tmp_path / "cli.exr"
+    image.save(ours)
+    subprocess.run(
+        [prism_bin(), "render", str(scene_path), "--spp", "4", "--width", "64", "--height", "48", "--denoise",
+         "-o", str(theirs), "--quiet"],
+        check=True,
+    )
+    assert ours.read_bytes() == theirs.read_bytes()
+
+
 def test_edited_materials_equal_an_overlay_file(tmp_path):
     scene = prism.load(SCENES / "cornell-box.gltf")
     before = prism.render(scene, spp=2, width=12, height=12)

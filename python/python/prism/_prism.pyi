@@ -87,7 +87,15 @@ class Render:
 
     @property
     def rgb(self) -> npt.NDArray[np.float32]:
-        """Linear RGB in the render's space, (H, W, 3)."""
+        """Linear RGB in the render's space, (H, W, 3); denoised with denoise=True."""
+    @property
+    def noisy(self) -> npt.NDArray[np.float32]:
+        """The film's RGB before any denoising, (H, W, 3)."""
+    @property
+    def aovs(self) -> list[str]:
+        """The AOVs recorded (aov="albedo,normal", denoise=True)."""
+    def aov(self, name: str) -> npt.NDArray[np.float32]:
+        """An AOV: (H, W, 3) for albedo, normal, position, variance; (H, W) for depth, material_id."""
     @property
     def alpha(self) -> npt.NDArray[np.float32]:
         """Coverage, (H, W)."""

@@ -21,7 +21,8 @@ use crate::output::write_atomically;
 use crate::session::{self, Outcome};
 
 pub use outputs::{
-    check_outputs, denoise_film, has_extension, stats_json, write_images, write_render,
+    check_outputs, denoise_film, denoised_image, has_extension, stats_json, write_images,
+    write_render,
 };
 
 #[derive(Debug, Clone, Args)]
@@ -294,7 +295,15 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             write_atomically(out, &bytes)?;
         }
     } else {
-        outputs::write_render(args, film, settings, stats, *space, white_balance.as_ref())?;
+        outputs::write_render(
+            args,
+            film,
+            settings,
+            stats,
+            *space,
+            white_balance.as_ref(),
+            None,
+        )?;
     }
     if stats.nonfinite > 0 {
         eprintln!(

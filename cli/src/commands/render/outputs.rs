@@ -17,7 +17,9 @@ use crate::output::{check_writable, write_atomically};
 use crate::session::{Ending, Outcome};
 
 /// The rendered image to every output, adapted to the white balance if one is asked for,
-/// with the facts that reproduce it; and the polarization PNG.
+/// with the facts that reproduce it; and the polarization PNG. With `--denoise` the
+/// outputs show `denoised` ([`denoised_image`]'s, computed here where None).
+#[allow(clippy::too_many_arguments)]
 pub fn write_render(
     args: &RenderArgs,
     film: &Film,
@@ -25,6 +27,7 @@ pub fn write_render(
     stats: &RenderStats,
     space: RgbSpaceId,
     white_balance: Option<&Mat3>,
+    denoised: Option<&[[f32; 3]]>,
 ) -> Result<(), String> {
     let mut facts = vec![
         ("seed".into(), args.seed.to_string()),
@@ -57,19 +60,24 @@ pub fn write_render(
         Some(m) => film.adapted(m),
         None => film.clone(),
     };
-    let denoised = if args.denoise {
-        facts.push(("denoised".into(), "oidn".into()));
-        Some(denoise_film(&shown, space)?)
-    } else {
-        None
+    let computed;
+    let denoised = match denoised {
+        Some(rgb) => Some(rgb),
+        None => {
+            computed = denoised_image(args, &shown, space)?;
+            computed.as_deref()
+        }
     };
+    if denoised.is_some() {
+        facts.push(("denoised".into(), "oidn".into()));
+    }
     write_images(
         &shown,
         &args.outputs,
         space,
         display(args)?,
         facts,
-        denoised.as_deref(),
+        denoised,
     )?;
     if let Some(path) = &args.polarization_png
         && let Some(bytes) = encode_polarization_png(&shown, space.space(), display(args)?)
@@ -77,6 +85,19 @@ pub fn write_render(
         write_atomically(path, &bytes)?;
     }
     Ok(())
+}
+
+/// With `--denoise`, the image the outputs show: `shown` (the film as shown: white
+/// balanced where asked) in `space`, denoised ([`denoise_film`]); None without.
+pub fn denoised_image(
+    args: &RenderArgs,
+    shown: &Film,
+    space: RgbSpaceId,
+) -> Result<Option<Vec<[f32; 3]>>, String> {
+    if !args.denoise {
+        return Ok(None);
+    }
+    denoise_film(shown, space).map(Some)
 }
 
 /// --stats: the statistics of a render as one JSON object.
