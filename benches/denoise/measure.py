@@ -1,7 +1,8 @@
 """What denoising does, measured: per scene, the relative MSE of the noisy and the denoised
 render against a converged one, the largest shift of a region's mean, and for scenes whose
 colours are spectral (the rainbow, the effects stage's dispersion and fluorescence) the
-CIEDE2000 difference from the converged image where it is most saturated.
+CIEDE2000 difference from the converged image where it is most saturated (the most
+saturated tenth of the lit pixels).
 
   python3 -m venv /tmp/dn && /tmp/dn/bin/pip install pyoidn OpenEXR colour-science
   PRISM_OIDN=$(ls /tmp/dn/lib/python3*/site-packages/pyoidn/oidn/lib/libOpenImageDenoise.so.2) \\
@@ -20,7 +21,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SCENES = {
     "cornell-box": ["scenes/cornell-box.gltf"],
     "effects": [],  # the embedded effects stage: dispersion, fluorescence, thin film
-    "rainbow": ["scenes/rainbow.gltf"],
+    "prism": ["scenes/prism.gltf"],  # a spectrum cast by a glass prism on a wall
+    "rainbow": ["scenes/rainbow.gltf"],  # a water droplet's bows
 }
 
 

@@ -22,7 +22,8 @@ pub struct DenoiseArgs {
     /// Output file(s), .exr or .png; repeat for several.
     #[arg(short = 'o', long = "output", required = true)]
     pub outputs: Vec<PathBuf>,
-    /// The colour space the input was rendered in (for PNG outputs' transfer function).
+    /// The colour space the input was rendered in (prism render --space): the denoiser
+    /// converts from it, and PNG outputs use its transfer function.
     #[arg(long, default_value = "srgb")]
     pub space: String,
     /// PNG exposure in stops.
@@ -59,7 +60,7 @@ pub fn run(args: &DenoiseArgs) -> Result<(), String> {
     let normal = triple(["normal.X", "normal.Y", "normal.Z"])?;
     let denoiser = Denoiser::load()?;
     let (w, h) = (image.width, image.height);
-    let denoised = denoiser.denoise(w, h, &color, &albedo, &normal)?;
+    let denoised = denoiser.denoise(w, h, space.space(), &color, &albedo, &normal)?;
     for out in &args.outputs {
         let encoded = if super::render::has_extension(out, "exr") {
             replace_rgb_exr(&bytes, &denoised).map_err(|e| e.to_string())?

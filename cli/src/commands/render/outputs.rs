@@ -282,5 +282,5 @@ pub fn denoise_film(film: &Film, space: RgbSpaceId) -> Result<Vec<[f32; 3]>, Str
     let normal = buffer("normal", ["X", "Y", "Z"])?;
     let denoiser = Denoiser::load()?;
     let (w, h) = (film.width() as usize, film.height() as usize);
-    denoiser.denoise(w, h, &film.to_rgb(space), &albedo, &normal)
+    denoiser.denoise(w, h, space, &film.to_rgb(space), &albedo, &normal)
 }
