@@ -260,6 +260,24 @@ impl Film {
 
     /// A black film with this one's size and channels (bands, energy, raw or XYZ).
     #[cfg(feature = "exr")]
+    /// Every sum and count back to zero, the buffers kept.
+    pub(crate) fn clear(&mut self) {
+        self.sums.fill([0.0; 3]);
+        self.coverage.fill(0.0);
+        self.samples = 0;
+        self.nonfinite = 0;
+        if let Some((_, s)) = &mut self.spectral {
+            s.fill(0.0);
+        }
+        if let Some(e) = &mut self.energy {
+            e.fill([0.0; 2]);
+        }
+        if let Some(s) = &mut self.stokes {
+            s.fill([[0.0; 3]; 3]);
+        }
+        self.aovs.clear();
+    }
+
     pub(crate) fn black_like(&self) -> Self {
         Self {
             spectral: self

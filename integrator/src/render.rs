@@ -62,6 +62,10 @@ pub struct Renderer<'a> {
     focus: Option<prism_scene::camera::Focus>,
     /// The camera's lens system, focused (None: a pinhole or a thin lens).
     system: Option<std::sync::Arc<prism_scene::camera::FocusedSystem>>,
+    /// The film a pass adds to, kept between passes: sessions render one sample per pixel
+    /// per pass, and a fresh film each time cost page faults and TLB flushes on every
+    /// thread (7% of a render with AOVs: its sums are large).
+    scratch: std::sync::Mutex<Option<Film>>,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -134,6 +138,7 @@ impl<'a> Renderer<'a> {
             reuse: 1,
             focus: None,
             system: None,
+            scratch: Default::default(),
         };
         let aspect = settings.width as f32 / settings.height as f32;
         renderer.focus = scene.camera().focus(aspect, || auto_focus(scene, aspect));
@@ -321,7 +326,14 @@ impl<'a> Renderer<'a> {
         }
         let tracer = self.tracer(self.splits);
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
-        let mut pass = Film::for_settings(settings);
+        let kept = self.scratch.lock().ok().and_then(|mut s| s.take());
+        let mut pass = match kept {
+            Some(mut film) => {
+                film.clear();
+                film
+            }
+            None => Film::for_settings(settings),
+        };
         let trace = match settings.tracing {
             Tracing::Lanes(width) => match settings.wavelengths {
                 // `lanes_modes` refuses 1 and 2 (their instances took LLVM's optimizer
@@ -378,6 +390,9 @@ impl<'a> Renderer<'a> {
         let nonfinite = nonfinite.into_inner();
         pass.finish_pass(count, nonfinite);
         film.merge(&pass)?;
+        if let Ok(mut scratch) = self.scratch.lock() {
+            *scratch = Some(pass);
+        }
         Ok(Some(RenderStats {
             paths: count * u64::from(settings.width) * u64::from(settings.height),
             rays: rays.into_inner(),

@@ -10,9 +10,7 @@ use std::time::Duration;
 use clap::Parser;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
-use prism_cli::commands::render::{
-    RenderArgs, Rendered, denoised_image, stats_json, write_render,
-};
+use prism_cli::commands::render::{RenderArgs, Rendered, denoised_image, stats_json, write_render};
 use prism_integrator::Film;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -305,7 +303,12 @@ impl Render {
     /// The names of the AOVs the render recorded (`aov="albedo,normal"`, `denoise=True`).
     #[getter]
     fn aovs(&self) -> Vec<&'static str> {
-        self.rendered.settings.aovs.iter().map(|a| a.name()).collect()
+        self.rendered
+            .settings
+            .aovs
+            .iter()
+            .map(|a| a.name())
+            .collect()
     }
 
     /// AOV `name` as the EXR holds it: float32, (H, W, 3) for albedo, normal, position and

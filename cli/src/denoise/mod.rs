@@ -65,7 +65,9 @@ impl Denoiser {
     ) -> Result<Image, String> {
         let working = RgbSpaceId::Aces2065_1.space();
         let to_working = working.xyz_to_rgb_matrix().mul(&space.rgb_to_xyz_matrix());
-        let back = to_working.inverse().ok_or("a colour space without an inverse")?;
+        let back = to_working
+            .inverse()
+            .ok_or("a colour space without an inverse")?;
         let convert = |m: &Mat3, image: &[[f32; 3]]| -> Image {
             image
                 .iter()

@@ -84,6 +84,17 @@ impl AovSums {
         }
     }
 
+    /// Every sum back to zero (and every material to none), the buffers kept.
+    pub(crate) fn clear(&mut self) {
+        self.albedo.fill([0.0; 3]);
+        self.normal.fill([0.0; 3]);
+        self.depth.fill(0.0);
+        self.position.fill([0.0; 3]);
+        self.hits.fill(0.0);
+        self.material.fill([NO_SAMPLE, 0.0]);
+        self.moments.fill([0.0; 6]);
+    }
+
     /// The AOVs these sums hold.
     pub fn set(&self) -> Aovs {
         self.set
