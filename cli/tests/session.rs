@@ -236,3 +236,99 @@ fn spectral_and_energy_checkpoints_resume_to_the_same_file() {
         assert_one_line_errors(&[(&args, difference)]);
     }
 }
+
+#[test]
+fn aovs_resume_and_merge_as_the_radiance_does() {
+    let dir = temp_dir("aov-session");
+    let p = |n: &str| dir.join(n).to_str().unwrap().to_string();
+    let aovs = ["--aov", "all"];
+    assert_success(&render(
+        &[&aovs[..], &["--spp", "6", "-o", &p("full.exr")]].concat(),
+    ));
+    // Resumed from a checkpoint: the same file to the byte.
+    assert_success(&render(
+        &[
+            &aovs[..],
+            &["--spp", "2", "--checkpoint", "0", "-o", &p("part.exr")],
+        ]
+        .concat(),
+    ));
+    let checkpoint = p("part.exr.checkpoint.exr");
+    assert_success(&render(
+        &[
+            &aovs[..],
+            &[
+                "--spp",
+                "6",
+                "--resume",
+                &checkpoint,
+                "-o",
+                &p("resumed.exr"),
+            ],
+        ]
+        .concat(),
+    ));
+    assert_eq!(
+        std::fs::read(dir.join("full.exr")).unwrap(),
+        std::fs::read(dir.join("resumed.exr")).unwrap(),
+        "byte-identical"
+    );
+    // A checkpoint without AOVs does not resume a render with them: the AOVs are named.
+    assert_one_line_errors(&[(
+        &[
+            "render",
+            "-q",
+            "--width",
+            "24",
+            "--height",
+            "16",
+            "--spp",
+            "6",
+            "--resume",
+            &checkpoint,
+            "-o",
+            &p("x.exr"),
+        ],
+        "aovs",
+    )]);
+    // Sample ranges merged: every AOV layer as the whole render's, to rounding.
+    for (range, name) in [("0..4", "a.exr"), ("4..6", "b.exr")] {
+        assert_success(&render(
+            &[&aovs[..], &["--sample-range", range, "-o", &p(name)]].concat(),
+        ));
+    }
+    assert_success(&prism(&[
+        "merge",
+        &p("a.exr"),
+        &p("b.exr"),
+        "-o",
+        &p("merged.exr"),
+    ]));
+    let read =
+        |n: &str| prism_integrator::decode_exr(&std::fs::read(dir.join(n)).unwrap()).unwrap();
+    let (merged, full) = (read("merged.exr"), read("full.exr"));
+    let layers = [
+        "albedo.R",
+        "normal.Y",
+        "depth.Z",
+        "position.X",
+        "material_id.ID",
+        "variance.G",
+    ];
+    for layer in layers {
+        let find = |image: &prism_integrator::ChannelImage| {
+            image
+                .channels
+                .iter()
+                .find(|(n, _)| n == layer)
+                .map(|(_, v)| v.clone())
+                .unwrap()
+        };
+        for (a, b) in find(&merged).iter().zip(find(&full)) {
+            assert!(
+                (a - b).abs() <= 1e-5 * b.abs().max(1.0),
+                "{layer}: {a} vs {b}"
+            );
+        }
+    }
+}
