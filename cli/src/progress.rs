@@ -1,7 +1,8 @@
 //! A render's progress on stderr: a bar on a terminal (indicatif: samples per pixel done,
-//! rays per second, the time left, and the image's expected relative MSE where the film
-//! records its variance), plain lines every ten seconds elsewhere (logs, CI), nothing with
-//! `--quiet`.
+//! rays per second, the time left, and where the film records its variance the relative
+//! MSE that predicts: an upper bound, since the variance is that of independent samples
+//! and prism's are scrambled Sobol points), plain lines every ten seconds elsewhere (logs,
+//! CI), nothing with `--quiet`.
 
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
@@ -55,7 +56,7 @@ impl Progress {
     ) {
         let error = film
             .estimated_relmse()
-            .map(|e| format!("  relMSE ~{e:.2e}"))
+            .map(|e| format!("  relMSE <= {e:.1e}"))
             .unwrap_or_default();
         let rays_rate = rays as f64 / elapsed.max(1e-9) / 1e6;
         let paths_rate = paths as f64 / elapsed.max(1e-9) / 1e6;
