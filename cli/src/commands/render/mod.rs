@@ -332,10 +332,6 @@ pub fn render(
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
     let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
     check_outputs(&args.outputs)?;
-    if args.denoise {
-        // Before the render, not after it: a missing library is said at once.
-        crate::denoise::find_library()?;
-    }
     let samples_only = settings::samples_only(args)?;
     let started = Instant::now();
     let (scene, camera) = scene::prepare(args, loaded)?;
@@ -351,6 +347,10 @@ pub fn render(
         },
         camera,
     )?;
+    if args.denoise {
+        // Before the render, not after it: a missing library is said at once.
+        crate::denoise::find_library()?;
+    }
     let white_balance = args
         .white_balance
         .as_deref()

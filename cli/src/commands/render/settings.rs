@@ -37,6 +37,9 @@ pub(super) fn samples_only(args: &RenderArgs) -> Result<Option<Range<u64>>, Stri
             out.display()
         ));
     }
+    if samples_only.is_some() && args.denoise {
+        return Err("--denoise: --sample-range writes accumulation files; render them with --aov albedo,normal, merge them, then run prism denoise on the image".into());
+    }
     Ok(samples_only)
 }
 
@@ -46,6 +49,12 @@ pub(super) fn render_settings(
     image: Image,
     camera: Option<CameraResponse>,
 ) -> Result<RenderSettings, String> {
+    if camera.is_some() && args.denoise {
+        return Err(
+            "--denoise works on colour images; with a camera response the channels are the camera's own"
+                .into(),
+        );
+    }
     if camera.is_some() && args.white_balance.is_some() {
         return Err(
             "--white-balance applies to XYZ; with a camera response the channels are the camera's own"
