@@ -19,6 +19,7 @@ pub mod stdout;
 pub mod commands;
 pub mod cpu;
 pub mod denoise;
+pub mod image_args;
 mod memory;
 pub mod output;
 mod progress;

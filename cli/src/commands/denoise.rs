@@ -4,11 +4,11 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use prism_integrator::{DisplaySettings, decode_exr, encode_png_rgb, replace_rgb_exr};
-use prism_spectrum::color::{RgbSpaceId, ToneMap};
+use prism_integrator::{decode_exr, encode_png_rgb, replace_rgb_exr};
 
 use super::render::check_outputs;
 use crate::denoise::Denoiser;
+use crate::image_args::ImageArgs;
 use crate::output::{read_file, write_atomically};
 
 #[derive(Debug, Args)]
@@ -22,21 +22,12 @@ pub struct DenoiseArgs {
     /// Output file(s), .exr or .png; repeat for several.
     #[arg(short = 'o', long = "output", required = true)]
     pub outputs: Vec<PathBuf>,
-    /// The colour space the input was rendered in (prism render --space): the denoiser
-    /// converts from it, and PNG outputs use its transfer function.
-    #[arg(long, default_value = "srgb")]
-    pub space: String,
-    /// PNG exposure in stops.
-    #[arg(long, default_value_t = 0.0)]
-    pub exposure: f64,
-    /// PNG tone mapping: neutral, aces, reinhard[:WHITE] or clamp.
-    #[arg(long, default_value = "neutral")]
-    pub tonemap: String,
+    #[command(flatten)]
+    pub image: ImageArgs,
 }
 
 pub fn run(args: &DenoiseArgs) -> Result<(), String> {
-    let space = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
-    let tone_map = ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?;
+    let (space, display) = args.image.parse()?;
     check_outputs(&args.outputs)?;
     let name = args.input.display().to_string();
     let bytes = read_file(&args.input)?;
@@ -66,9 +57,6 @@ pub fn run(args: &DenoiseArgs) -> Result<(), String> {
             replace_rgb_exr(&bytes, &denoised).map_err(|e| e.to_string())?
         } else {
             let alpha = channel("A").cloned().unwrap_or_else(|_| vec![1.0; w * h]);
-            let display = DisplaySettings::default()
-                .exposure(args.exposure)
-                .tone_map(tone_map);
             encode_png_rgb(
                 w as u32,
                 h as u32,

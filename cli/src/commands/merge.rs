@@ -3,12 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use prism_integrator::{
-    DisplaySettings, decode_accumulation, encode_accumulation, merge_accumulations,
-};
-use prism_spectrum::color::{RgbSpaceId, ToneMap};
+use prism_integrator::{decode_accumulation, encode_accumulation, merge_accumulations};
 
 use super::render::{check_outputs, write_images};
+use crate::image_args::ImageArgs;
 use crate::output::write_atomically;
 
 #[derive(Debug, Args)]
@@ -25,22 +23,12 @@ pub struct MergeArgs {
     /// Write the merged accumulation file instead of an image (.exr only), to merge further.
     #[arg(long)]
     pub accumulation: bool,
-    /// Output colour space of EXR and PNG files.
-    #[arg(long, default_value = "srgb")]
-    pub space: String,
-    /// PNG exposure in stops.
-    #[arg(long, default_value_t = 0.0)]
-    pub exposure: f64,
-    /// PNG tone mapping: neutral (Khronos PBR Neutral), aces, reinhard[:WHITE] or clamp.
-    #[arg(long, default_value = "neutral")]
-    pub tonemap: String,
-    /// PNG outputs carry the alpha channel (for parts rendered with --transparent).
-    #[arg(long)]
-    pub transparent: bool,
+    #[command(flatten)]
+    pub image: ImageArgs,
 }
 
 pub fn run(args: &MergeArgs) -> Result<(), String> {
-    let space = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
+    let (space, display) = args.image.parse()?;
     check_outputs(&args.outputs)?;
     let parts = args
         .parts
@@ -69,9 +57,5 @@ pub fn run(args: &MergeArgs) -> Result<(), String> {
         "samples".to_string(),
         format!("{}..{}", merged.samples.start, merged.samples.end),
     )];
-    let display = DisplaySettings::default()
-        .exposure(args.exposure)
-        .tone_map(ToneMap::from_name(&args.tonemap).map_err(|e| e.to_string())?)
-        .alpha(args.transparent);
     write_images(&merged.film, &args.outputs, space, display, facts, None)
 }
