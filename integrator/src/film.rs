@@ -87,6 +87,7 @@ impl Film {
     }
 
     /// This film with `aovs` as its AOV sums (read from an accumulation file).
+    #[cfg(feature = "exr")]
     pub(crate) fn with_aov_sums(mut self, aovs: AovSums) -> Self {
         self.aovs = aovs;
         self
@@ -258,8 +259,6 @@ impl Film {
         })
     }
 
-    /// A black film with this one's size and channels (bands, energy, raw or XYZ).
-    #[cfg(feature = "exr")]
     /// Every sum and count back to zero, the buffers kept.
     pub(crate) fn clear(&mut self) {
         self.sums.fill([0.0; 3]);
@@ -278,6 +277,8 @@ impl Film {
         self.aovs.clear();
     }
 
+    /// A black film with this one's size and channels (bands, energy, raw or XYZ).
+    #[cfg(feature = "exr")]
     pub(crate) fn black_like(&self) -> Self {
         Self {
             spectral: self

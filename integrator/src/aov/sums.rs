@@ -158,6 +158,7 @@ impl AovSums {
     }
 
     /// Named columns of every sum (for accumulation files), in a fixed order.
+    #[cfg(feature = "exr")]
     pub(crate) fn columns(&self) -> Vec<(String, Vec<f64>)> {
         let mut out = Vec::new();
         let mut put = |name: &str, values: Vec<f64>| {
@@ -198,6 +199,7 @@ impl AovSums {
 
     /// Sums for `set` over `pixels` pixels read back from [`AovSums::columns`]' columns
     /// (`column` finds one by name); an error names a missing or short column.
+    #[cfg(feature = "exr")]
     pub(crate) fn from_columns(
         set: Aovs,
         pixels: usize,
