@@ -17,7 +17,8 @@ import numpy as np
 import mitsuba as mi
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-KINDS = ("specular", "glossy", "caustic")
+KINDS = ("specular", "glossy", "caustic", "textured")
+SKY = os.path.join(ROOT, "scenes", "sky.hdr")
 SHARED_NODES = {"light", "floor", "ceiling", "back", "green-wall", "red-wall", "camera"}
 
 
@@ -31,14 +32,16 @@ def accessor(doc, blobs, index, dtype, width):
         np.frombuffer(blob, dtype=dtype, count=count, offset=start)
 
 
-def ply(path, positions, normals, indices):
+def ply(path, positions, normals, indices, uvs=None):
     faces = indices.reshape(-1, 3)
+    columns = [positions, normals] + ([uvs] if uvs is not None else [])
     with open(path, "wb") as f:
         f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(positions)}\n"
                  "property float x\nproperty float y\nproperty float z\n"
-                 "property float nx\nproperty float ny\nproperty float nz\n"
+                 "property float nx\nproperty float ny\nproperty float nz\n" +
+                 ("property float u\nproperty float v\n" if uvs is not None else "") +
                  f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n").encode())
-        f.write(np.hstack([positions, normals]).astype("<f4").tobytes())
+        f.write(np.hstack(columns).astype("<f4").tobytes())
         for a, b, c in faces:
             f.write(struct.pack("<B3i", 3, int(a), int(b), int(c)))
 
@@ -62,9 +65,9 @@ def bsdf(desc):
     raise SystemExit(f"no Mitsuba BSDF for {desc['type']}")
 
 
-def spheres(kind, tmp):
-    """Mitsuba shapes for the glTF file's meshes that are not the box's."""
-    with open(os.path.join(ROOT, "scenes", f"cornell-{kind}.gltf")) as f:
+def load_gltf(name):
+    """A glTF file under scenes/ and its buffers' bytes."""
+    with open(os.path.join(ROOT, "scenes", name)) as f:
         doc = json.load(f)
     blobs = []
     for b in doc["buffers"]:
@@ -74,6 +77,12 @@ def spheres(kind, tmp):
         else:
             with open(os.path.join(ROOT, "scenes", uri), "rb") as f:
                 blobs.append(f.read())
+    return doc, blobs
+
+
+def spheres(kind, tmp):
+    """Mitsuba shapes for the glTF file's meshes that are not the box's."""
+    doc, blobs = load_gltf(f"cornell-{kind}.gltf")
     shapes = {}
     for node in (doc["nodes"][i] for i in doc["scenes"][0]["nodes"]):
         if node["name"] in SHARED_NODES or "mesh" not in node:
@@ -90,6 +99,61 @@ def spheres(kind, tmp):
     return shapes
 
 
+def rotate(q, v):
+    """The vector v turned by the unit quaternion q = (x, y, z, w)."""
+    u, w = np.array(q[:3]), q[3]
+    v = np.array(v, dtype=float)
+    return 2 * np.dot(u, v) * u + (w * w - np.dot(u, u)) * v + 2 * w * np.cross(u, v)
+
+
+def textured_sky(tmp, width):
+    """scenes/textured-sky.gltf as a whole Mitsuba scene: its meshes (with texture
+    coordinates), Lambertian materials with their sRGB base colour textures, the gold
+    conductor, the camera, and scenes/sky.hdr turned by the 90 degrees that separate
+    Mitsuba's envmap mapping from prism's (benches/peer/environment.py)."""
+    doc, blobs = load_gltf("textured-sky.gltf")
+
+    def texture(index):
+        view = doc["bufferViews"][doc["images"][doc["textures"][index]["source"]]["bufferView"]]
+        path = os.path.join(tmp, f"texture-{index}.png")
+        with open(path, "wb") as f:
+            f.write(blobs[view["buffer"]][view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]])
+        return {"type": "bitmap", "filename": path, "filter_type": "bilinear", "wrap_mode": "repeat"}
+
+    def material(m):
+        if "PRISM_spectral" in m.get("extensions", {}):
+            return bsdf(m["extensions"]["PRISM_spectral"])
+        pbr = m["pbrMetallicRoughness"]
+        assert pbr.get("metallicFactor") == 0 and pbr.get("roughnessFactor", 1) == 1, m["name"]
+        return {"type": "diffuse", "reflectance": texture(pbr["baseColorTexture"]["index"])}
+
+    desc = {"type": "scene", "sky": {"type": "envmap", "filename": SKY,
+                                     "to_world": mi.ScalarTransform4f().rotate([0, 1, 0], 90)}}
+    for node in (doc["nodes"][i] for i in doc["scenes"][0]["nodes"]):
+        if "camera" in node:
+            q, eye = node["rotation"], np.array(node["translation"], dtype=float)
+            yfov = doc["cameras"][node["camera"]]["perspective"]["yfov"]
+            desc["sensor"] = {
+                "type": "perspective", "fov": float(np.degrees(yfov)), "fov_axis": "y",
+                "to_world": mi.ScalarTransform4f().look_at(origin=eye.tolist(), target=(eye + rotate(q, [0, 0, -1])).tolist(),
+                                                           up=rotate(q, [0, 1, 0]).tolist()),
+                "film": {"type": "hdrfilm", "width": width, "height": width, "rfilter": {"type": "box"}},
+                "sampler": {"type": "independent"}}
+            continue
+        primitive = doc["meshes"][node["mesh"]]["primitives"][0]
+        attributes = primitive["attributes"]
+        path = os.path.join(tmp, node["name"] + ".ply")
+        positions = accessor(doc, blobs, attributes["POSITION"], "<f4", 3)
+        indices = np.arange(len(positions))
+        if "indices" in primitive:
+            itype = {5123: "<u2", 5125: "<u4"}[doc["accessors"][primitive["indices"]]["componentType"]]
+            indices = accessor(doc, blobs, primitive["indices"], itype, 1)
+        ply(path, positions, accessor(doc, blobs, attributes["NORMAL"], "<f4", 3), indices,
+            accessor(doc, blobs, attributes["TEXCOORD_0"], "<f4", 2) if "TEXCOORD_0" in attributes else None)
+        desc[node["name"]] = {"type": "ply", "filename": path, "bsdf": material(doc["materials"][primitive["material"]])}
+    return desc
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("variant"); ap.add_argument("scene", choices=KINDS); ap.add_argument("spp", type=int)
@@ -98,13 +162,17 @@ def main():
     a = ap.parse_args()
     mi.set_variant(a.variant)
     import drjit as dr
-    desc = mi.cornell_box()
-    del desc["small-box"], desc["large-box"]
-    desc["integrator"]["max_depth"] = a.depth
-    desc["sensor"]["film"]["rfilter"] = {"type": "box"}
-    desc["sensor"]["film"]["width"] = desc["sensor"]["film"]["height"] = a.width
     with tempfile.TemporaryDirectory() as tmp:
-        desc.update(spheres(a.scene, tmp))
+        if a.scene == "textured":
+            desc = textured_sky(tmp, a.width)
+            desc["integrator"] = {"type": "path", "max_depth": a.depth}
+        else:
+            desc = mi.cornell_box()
+            del desc["small-box"], desc["large-box"]
+            desc["integrator"]["max_depth"] = a.depth
+            desc["sensor"]["film"]["rfilter"] = {"type": "box"}
+            desc["sensor"]["film"]["width"] = desc["sensor"]["film"]["height"] = a.width
+            desc.update(spheres(a.scene, tmp))
         scene = mi.load_dict(desc)
     img = mi.render(scene, spp=1); dr.eval(img)  # warm-up (JIT compilation for the LLVM variant)
     t = time.time(); img = mi.render(scene, spp=a.spp, seed=a.seed); dr.eval(img); dr.sync_thread(); dt = time.time() - t

@@ -9,8 +9,9 @@ SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "sha
 
 # prism's scene file for each comparison scene, under scenes/.
 SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf", "specular": "cornell-specular.gltf",
-          "glossy": "cornell-glossy.gltf", "caustic": "cornell-caustic.gltf", "media": "cornell-medium.gltf"}
-KINDS = ("specular", "glossy", "caustic")
+          "glossy": "cornell-glossy.gltf", "caustic": "cornell-caustic.gltf", "media": "cornell-medium.gltf",
+          "textured": "textured-sky.gltf"}
+KINDS = ("specular", "glossy", "caustic", "textured")
 
 
 def script(scene, narrow=False):

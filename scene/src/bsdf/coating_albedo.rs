@@ -53,7 +53,7 @@ impl CoatingAlbedo {
                 let mu = ((i as f32 + 0.5) / MU_STEPS as f32).max(1e-3);
                 let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
                 // Weight of VNDF sampling: F G2 / G1(wo); the mirror's with F = 1.
-                let [e, e1] = visible_normal_quadrature(&ggx, wo, |wm, wi| {
+                let [e, e1] = visible_normal_quadrature(&ggx, wo, SIDE, |wm, wi| {
                     let kept = ggx.g(wo, wi) / ggx.g1(wo);
                     [fresnel_dielectric(wo.dot(wm), eta) * kept, kept]
                 });
@@ -129,22 +129,23 @@ fn averages(table: &[f32]) -> Vec<f32> {
 
 /// The integral over the visible normals of `wo` of `weight(wm, wi)` (wi: `wo` reflected
 /// about wm; 0 where it points below the surface), per component, on a grid of the
-/// sampler's unit square whose cells the horizon crosses are refined.
-fn visible_normal_quadrature(
+/// sampler's unit square (`side` cells a side) whose cells the horizon crosses are refined.
+pub(super) fn visible_normal_quadrature(
     ggx: &Ggx,
     wo: Vec3,
+    side: usize,
     weight: impl Fn(Vec3, Vec3) -> [f32; 2],
 ) -> [f32; 2] {
     let at = |u: Vec2| {
         let wm = ggx.sample_visible_normal(wo, u);
         (wm, 2.0 * wo.dot(wm) * wm - wo)
     };
-    let corner = |a: usize, b: usize| at(Vec2::new(a as f32, b as f32) / SIDE as f32).1.z > 0.0;
-    let corners: Vec<bool> = (0..=SIDE)
-        .flat_map(|a| (0..=SIDE).map(move |b| (a, b)))
+    let corner = |a: usize, b: usize| at(Vec2::new(a as f32, b as f32) / side as f32).1.z > 0.0;
+    let corners: Vec<bool> = (0..=side)
+        .flat_map(|a| (0..=side).map(move |b| (a, b)))
         .map(|(a, b)| corner(a, b))
         .collect();
-    let above = |a: usize, b: usize| corners[a * (SIDE + 1) + b];
+    let above = |a: usize, b: usize| corners[a * (side + 1) + b];
     let mut sum = [0.0f32; 2];
     let mut add = |u: Vec2, scale: f32| {
         let (wm, wi) = at(u);
@@ -154,9 +155,9 @@ fn visible_normal_quadrature(
             sum[1] += w[1] * scale;
         }
     };
-    let cell = 1.0 / SIDE as f32;
-    for a in 0..SIDE {
-        for b in 0..SIDE {
+    let cell = 1.0 / side as f32;
+    for a in 0..side {
+        for b in 0..side {
             let edges = [
                 above(a, b),
                 above(a + 1, b),
@@ -177,6 +178,6 @@ fn visible_normal_quadrature(
             }
         }
     }
-    let cells = (SIDE * SIDE) as f32;
+    let cells = (side * side) as f32;
     sum.map(|s| s / cells)
 }

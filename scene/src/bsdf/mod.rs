@@ -14,6 +14,7 @@ mod fluorescent;
 mod layered;
 mod metallic_roughness;
 mod microfacet;
+mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
 mod sheen;
@@ -36,6 +37,7 @@ pub use metallic_roughness::{
     DiffuseTransmission, Iridescence, MetallicRoughness, Specular, SpecularParts,
 };
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use plastic::{Plastic, PlasticCoating};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use sheen::{MIN_SHEEN_ROUGHNESS, Sheen};

@@ -20,6 +20,9 @@
 //!   the sheen leave it; the sheen's lobe (a dusty fibre layer) depolarizes. The opaque
 //!   part of a transmissive material depolarizes; a transmissive material's glass sampled
 //!   as a smooth delta is the smooth dielectric's.
+//! - Plastic: its coating's lobe (or a smooth coating's mirror) by Fresnel at the coating's
+//!   index, the substrate depolarizing (what leaves it was scattered diffusely), as
+//!   Mitsuba 3's polarized `plastic` does for the smooth case.
 
 use glam::Vec3;
 use num_complex::Complex64;
@@ -27,7 +30,8 @@ use prism_spectrum::SampledSpectrum;
 
 use super::{FresnelAmplitudes, Interaction, Mueller, fresnel_amplitudes, s_axis};
 use crate::bsdf::{
-    CLEARCOAT_IOR, Glass, Layered, MetallicRoughness, RoughConductor, RoughDielectric, Sheet,
+    CLEARCOAT_IOR, Glass, Layered, MetallicRoughness, Plastic, RoughConductor, RoughDielectric,
+    Sheet,
     SheetElement, conductor_index_from_reflectance,
 };
 use crate::world::Bsdf;
@@ -50,6 +54,7 @@ pub fn interactions<const N: usize>(
         Bsdf::Sheet(s) => sheet(s, wo, value),
         Bsdf::MetallicRoughness(b) => metallic_roughness(b, wo, wi, value),
         Bsdf::Layered(b) => layered(b, wo, wi, value),
+        Bsdf::Plastic(b) => plastic(b, wo, wi, value, delta),
         Bsdf::Transmissive(t) if delta => match &t.glass {
             Glass::Thick(d) => dielectric(d, wo, wi, value),
             Glass::Thin(_) => depolarizing(wo, wi, value),
@@ -66,7 +71,8 @@ pub fn polarizes<const N: usize>(bsdf: &Bsdf<'_, N>, delta: bool) -> bool {
         | Bsdf::Conductor(_)
         | Bsdf::Sheet(_)
         | Bsdf::MetallicRoughness(_)
-        | Bsdf::Layered(_) => true,
+        | Bsdf::Layered(_)
+        | Bsdf::Plastic(_) => true,
         Bsdf::Transmissive(t) => delta && matches!(t.glass, Glass::Thick(_)),
         _ => false,
     }
@@ -212,6 +218,42 @@ fn metallic_roughness<const N: usize>(
         };
         let diffuse = (f[lane] - parts.coating[lane] - parts.metal[lane]).max(0.0);
         let sum = coating.mueller.matrix() + metal + Mueller::depolarizer(diffuse).matrix();
+        Interaction {
+            mueller: Mueller::from_matrix(sum * (value[lane] / f[lane])),
+            ..coating
+        }
+    })
+}
+
+/// A plastic: per lane, the coating's Fresnel matrix carrying its share of f (a sampled
+/// smooth coating's mirror carries all of `value`) and a depolarizer the substrate's, all
+/// scaled by `value / f`.
+fn plastic<const N: usize>(
+    b: &Plastic<'_, N>,
+    wo: Vec3,
+    wi: Vec3,
+    value: &SampledSpectrum<N>,
+    delta: bool,
+) -> [Interaction; N] {
+    let eta = Complex64::new(f64::from(b.eta()), 0.0);
+    if delta {
+        let amplitudes = fresnel_amplitudes(f64::from(wi.z.abs()), eta);
+        return std::array::from_fn(|lane| {
+            Interaction::fresnel(wi, wo, Vec3::Z, &amplitudes, value[lane])
+        });
+    }
+    let Some((m, specular)) = b.specular_part(wo, wi) else {
+        return depolarizing(wo, wi, value);
+    };
+    let f = b.f(wo, wi);
+    let amplitudes = fresnel_amplitudes(f64::from(wi.dot(m).abs()), eta);
+    std::array::from_fn(|lane| {
+        if !(f[lane] > 0.0 && value[lane].is_finite()) {
+            return Interaction::depolarizing(wi, wo, 0.0);
+        }
+        let coating = Interaction::fresnel(wi, wo, m, &amplitudes, specular);
+        let substrate = Mueller::depolarizer((f[lane] - specular).max(0.0));
+        let sum = coating.mueller.matrix() + substrate.matrix();
         Interaction {
             mueller: Mueller::from_matrix(sum * (value[lane] / f[lane])),
             ..coating

@@ -12,7 +12,11 @@ use crate::world::{Material, SceneSpectrum};
 
 /// The material types a description may give.
 pub const MATERIAL_TYPES: &str =
-    "diffuse, dielectric, conductor, fluorescent, polarizer, retarder, interface";
+    "diffuse, plastic, dielectric, conductor, fluorescent, polarizer, retarder, interface";
+
+/// A plastic coating's index when the description gives none: polypropylene's, as in
+/// Mitsuba.
+pub const PLASTIC_IOR: f64 = 1.49;
 
 /// The default range and bin width of fluorescence matrices: from the near UV that
 /// blacklights emit to the end of the visible.
@@ -140,6 +144,37 @@ fn surface_and_emission(
             only_keys(map, &["type", "emission", "reflectance"])?;
             Material::Diffuse {
                 reflectance: field("reflectance", Role::Fraction)?,
+            }
+        }
+        Some("plastic") => {
+            only_keys(
+                map,
+                &["type", "emission", "reflectance", "ior", "roughness", "nonlinear"],
+            )?;
+            let eta = match map.get("ior") {
+                None => PLASTIC_IOR,
+                Some(n) => {
+                    let n = number(n, "ior").map_err(|e| {
+                        format!("{e} (a plastic's coating has one index for every wavelength)")
+                    })?;
+                    if !(n > 1.0 && n <= 4.0) {
+                        return Err(format!("ior {n} is not in (1, 4]"));
+                    }
+                    n
+                }
+            };
+            let nonlinear = match map.get("nonlinear") {
+                None => false,
+                Some(v) => v.as_bool().ok_or("nonlinear must be true or false")?,
+            };
+            let roughness = roughness()?;
+            Material::Plastic {
+                reflectance: field("reflectance", Role::Fraction)?,
+                nonlinear,
+                coating: Arc::new(crate::bsdf::PlasticCoating::new(
+                    eta as f32,
+                    roughness * roughness,
+                )),
             }
         }
         Some("dielectric") => {

@@ -8,8 +8,8 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::{Layers, RgbTexture, SceneSpectrum, SurfaceFrame, TexCoords};
 use crate::bsdf::{
-    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, RoughConductor,
-    RoughDielectric, Sheet, SheetElement, Transmissive, TransportMode,
+    BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, Plastic, PlasticCoating,
+    RoughConductor, RoughDielectric, Sheet, SheetElement, Transmissive, TransportMode,
 };
 
 /// A surface's material, with spectral parameters not yet sampled.
@@ -61,6 +61,17 @@ pub enum Material {
         k: SceneSpectrum,
         /// Perceptual roughness; alpha = roughness^2.
         roughness: f32,
+    },
+    /// A Lambertian substrate under a smooth or rough dielectric coating, as Mitsuba's
+    /// `plastic` and `roughplastic` ([`Plastic`]).
+    Plastic {
+        /// The substrate's reflectance in [0, 1].
+        reflectance: SceneSpectrum,
+        /// Whether the substrate's inner bounces darken its colour (Mitsuba's
+        /// `nonlinear`); by default the colour is kept.
+        nonlinear: bool,
+        /// The coating: its index, roughness and transmittance table.
+        coating: Arc<PlasticCoating>,
     },
     /// A Lambertian surface that re-radiates (fluorescence): light arriving at one
     /// wavelength leaves at another. The elastic part (`reflectance`, light leaving at the
@@ -189,9 +200,9 @@ impl Material {
     pub fn textured(&self) -> bool {
         let textured = |s: &SceneSpectrum| matches!(s, SceneSpectrum::Texture(_));
         match self {
-            Material::Diffuse { reflectance } | Material::Fluorescent { reflectance, .. } => {
-                textured(reflectance)
-            }
+            Material::Diffuse { reflectance }
+            | Material::Fluorescent { reflectance, .. }
+            | Material::Plastic { reflectance, .. } => textured(reflectance),
             Material::MetallicRoughness {
                 base,
                 texture,
@@ -315,6 +326,11 @@ impl Material {
         };
         match self {
             Material::Diffuse { reflectance } => Bsdf::Diffuse(Diffuse::new(base(reflectance))),
+            Material::Plastic {
+                reflectance,
+                nonlinear,
+                coating,
+            } => Bsdf::Plastic(Plastic::new(base(reflectance), coating, *nonlinear)),
             Material::MetallicRoughness {
                 base: base_colour,
                 metallic,
@@ -425,6 +441,8 @@ pub enum Bsdf<'a, const N: usize> {
     Dielectric(RoughDielectric<N>),
     /// Smooth or rough conductor.
     Conductor(RoughConductor<N>),
+    /// A diffuse substrate under a dielectric coating.
+    Plastic(Plastic<'a, N>),
     /// A polarizing filter or a wave plate.
     Sheet(Sheet<N>),
 }
@@ -450,6 +468,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.f(wo, wi),
             Bsdf::Dielectric(b) => b.f(wo, wi),
             Bsdf::Conductor(b) => b.f(wo, wi),
+            Bsdf::Plastic(b) => b.f(wo, wi),
             Bsdf::Sheet(_) => SampledSpectrum::splat(0.0),
         }
     }
@@ -472,6 +491,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
+            Bsdf::Plastic(b) => b.pdf(wo, wi),
             Bsdf::Sheet(_) => 0.0,
         }
     }
@@ -486,6 +506,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.sample(wo, uc, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
+            Bsdf::Plastic(b) => b.sample(wo, uc, u),
             Bsdf::Sheet(b) => b.sample(wo),
         }
     }
