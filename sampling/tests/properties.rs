@@ -73,6 +73,19 @@ proptest! {
         }
     }
 
+    /// The guide table picks the bin a search of the whole CDF picks, for any weights
+    /// (runs of empty bins included) and any u, boundaries of the guide's intervals too.
+    #[test]
+    fn the_guide_table_picks_the_searched_bin(values in prop::collection::vec(weight(), 1..300), u in unit(), j in 0..300usize, nudge in -2i64..=2) {
+        if let Ok(d) = PiecewiseConstant1D::new(&values, 0.0, 1.0) {
+            prop_assert_eq!(d.sample(u).bin, d.bin_by_search(u));
+            // A guide boundary j / n, moved by a few units in the last place.
+            let at = (j % values.len()) as f64 / values.len() as f64;
+            let at = f64::from_bits((at.to_bits() as i64 + nudge).max(0) as u64);
+            prop_assert_eq!(d.sample(at).bin, d.bin_by_search(at));
+        }
+    }
+
     #[test]
     fn one_bin_is_uniform(v in 1e-38..1e30f64, u in unit()) {
         let d = PiecewiseConstant1D::new(&[v], 2.0, 4.0).unwrap();
