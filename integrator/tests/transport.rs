@@ -444,6 +444,43 @@ fn dispersive_glass_furnace_returns_the_environment() {
     }
 }
 
+/// White plastics vanish in the furnace: a smooth coating (its mirror a delta, sampled
+/// with the substrate's lobe) and a rough one, nonlinear, side by side and lighting each
+/// other. The coatings' tables are exact to a fraction of a percent.
+#[test]
+fn white_plastic_furnace_returns_the_environment() {
+    let shift = |dx: f32| move |t: [Vec3; 3]| t.map(|v| v * 0.5 + Vec3::new(dx, 0.0, 0.0));
+    let smooth: Vec<[Vec3; 3]> = icosphere(2).into_iter().map(shift(-0.55)).collect();
+    let rough: Vec<[Vec3; 3]> = icosphere(2).into_iter().map(shift(0.55)).collect();
+    let mut triangle_material = vec![0; smooth.len()];
+    triangle_material.extend(vec![1; rough.len()]);
+    let plastic = |roughness: f32, nonlinear: bool| Material::Plastic {
+        reflectance: SceneSpectrum::Constant(1.0),
+        nonlinear,
+        coating: std::sync::Arc::new(prism_scene::bsdf::PlasticCoating::new(
+            1.49,
+            roughness * roughness,
+        )),
+    };
+    let scene = furnace(
+        [smooth, rough].concat(),
+        triangle_material,
+        vec![plastic(0.0, false), plastic(0.55, true)],
+        1.1,
+    );
+    let (film, _) = render(&scene, &settings(24, 256, 8, LambdaSampler::Visible)).unwrap();
+    let expected = constant_xyz(1.0);
+    for k in 0..3 {
+        let (mean, error) = mean_and_error(&film, k);
+        let tolerance = 5.0 * error + 1e-2 * expected[k];
+        assert!(
+            (mean - expected[k]).abs() < tolerance,
+            "channel {k}: {mean} vs {} (+-{tolerance})",
+            expected[k]
+        );
+    }
+}
+
 /// Russian roulette reads a path's throughput without the 1 / eta^2 that refraction gives
 /// radiance. Three clear glass spheres of index 1.5 in a row in the furnace: a path through
 /// them crosses six interfaces, and each that escapes returns the environment's radiance

@@ -361,7 +361,20 @@ fn bad_descriptions_are_errors_naming_the_problem() {
             json!({"type": "diffuse", "reflectnce": 0.5}),
             "unknown key 'reflectnce'",
         ),
-        (json!({"type": "glossy"}), "diffuse, dielectric"),
+        (json!({"type": "glossy"}), "diffuse, plastic, dielectric"),
+        (
+            json!({"type": "plastic", "reflectance": 0.5, "ior": "glass:bk7"}),
+            "one index for every wavelength",
+        ),
+        (
+            json!({"type": "plastic", "reflectance": 0.5, "ior": 0.8}),
+            "ior 0.8 is not in (1, 4]",
+        ),
+        (
+            json!({"type": "plastic", "reflectance": 0.5, "nonlinear": 1}),
+            "nonlinear must be true or false",
+        ),
+        (json!({"type": "plastic"}), "needs 'reflectance'"),
         (json!({"type": "dielectric", "ior": 0.5}), "below 1"),
         (
             json!({"type": "dielectric", "ior": "glass:unobtainium"}),
