@@ -47,6 +47,8 @@ def ply(path, positions, normals, indices, uvs=None):
 
 
 def spectrum(table):
+    if isinstance(table, (int, float)):
+        return float(table)
     return {"type": "spectrum", "value": [(float(nm), float(v)) for nm, v in table]}
 
 
@@ -59,6 +61,12 @@ def bsdf(desc):
         return {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}
     if desc["type"] == "conductor":
         d = {"type": "roughconductor" if alpha else "conductor", "eta": spectrum(desc["eta"]), "k": spectrum(desc["k"])}
+        if alpha:
+            d.update(distribution="ggx", alpha=alpha)
+        return d
+    if desc["type"] == "plastic":
+        d = {"type": "roughplastic" if alpha else "plastic", "diffuse_reflectance": spectrum(desc["reflectance"]),
+             "int_ior": float(desc.get("ior", 1.49)), "ext_ior": 1.0, "nonlinear": bool(desc.get("nonlinear", False))}
         if alpha:
             d.update(distribution="ggx", alpha=alpha)
         return d
