@@ -9,7 +9,7 @@
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr   # Mitsuba's, 8192 spp
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --repeats 3   # median times
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --narrow-peers  # peers as without AVX-512
-  python3 benches/peer/compare.py box bunny specular glossy caustic media --width 128 \
+  python3 benches/peer/compare.py box bunny specular glossy caustic media textured --width 128 \
       --variants llvm_ad_spectral,scalar_spectral --peer-reference-dir refs --seeds 4   # the scene kinds
 
 Several scenes print one JSON object each and then a Markdown table of the time-to-equal-error
@@ -30,7 +30,8 @@ prism's: how much sooner prism reaches the same error.
 
 The Mitsuba side is ../shared/scenes/peer/mitsuba_peer.py (the same Cornell box and bunny box
 as the glTF files), for `specular`, `glossy` and `caustic` (the box with glass and metal
-spheres, scenes/tools/make_cornell_kinds.py) benches/peer/mitsuba_kinds.py, and for `media` (scenes/cornell-medium.gltf, the box's large block a
+spheres, scenes/tools/make_cornell_kinds.py) and `textured` (scenes/textured-sky.gltf,
+a textured asset under an HDR sky) benches/peer/mitsuba_kinds.py, and for `media` (scenes/cornell-medium.gltf, the box's large block a
 chromatic scattering medium) benches/peer/mitsuba_media.py with Mitsuba's `volpathmis`. Prints one JSON object. Region agreement: the image is cut into a
 GRID x GRID grid; for each region and channel the relative difference of the means
 is reported (max and mean over regions with enough signal).

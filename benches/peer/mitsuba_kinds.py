@@ -1,5 +1,9 @@
-"""The Cornell box's scene kinds (scenes/cornell-specular.gltf, -glossy, -caustic, written
-by scenes/tools/make_cornell_kinds.py) in Mitsuba 3, rendered by its `path` integrator:
+"""The scene kinds in Mitsuba 3, rendered by its `path` integrator. `textured`
+(scenes/textured-sky.gltf, written by scenes/tools/make_textured_sky.py) is read whole
+from its file: meshes with texture coordinates, Lambertian materials with their sRGB
+base colour textures, the gold conductor, the camera and scenes/sky.hdr. The Cornell box's
+kinds (scenes/cornell-specular.gltf, -glossy, -caustic, written by
+scenes/tools/make_cornell_kinds.py) are
 Mitsuba's built-in `cornell_box()` (whose walls, light and camera prism's glTF copies)
 without its two boxes, plus the glTF file's spheres, read from the file itself: the mesh
 (positions, smooth normals, triangles) as a PLY file, placed by the node's translation and

@@ -1,5 +1,5 @@
 """Which Mitsuba 3 script renders which comparison scene: the shared Cornell box and bunny box
-(../shared/scenes/peer/mitsuba_peer.py), the box's scene kinds (specular, glossy, caustic:
+(../shared/scenes/peer/mitsuba_peer.py), the scene kinds (specular, glossy, caustic, textured:
 mitsuba_kinds.py) and the repository's volume scene (mitsuba_media.py). Both take VARIANT SCENE SPP [--depth D] [--width W] [--seed S] [--out F].
 """
 import os
