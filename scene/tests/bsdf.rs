@@ -15,6 +15,8 @@ fn outgoing_directions() -> Vec<Vec3> {
     ]
 }
 
+#[path = "support/albedo.rs"]
+mod albedo;
 #[path = "support/chi_square.rs"]
 mod chi_square;
 use chi_square::{chi_square_directions, chi_square_p_value};
@@ -558,18 +560,7 @@ mod metallic_roughness {
     static COATING: LazyLock<CoatingAlbedo> = LazyLock::new(|| CoatingAlbedo::new(1.5));
 
     fn albedo(bsdf: &MetallicRoughness<'_, 4>, wo: Vec3) -> [f64; 4] {
-        let mut stream = IndependentStream::new(51, 0, 0);
-        let n = 200_000;
-        let mut sum = [0.0f64; 4];
-        for _ in 0..n {
-            let uc = stream.next_1d();
-            if let Some(s) = bsdf.sample(wo, uc, stream.next_2d()) {
-                for (k, a) in sum.iter_mut().enumerate() {
-                    *a += f64::from(s.f[k] * s.wi.z.abs() / s.pdf[k]);
-                }
-            }
-        }
-        sum.map(|a| a / f64::from(n))
+        super::albedo::albedo(|w, uc, u| bsdf.sample(w, uc, u), wo)
     }
 
     /// White furnace: a white dielectric base reflects everything (the coating's albedo
@@ -999,5 +990,56 @@ mod rough_dielectric_reciprocity {
             checked += 1;
         }
         assert!(checked > 1000, "{checked}");
+    }
+}
+
+/// Rough conductors and dielectrics give finite values for any direction: grazing, tiny
+/// and unnormalized ones included (a microfacet normal perpendicular to wo once gave the
+/// density 0 / 0).
+mod rough_totality {
+    use glam::{Vec2, Vec3};
+    use prism_scene::bsdf::{Ggx, RoughConductor, RoughDielectric, TransportMode};
+    use prism_spectrum::SampledSpectrum;
+    use proptest::prelude::*;
+
+    fn direction() -> impl Strategy<Value = Vec3> {
+        (
+            prop_oneof![Just(0.0f32), Just(1e-30), Just(-1.0), Just(1.0), -1.0..1.0f32],
+            prop_oneof![Just(0.0f32), -1.0..1.0f32],
+            prop_oneof![Just(0.0f32), Just(1e-30), Just(-1e-30), Just(1.0), -1.0..1.0f32],
+        )
+            .prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        #[test]
+        fn rough_lobes_stay_finite(
+            alpha in prop_oneof![Just(1e-6f32), Just(1.0), 0.0..1.0f32],
+            eta in prop_oneof![Just(1.000_01f32), Just(0.5), 1.0..3.0f32],
+            wo in direction(),
+            wi in direction(),
+            uc in 0.0..1.0f32,
+            u in (0.0..1.0f32, 0.0..1.0f32),
+        ) {
+            let metal = RoughConductor::<4> {
+                distribution: Ggx::new(alpha, alpha),
+                eta: SampledSpectrum::splat(0.2),
+                k: SampledSpectrum::splat(3.0),
+            };
+            let glass = RoughDielectric::<4> {
+                distribution: Ggx::new(alpha, alpha),
+                eta: [eta; 4],
+                mode: TransportMode::Radiance,
+            };
+            let f = metal.f(wo, wi);
+            prop_assert!((0..4).all(|k| f[k].is_finite()) && metal.pdf(wo, wi).is_finite());
+            let f = glass.f(wo, wi);
+            prop_assert!((0..4).all(|k| f[k].is_finite()), "f {f:?}");
+            prop_assert!(glass.pdf(wo, wi).is_finite(), "pdf {}", glass.pdf(wo, wi));
+            if let Some(s) = glass.sample(wo, uc, Vec2::new(u.0, u.1)) {
+                prop_assert!(s.wi.is_finite() && (0..4).all(|k| s.f[k].is_finite()));
+            }
+        }
     }
 }

@@ -3,31 +3,18 @@
 
 use glam::{Vec2, Vec3};
 use prism_sampling::stream::{IndependentStream, SampleStream};
-use prism_scene::bsdf::{BsdfSample, CoatingAlbedo, MetallicRoughness, Specular};
+use prism_scene::bsdf::{CoatingAlbedo, MetallicRoughness, Specular};
 use prism_spectrum::SampledSpectrum;
 use std::sync::LazyLock;
 
+#[path = "support/albedo.rs"]
+mod albedo;
 #[path = "support/chi_square.rs"]
 mod chi_square;
+use albedo::{albedo, split};
 use chi_square::chi_square_directions;
 
 static COATING: LazyLock<CoatingAlbedo> = LazyLock::new(|| CoatingAlbedo::new(1.5));
-
-/// The directional albedo from `wo` per lane, by sampling.
-fn albedo(sample: impl Fn(Vec3, f32, Vec2) -> Option<BsdfSample<4>>, wo: Vec3) -> [f64; 4] {
-    let mut stream = IndependentStream::new(61, 0, 0);
-    let n = 200_000;
-    let mut sum = [0.0f64; 4];
-    for _ in 0..n {
-        let uc = stream.next_1d();
-        if let Some(s) = sample(wo, uc, stream.next_2d()) {
-            for (k, a) in sum.iter_mut().enumerate() {
-                *a += f64::from(s.f[k] * s.wi.z.abs() / s.pdf[k]);
-            }
-        }
-    }
-    sum.map(|a| a / f64::from(n))
-}
 
 fn outgoing() -> [Vec3; 3] {
     [
@@ -35,14 +22,6 @@ fn outgoing() -> [Vec3; 3] {
         Vec3::new(0.6, 0.3, 0.74).normalize(),
         Vec3::new(0.95, 0.0, 0.1f32.sqrt()).normalize(),
     ]
-}
-
-/// Samples with one 2D point: the lobe choice from the low bits of `u.x`.
-fn split(u: Vec2) -> (f32, Vec2) {
-    (
-        (u.x * 4096.0).fract(),
-        Vec2::new((u.x * 4096.0).floor() / 4096.0, u.y),
-    )
 }
 
 fn reciprocal(f: impl Fn(Vec3, Vec3) -> SampledSpectrum<4>) {

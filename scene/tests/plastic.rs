@@ -9,8 +9,11 @@ use prism_scene::bsdf::{Plastic, PlasticCoating};
 use prism_spectrum::SampledSpectrum;
 use proptest::prelude::*;
 
+#[path = "support/albedo.rs"]
+mod albedo;
 #[path = "support/chi_square.rs"]
 mod chi_square;
+use albedo::{albedo, split};
 use chi_square::chi_square_directions;
 
 fn fixture() -> serde_json::Value {
@@ -78,22 +81,6 @@ fn a_rough_coating_lets_through_what_its_lobe_does_not_reflect() {
     }
 }
 
-/// The directional albedo from `wo` per lane, by sampling.
-fn albedo(bsdf: &Plastic<'_, 4>, wo: Vec3) -> [f64; 4] {
-    let mut stream = IndependentStream::new(71, 0, 0);
-    let n = 200_000;
-    let mut sum = [0.0f64; 4];
-    for _ in 0..n {
-        let uc = stream.next_1d();
-        if let Some(s) = bsdf.sample(wo, uc, stream.next_2d()) {
-            for (k, a) in sum.iter_mut().enumerate() {
-                *a += f64::from(s.f[k] * s.wi.z.abs() / s.pdf[k]);
-            }
-        }
-    }
-    sum.map(|a| a / f64::from(n))
-}
-
 fn outgoing() -> [Vec3; 4] {
     [
         Vec3::Z,
@@ -115,25 +102,17 @@ fn a_white_substrate_reflects_everything() {
                 let white = Plastic::new(SampledSpectrum([1.0; 4]), &coating, nonlinear);
                 let grey = Plastic::new(SampledSpectrum([0.5; 4]), &coating, nonlinear);
                 for wo in outgoing() {
-                    let a = albedo(&white, wo);
+                    let a = albedo(|w, uc, u| white.sample(w, uc, u), wo);
                     assert!(
                         (a[0] - 1.0).abs() < 0.012,
                         "alpha {alpha}, eta {eta}, nonlinear {nonlinear}, wo {wo}: {a:?}"
                     );
-                    let g = albedo(&grey, wo)[0];
+                    let g = albedo(|w, uc, u| grey.sample(w, uc, u), wo)[0];
                     assert!(g < a[0] && g > 0.0, "grey {g}");
                 }
             }
         }
     }
-}
-
-/// Split one 2D point into the lobe choice (low bits of x) and a direction sample.
-fn split(u: Vec2) -> (f32, Vec2) {
-    (
-        (u.x * 4096.0).fract(),
-        Vec2::new((u.x * 4096.0).floor() / 4096.0, u.y),
-    )
 }
 
 #[test]

@@ -206,7 +206,11 @@ impl<'a, const N: usize> Plastic<'a, N> {
         };
         let wm = if wm.z * wo.z < 0.0 { -wm } else { wm };
         let ggx = &self.coating.distribution;
-        diffuse + p * ggx.d_visible(wo, wm) / (4.0 * wo.dot(wm).abs())
+        let cos = wo.dot(wm).abs();
+        if cos == 0.0 {
+            return diffuse;
+        }
+        diffuse + p * ggx.d_visible(wo, wm) / (4.0 * cos)
     }
 
     /// The coating's lobe with probability [`Plastic::pdf`]'s share (`uc` chooses; a

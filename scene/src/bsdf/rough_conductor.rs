@@ -47,7 +47,11 @@ impl<const N: usize> RoughConductor<N> {
             return 0.0;
         };
         let wm = if wm.z * wo.z < 0.0 { -wm } else { wm };
-        self.distribution.d_visible(wo, wm) / (4.0 * wo.dot(wm).abs())
+        let cos = wo.dot(wm).abs();
+        if cos == 0.0 {
+            return 0.0;
+        }
+        self.distribution.d_visible(wo, wm) / (4.0 * cos)
     }
 
     /// Reflects `wo` about a visible normal; None if that lands below the horizon.

@@ -43,8 +43,19 @@ impl<const N: usize> RoughDielectric<N> {
         if wo.z > 0.0 { eta } else { 1.0 / eta }
     }
 
-    /// f(wo, wi) and the density of sampling `wi`, for one lane's index.
+    /// f(wo, wi) and the density of sampling `wi`, for one lane's index; (0, 0) where
+    /// directions so close to the surface that their products underflow would give
+    /// 0 / 0.
     fn evaluate_lane(&self, wo: Vec3, wi: Vec3, eta_lane: f32) -> (f32, f32) {
+        let (f, pdf) = self.evaluate_lane_unchecked(wo, wi, eta_lane);
+        if f.is_finite() && pdf.is_finite() {
+            (f, pdf)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
+    fn evaluate_lane_unchecked(&self, wo: Vec3, wi: Vec3, eta_lane: f32) -> (f32, f32) {
         let (cos_o, cos_i) = (wo.z, wi.z);
         if cos_o == 0.0 || cos_i == 0.0 {
             return (0.0, 0.0);
