@@ -26,7 +26,7 @@ mod transmissive;
 
 pub use clearcoat::{CLEARCOAT_IOR, Clearcoat, clearcoat_albedo};
 pub use coating_albedo::CoatingAlbedo;
-pub use conductor::{SmoothConductor, fresnel_conductor};
+pub use conductor::{SmoothConductor, fresnel_conductor, fresnel_conductor_lanes};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::{Diffuse, lambertian_pdf, lambertian_sample};
 pub use fluorescent::{

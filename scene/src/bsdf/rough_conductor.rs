@@ -3,7 +3,7 @@ use prism_sampling::distribution::positive_finite;
 use prism_spectrum::SampledSpectrum;
 
 use super::microfacet::Ggx;
-use super::{BsdfSample, SmoothConductor, fresnel_conductor, same_hemisphere};
+use super::{BsdfSample, SmoothConductor, fresnel_conductor_lanes, same_hemisphere};
 
 /// A rough conductor: GGX microfacets with complex Fresnel per lane, f = D F G / (4 cos_o
 /// cos_i) (Torrance-Sparrow), sampled by visible normals. Effectively smooth roughness
@@ -20,7 +20,7 @@ pub struct RoughConductor<const N: usize> {
 
 impl<const N: usize> RoughConductor<N> {
     fn fresnel(&self, cos: f32) -> SampledSpectrum<N> {
-        SampledSpectrum::from_fn(|i| fresnel_conductor(cos, self.eta[i], self.k[i]))
+        fresnel_conductor_lanes(cos, &self.eta, &self.k)
     }
 
     /// f(wo, wi) for directions on the same side (0 otherwise, and for smooth surfaces,
