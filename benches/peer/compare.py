@@ -105,6 +105,11 @@ def main():
     ap.add_argument("--peer-reference-dir",
                     help="a folder of Mitsuba 3 references, ref-SCENE-WIDTH.exr, each rendered first if missing")
     ap.add_argument("--peer-reference-spp", type=int, default=8192)
+    ap.add_argument("--prism-reference-dir",
+                    help="measure prism's error against its own converged render, DIR/prism-ref-SCENE-WIDTH.exr "
+                         "(rendered first at --peer-reference-spp, seed 999, if missing), the peers' against "
+                         "theirs: for materials the two renderers define differently (Mitsuba's roughplastic "
+                         "loses energy, prism's plastic does not); the two references' agreement is reported")
     ap.add_argument("--grid", type=int, default=8)
     ap.add_argument("--prism-args", default="", help="extra arguments for prism render")
     ap.add_argument("--repeats", type=int, default=1,
@@ -225,6 +230,18 @@ def compare(scene, a, peer_reference):
         result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
         # Fireflies make one seed's error a poor estimate: the mean over the seeds.
         errors = {name: float(np.mean([relmse(img, ref) for img in runs])) for name, runs in seeded.items()}
+        if a.prism_reference_dir:
+            own = os.path.join(a.prism_reference_dir, f"prism-ref-{scene}-{a.width}.exr")
+            if not os.path.exists(own):
+                own_cmd = [c for c in cmd if c != "--stats"]
+                own_cmd[own_cmd.index("--spp") + 1] = str(a.peer_reference_spp)
+                own_cmd[own_cmd.index(prism_exr)] = own
+                subprocess.run(own_cmd + ["--seed", "999", "-q"], check=True, capture_output=True)
+            own_ref = read_exr(own)
+            result["prism_reference"] = own
+            result["references_agree"] = agreement(own_ref, ref, a.grid)
+            result["against_reference"]["prism"] = agreement(images["prism"], own_ref, a.grid)
+            errors["prism"] = float(np.mean([relmse(img, own_ref) for img in seeded["prism"]]))
         if a.seeds > 1:
             result["seeds"] = a.seeds
         result["prism"]["relmse"] = errors["prism"]

@@ -2,13 +2,14 @@
 (scenes/textured-sky.gltf, written by scenes/tools/make_textured_sky.py) is read whole
 from its file: meshes with texture coordinates, Lambertian materials with their sRGB
 base colour textures, the gold conductor, the camera and scenes/sky.hdr. The Cornell box's
-kinds (scenes/cornell-specular.gltf, -glossy, -caustic, written by
+kinds (scenes/cornell-specular.gltf, -glossy, -caustic, -plastic, written by
 scenes/tools/make_cornell_kinds.py) are
 Mitsuba's built-in `cornell_box()` (whose walls, light and camera prism's glTF copies)
 without its two boxes, plus the glTF file's spheres, read from the file itself: the mesh
 (positions, smooth normals, triangles) as a PLY file, placed by the node's translation and
-scale, and each material from its `PRISM_spectral` description (a dielectric's index and
-a conductor's eta and k tables, GGX alpha = roughness^2 for rough ones). Times a render,
+scale, and each material from its `PRISM_spectral` description (a dielectric's index, a
+conductor's eta and k tables, a plastic's reflectance and index, GGX alpha = roughness^2
+for rough ones). Times a render,
 optionally writes it; prints one JSON line as ../../../shared/scenes/peer/mitsuba_peer.py
 does.
 
@@ -21,7 +22,7 @@ import numpy as np
 import mitsuba as mi
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-KINDS = ("specular", "glossy", "caustic", "textured")
+KINDS = ("specular", "glossy", "caustic", "textured", "plastic")
 SKY = os.path.join(ROOT, "scenes", "sky.hdr")
 SHARED_NODES = {"light", "floor", "ceiling", "back", "green-wall", "red-wall", "camera"}
 

@@ -1,5 +1,5 @@
 """Which Mitsuba 3 script renders which comparison scene: the shared Cornell box and bunny box
-(../shared/scenes/peer/mitsuba_peer.py), the scene kinds (specular, glossy, caustic, textured:
+(../shared/scenes/peer/mitsuba_peer.py), the scene kinds (specular, glossy, caustic, textured, plastic:
 mitsuba_kinds.py) and the repository's volume scene (mitsuba_media.py). Both take VARIANT SCENE SPP [--depth D] [--width W] [--seed S] [--out F].
 """
 import os
@@ -10,8 +10,8 @@ SHARED = os.environ.get("PRISM_SHARED", os.path.join(os.path.dirname(ROOT), "sha
 # prism's scene file for each comparison scene, under scenes/.
 SCENES = {"box": "cornell-box.gltf", "bunny": "cornell-bunny.gltf", "specular": "cornell-specular.gltf",
           "glossy": "cornell-glossy.gltf", "caustic": "cornell-caustic.gltf", "media": "cornell-medium.gltf",
-          "textured": "textured-sky.gltf"}
-KINDS = ("specular", "glossy", "caustic", "textured")
+          "textured": "textured-sky.gltf", "plastic": "cornell-plastic.gltf"}
+KINDS = ("specular", "glossy", "caustic", "textured", "plastic")
 
 
 def script(scene, narrow=False):

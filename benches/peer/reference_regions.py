@@ -14,7 +14,7 @@ reference test (integrator/tests/reference.rs).
   python3 benches/peer/mitsuba_reference.py specular --width 128 --spp 8192 --out /tmp/specular.exr
   python3 benches/peer/reference_regions.py /tmp/specular.exr --spp 8192 --scene specular \
       --variant llvm_ad_spectral --out integrator/tests/data/cornell-specular-mitsuba-regions.json
-  (and glossy, caustic alike)
+  (and glossy, caustic, textured alike)
 
 With a box pixel filter the mean of a region of the film is the integral of radiance over
 that part of the film, whatever the resolution, so prism can be compared at a lower one.
@@ -35,6 +35,11 @@ SOURCES = {
 for kind in ("specular", "glossy", "caustic"):
     SOURCES[kind] = (f"; boxes replaced by the spheres of scenes/cornell-{kind}.gltf (mesh and materials read "
                      "from it); rendered by benches/peer/mitsuba_kinds.py")
+# Scenes that are not Mitsuba's Cornell box: the whole description.
+WHOLE = {
+    "textured": "scenes/textured-sky.gltf read whole (meshes, sRGB textures, the gold conductor, the camera, "
+                "scenes/sky.hdr turned by 90 degrees) by benches/peer/mitsuba_kinds.py",
+}
 
 
 def main():
@@ -53,8 +58,9 @@ def main():
     g = a.grid
     means = [[img[i * h // g:(i + 1) * h // g, j * w // g:(j + 1) * w // g].mean(axis=(0, 1)).tolist()
               for j in range(g)] for i in range(g)]
+    scene = WHOLE.get(a.scene) or f"mitsuba.cornell_box() ({a.scene}{SOURCES.get(a.scene, SOURCES['box'])})"
     doc = {
-        "provenance": f"Mitsuba {mi.__version__} {a.variant}, mitsuba.cornell_box() ({a.scene}{SOURCES.get(a.scene, SOURCES['box'])}), "
+        "provenance": f"Mitsuba {mi.__version__} {a.variant}, {scene}, "
                       f"{w}x{h}, {a.spp} spp, unbounded depth, box filter; linear sRGB region means "
                       f"(rows top to bottom), made by benches/peer/reference_regions.py",
         "grid": g, "width": w, "height": h, "spp": a.spp,

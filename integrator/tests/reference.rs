@@ -42,6 +42,11 @@ fn region_means(scene: &Scene, size: u32, spp: u64, seed: u64, grid: usize) -> V
 /// region by region: 4 seeds of 64^2 x 256 paths, within 1% of the reference (2% of the
 /// peak for the dark surround) beyond 4 sigma of their spread.
 fn assert_agrees_with_mitsuba(scene: &str, fixture: &str) {
+    assert_agrees_with_mitsuba_within(scene, fixture, 0.01);
+}
+
+/// [`assert_agrees_with_mitsuba`] with a relative `tolerance` beyond 4 sigma.
+fn assert_agrees_with_mitsuba_within(scene: &str, fixture: &str, tolerance: f64) {
     let fixture: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(
             std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -79,7 +84,7 @@ fn assert_agrees_with_mitsuba(scene: &str, fixture: &str) {
                 worst = (excess, r, k);
             }
             assert!(
-                excess <= 0.01,
+                excess <= tolerance,
                 "region {r} channel {k}: prism {mean} +- {sigma}, Mitsuba {}",
                 want[k]
             );
@@ -136,5 +141,22 @@ fn caustic_box_agrees_with_mitsuba_within_one_percent() {
     assert_agrees_with_mitsuba(
         "cornell-caustic.gltf",
         "cornell-caustic-mitsuba-regions.json",
+    );
+}
+
+/// A textured asset under an HDR sky: sRGB textures and the sky upsampled per lookup, the
+/// sun found by the sky's importance sampling, a rough gold sphere reflecting both. Within
+/// 2.5%: the renderers turn the sky's and the textures' RGB into spectra by different
+/// conventions, and on the far floor lit by the blue sky (region 8) Mitsuba's spectral
+/// variant differs from its own RGB variant by 1.5% in red and 2.3% in blue, where
+/// prism is within 0.2% of the RGB variant (measured with `mitsuba_kinds.py scalar_rgb
+/// textured 256 --width 128`); the worst region is that one, at 2.4%.
+#[test]
+#[ignore = "slow: renders 4 x 64^2 x 256 paths; run before resolving the speed issue"]
+fn textured_sky_agrees_with_mitsuba_within_upsampling() {
+    assert_agrees_with_mitsuba_within(
+        "textured-sky.gltf",
+        "textured-sky-mitsuba-regions.json",
+        0.025,
     );
 }

@@ -7,7 +7,9 @@ from these files, meshes and materials included, so the two cannot drift apart):
 - scenes/cornell-glossy.gltf: rough gold (GGX alpha 0.05), rough copper (alpha 0.15) and
   rough aluminium (alpha 0.3) spheres, and a rough glass sphere (alpha 0.1);
 - scenes/cornell-caustic.gltf: one large glass sphere on the floor under the ceiling
-  light, focusing it into a caustic.
+  light, focusing it into a caustic;
+- scenes/cornell-plastic.gltf: plastics (a diffuse substrate under a clear coating of
+  index 1.49) at GGX alpha 0.05, 0.15 and 0.3, and a smooth one.
 
 The walls, light and camera are scenes/cornell-box.gltf's (its buffer is shared); the
 spheres are one embedded triangle mesh with smooth normals, placed by their nodes. The metals'
@@ -68,6 +70,18 @@ def glass(alpha=0.0):
     return d
 
 
+RED = [[400, 0.05], [550, 0.06], [600, 0.5], [700, 0.7]]
+BLUE = [[400, 0.6], [480, 0.55], [550, 0.1], [700, 0.05]]
+YELLOW = [[400, 0.05], [500, 0.3], [550, 0.7], [700, 0.8]]
+
+
+def plastic(reflectance, alpha):
+    d = {"type": "plastic", "reflectance": reflectance, "ior": 1.49}
+    if alpha:
+        d["roughness"] = round(alpha**0.5, 6)
+    return d
+
+
 # Spheres resting on the floor (y = -1) of the box [-1, 1]^3: (name, centre, radius, material).
 KINDS = {
     "specular": [
@@ -82,6 +96,12 @@ KINDS = {
     ],
     "caustic": [
         ("glass-sphere", (0.0, -0.55, 0.0), 0.45, glass()),
+    ],
+    "plastic": [
+        ("red-plastic-sphere", (-0.5, -0.7, -0.35), 0.3, plastic(RED, 0.05)),
+        ("blue-plastic-sphere", (0.5, -0.7, -0.35), 0.3, plastic(BLUE, 0.15)),
+        ("white-plastic-sphere", (-0.35, -0.75, 0.4), 0.25, plastic(0.8, 0.3)),
+        ("yellow-plastic-sphere", (0.4, -0.75, 0.4), 0.25, plastic(YELLOW, 0.0)),
     ],
 }
 
