@@ -1004,9 +1004,21 @@ mod rough_totality {
 
     fn direction() -> impl Strategy<Value = Vec3> {
         (
-            prop_oneof![Just(0.0f32), Just(1e-30), Just(-1.0), Just(1.0), -1.0..1.0f32],
+            prop_oneof![
+                Just(0.0f32),
+                Just(1e-30),
+                Just(-1.0),
+                Just(1.0),
+                -1.0..1.0f32
+            ],
             prop_oneof![Just(0.0f32), -1.0..1.0f32],
-            prop_oneof![Just(0.0f32), Just(1e-30), Just(-1e-30), Just(1.0), -1.0..1.0f32],
+            prop_oneof![
+                Just(0.0f32),
+                Just(1e-30),
+                Just(-1e-30),
+                Just(1.0),
+                -1.0..1.0f32
+            ],
         )
             .prop_map(|(x, y, z)| Vec3::new(x, y, z))
     }

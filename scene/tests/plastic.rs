@@ -162,9 +162,21 @@ fn a_smooth_coating_samples_its_mirror_as_a_delta() {
 
 fn direction() -> impl Strategy<Value = Vec3> {
     (
-        prop_oneof![Just(0.0f32), Just(1e-30), Just(-1.0), Just(1.0), -1.0..1.0f32],
+        prop_oneof![
+            Just(0.0f32),
+            Just(1e-30),
+            Just(-1.0),
+            Just(1.0),
+            -1.0..1.0f32
+        ],
         prop_oneof![Just(0.0f32), Just(f32::NAN), -1.0..1.0f32],
-        prop_oneof![Just(0.0f32), Just(1e-30), Just(-1e-30), Just(1.0), -1.0..1.0f32],
+        prop_oneof![
+            Just(0.0f32),
+            Just(1e-30),
+            Just(-1e-30),
+            Just(1.0),
+            -1.0..1.0f32
+        ],
     )
         .prop_map(|(x, y, z)| Vec3::new(x, y, z))
 }

@@ -9,7 +9,11 @@ use super::{BsdfSample, cos_theta};
 /// r_p = (n cos_i - cos_t) / (n cos_i + cos_t) with n complex and
 /// cos_t = sqrt(1 - sin_i^2 / n^2). Values in [0, 1].
 pub fn fresnel_conductor(cos_i: f32, eta: f32, k: f32) -> f32 {
-    reflectance(f64::from(cos_i.abs().min(1.0)), f64::from(eta), f64::from(k))
+    reflectance(
+        f64::from(cos_i.abs().min(1.0)),
+        f64::from(eta),
+        f64::from(k),
+    )
 }
 
 /// [`fresnel_conductor`] for every lane at one cosine: the same values to the bit, the

@@ -134,7 +134,11 @@ pub struct Plastic<'a, const N: usize> {
 
 impl<'a, const N: usize> Plastic<'a, N> {
     /// The plastic with substrate `reflectance` (clamped to [0, 1]) under `coating`.
-    pub fn new(reflectance: SampledSpectrum<N>, coating: &'a PlasticCoating, nonlinear: bool) -> Self {
+    pub fn new(
+        reflectance: SampledSpectrum<N>,
+        coating: &'a PlasticCoating,
+        nonlinear: bool,
+    ) -> Self {
         let rho: SampledSpectrum<N> = SampledSpectrum::from_fn(|i| {
             let r = reflectance[i];
             if r.is_nan() { 0.0 } else { r.clamp(0.0, 1.0) }
@@ -142,7 +146,11 @@ impl<'a, const N: usize> Plastic<'a, N> {
         let r_i = coating.internal_reflectance;
         let scale = std::f32::consts::FRAC_1_PI / (coating.eta * coating.eta);
         let diffuse = SampledSpectrum::from_fn(|i| {
-            let kept = if nonlinear { 1.0 - rho[i] * r_i } else { 1.0 - r_i };
+            let kept = if nonlinear {
+                1.0 - rho[i] * r_i
+            } else {
+                1.0 - r_i
+            };
             rho[i] / kept * scale
         });
         let mean = (0..N).map(|i| rho[i]).sum::<f32>() / N as f32;
@@ -167,8 +175,9 @@ impl<'a, const N: usize> Plastic<'a, N> {
         }
         let wm = (wo + wi).try_normalize()?;
         let wm = if wm.z < 0.0 { -wm } else { wm };
-        let value = fresnel_dielectric(wo.dot(wm).abs(), self.coating.eta) * ggx.d(wm) * ggx.g(wo, wi)
-            / (4.0 * wo.z.abs() * wi.z.abs());
+        let value =
+            fresnel_dielectric(wo.dot(wm).abs(), self.coating.eta) * ggx.d(wm) * ggx.g(wo, wi)
+                / (4.0 * wo.z.abs() * wi.z.abs());
         Some((wm, value))
     }
 

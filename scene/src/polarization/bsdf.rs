@@ -31,8 +31,7 @@ use prism_spectrum::SampledSpectrum;
 use super::{FresnelAmplitudes, Interaction, Mueller, fresnel_amplitudes, s_axis};
 use crate::bsdf::{
     CLEARCOAT_IOR, Glass, Layered, MetallicRoughness, Plastic, RoughConductor, RoughDielectric,
-    Sheet,
-    SheetElement, conductor_index_from_reflectance,
+    Sheet, SheetElement, conductor_index_from_reflectance,
 };
 use crate::world::Bsdf;
 

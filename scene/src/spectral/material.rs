@@ -149,7 +149,14 @@ fn surface_and_emission(
         Some("plastic") => {
             only_keys(
                 map,
-                &["type", "emission", "reflectance", "ior", "roughness", "nonlinear"],
+                &[
+                    "type",
+                    "emission",
+                    "reflectance",
+                    "ior",
+                    "roughness",
+                    "nonlinear",
+                ],
             )?;
             let eta = match map.get("ior") {
                 None => PLASTIC_IOR,
