@@ -1,8 +1,7 @@
 //! A render's progress on stderr: a bar on a terminal (indicatif: samples per pixel done,
 //! rays per second, the time left, and where the film records its variance the relative
-//! MSE that predicts: an upper bound, since the variance is that of independent samples
-//! and prism's are scrambled Sobol points), plain lines every ten seconds elsewhere (logs,
-//! CI), nothing with `--quiet`.
+//! MSE that predicts), plain lines every ten seconds elsewhere (logs, CI), nothing with
+//! `--quiet`.
 
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};

@@ -17,8 +17,8 @@ pub(crate) struct FilmSums<'a> {
     pub energy: &'a mut [[f64; 2]],
     pub stokes: &'a mut [[[f64; 3]; 3]],
     pub coverage: &'a mut [f64],
-    /// The products of each sample's colour channels (empty without the variance AOV).
-    pub moments: &'a mut [[f64; 6]],
+    /// The second replicate's colour and samples (empty without the variance AOV).
+    pub replica: &'a mut [[f64; 4]],
 }
 
 /// Accumulated XYZ per pixel, row-major from the top-left.
@@ -425,7 +425,7 @@ impl Film {
             energy,
             stokes,
             coverage: &mut self.coverage,
-            moments: &mut self.aovs.moments,
+            replica: &mut self.aovs.replica,
         }
     }
 

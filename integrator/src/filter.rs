@@ -157,6 +157,8 @@ pub(crate) struct Splatter<'a> {
     spectral: &'a mut [f64],
     energy: &'a mut [[f64; 2]],
     stokes: &'a mut [[[f64; 3]; 3]],
+    /// The second replicate's sums (empty without the variance AOV).
+    replica: &'a mut [[f64; 4]],
     filter: &'a FilterSampler,
 }
 
@@ -173,16 +175,19 @@ impl<'a> Splatter<'a> {
             spectral: sums.spectral,
             energy: sums.energy,
             stokes: sums.stokes,
+            replica: sums.replica,
             filter,
         }
     }
 
-    /// Adds `value` (clamped as camera samples are) at `film` in [0, 1)^2.
+    /// Adds `value` (clamped as camera samples are) at `film` in [0, 1)^2; `second`:
+    /// whether it belongs to the second replicate (`Replicas`).
     pub(crate) fn add(
         &mut self,
         film: Vec2,
         value: &crate::sample_value::SampleValue,
         clamp: Option<f64>,
+        second: bool,
     ) {
         let scale = value.clamp_scale(clamp);
         let at = Vec2::new(film.x * self.width as f32, film.y * self.height as f32);
@@ -190,7 +195,7 @@ impl<'a> Splatter<'a> {
             None => {
                 let (x, y) = (at.x as u32, at.y as u32);
                 if x < self.width && y < self.height {
-                    self.add_to_pixel(x, y, value, scale);
+                    self.add_to_pixel(x, y, value, scale, second);
                 }
             }
             Some(profile) => {
@@ -209,7 +214,7 @@ impl<'a> Splatter<'a> {
                     for x in range(at.x, self.width) {
                         let w = wy * profile.pdf(f64::from(at.x - x as f32 - 0.5));
                         if w > 0.0 {
-                            self.add_to_pixel(x, y, value, scale * w);
+                            self.add_to_pixel(x, y, value, scale * w, second);
                         }
                     }
                 }
@@ -223,8 +228,14 @@ impl<'a> Splatter<'a> {
         y: u32,
         value: &crate::sample_value::SampleValue,
         weight: f64,
+        second: bool,
     ) {
         let i = y as usize * self.width as usize + x as usize;
+        if let Some(r) = self.replica.get_mut(i).filter(|_| second) {
+            for (a, b) in r.iter_mut().zip(value.xyz) {
+                *a += b * weight;
+            }
+        }
         let spectral = self
             .spectral
             .get_mut(i * self.band_count..(i + 1) * self.band_count)

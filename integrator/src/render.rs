@@ -4,7 +4,7 @@
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use glam::Vec2;
-use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_sampling::stream::{Replicas, SampleStream, SobolStream};
 use std::ops::Range;
 
 use prism_sampling::wavelength::WavelengthDistribution;
@@ -265,6 +265,11 @@ impl<'a> Renderer<'a> {
             seed,
             clamp: settings.clamp,
             samples,
+            replicas: if settings.aovs.has(crate::Aov::Variance) {
+                Replicas::new(2)
+            } else {
+                Replicas::ONE
+            },
             outputs: Outputs {
                 bands: settings.bands,
                 energy: settings.energy,
@@ -471,7 +476,7 @@ impl<'a> Renderer<'a> {
                 rays.fetch_add(row.rays, Ordering::Relaxed);
                 nonfinite.fetch_add(row.rejected, Ordering::Relaxed);
                 for splat in &row.splats {
-                    splatter.add(splat.film, &splat.value, settings.clamp);
+                    splatter.add(splat.film, &splat.value, settings.clamp, splat.second);
                 }
             }
         }
@@ -485,7 +490,19 @@ pub(crate) struct Rows {
     pub seed: u64,
     pub clamp: Option<f64>,
     pub samples: Range<u64>,
+    /// How samples are split into independently scrambled groups: two when the film
+    /// records its variance, whose estimate is their spread (`crate::aov`).
+    pub replicas: Replicas,
     pub outputs: Outputs,
+}
+
+impl Rows {
+    /// The stream of sample `s` of `pixel` under `seed` (the render's, or a stream's own
+    /// seed derived from it).
+    #[inline]
+    pub(crate) fn stream(&self, seed: u64, pixel: u64, s: u64) -> SobolStream {
+        self.replicas.stream(seed, pixel, s)
+    }
 }
 
 /// The splits and the tile of path reuse of a render by the batch tracer, which traces
@@ -540,22 +557,22 @@ fn row_outputs(pass: &mut Film, width: usize, height: u32) -> Vec<RowOutput<'_>>
         energy,
         stokes,
         coverage,
-        moments,
+        replica,
     } = pass.sums_mut();
     xyz.chunks_mut(width)
         .zip(rows_of(spectral, spectral_width, height))
         .zip(rows_of(energy, width, height))
         .zip(rows_of(stokes, width, height))
         .zip(coverage.chunks_mut(width))
-        .zip(rows_of(moments, width, height))
+        .zip(rows_of(replica, width, height))
         .map(
-            |(((((xyz, spectral), energy), stokes), coverage), moments)| RowOutput {
+            |(((((xyz, spectral), energy), stokes), coverage), replica)| RowOutput {
                 xyz,
                 spectral,
                 energy,
                 stokes,
                 coverage,
-                moments,
+                replica,
             },
         )
         .collect()
@@ -578,21 +595,29 @@ pub(crate) struct RowOutput<'a> {
     energy: &'a mut [[f64; 2]],
     stokes: &'a mut [[[f64; 3]; 3]],
     coverage: &'a mut [f64],
-    /// The products of the samples' colour channels (empty without the variance AOV).
-    moments: &'a mut [[f64; 6]],
+    /// The second replicate's colour and samples (empty without the variance AOV).
+    replica: &'a mut [[f64; 4]],
 }
 
 impl RowOutput<'_> {
-    /// Adds pixel `x`'s sample (`result`, `value`) to the sums; returns whether it was
+    /// Adds pixel `x`'s sample `s` (`result`, `value`) to the sums; returns whether it was
     /// rejected (invalid wavelengths or a non-finite value).
     pub(crate) fn add(
         &mut self,
         x: usize,
+        s: u64,
         result: &PathResult,
         value: &SampleValue,
         rows: &Rows,
     ) -> bool {
         self.coverage[x] += f64::from(u8::from(result.covered));
+        let replica = match self.replica.get_mut(x) {
+            Some(r) if rows.replicas.group(s) == 1 => {
+                r[3] += 1.0;
+                Some(r)
+            }
+            _ => None,
+        };
         if !(result.valid && value.finite()) {
             return true;
         }
@@ -609,10 +634,9 @@ impl RowOutput<'_> {
             self.energy.get_mut(x),
             self.stokes.get_mut(x),
         );
-        if let Some(m) = self.moments.get_mut(x) {
-            let colour = value.xyz.map(|v| v * scale);
-            for (a, b) in m.iter_mut().zip(crate::aov::products(&colour)) {
-                *a += b;
+        if let Some(r) = replica {
+            for (a, b) in r.iter_mut().zip(value.xyz) {
+                *a += b * scale;
             }
         }
         false
@@ -634,7 +658,7 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             let result =
                 trace_sample::<N, FLUORESCENCE, T>(tracer, filter, settings, x, y, s, &mut value);
             rays += result.rays;
-            rejected += u64::from(out.add(x as usize, &result, &value, settings));
+            rejected += u64::from(out.add(x as usize, s, &result, &value, settings));
         }
     }
     (rays, rejected)
@@ -672,6 +696,7 @@ fn reuse_pass<const N: usize>(
                     rays += pixel.result.rays;
                     rejected += u64::from(band[(pixel.y - y0) as usize].add(
                         pixel.x as usize,
+                        s,
                         &pixel.result,
                         &pixel.value,
                         rows,
@@ -697,7 +722,7 @@ pub(crate) fn camera_sample(
 ) -> (SobolStream, f32, Vec2) {
     let (w, h) = (settings.width, settings.height);
     let pixel = u64::from(y) * u64::from(w) + u64::from(x);
-    let mut stream = SobolStream::new(settings.seed, pixel, s);
+    let mut stream = settings.stream(settings.seed, pixel, s);
     let u_lambda = stream.next_1d();
     let offset = filter.offset(stream.next_2d());
     let film = Vec2::new(
@@ -761,6 +786,8 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
 struct Splat {
     film: Vec2,
     value: SampleValue,
+    /// Whether its sample is in the second replicate (`Replicas`).
+    second: bool,
 }
 
 /// The distance to what the image's centre sees (the pinhole's ray there runs along the
@@ -802,13 +829,17 @@ fn light_row<const N: usize, L: LightThroughput<N>>(
     for x in 0..w {
         let pixel = u64::from(y) * u64::from(w) + u64::from(x);
         for s in settings.samples.clone() {
-            let mut stream = SobolStream::new(light_seed(settings.seed), pixel, s);
+            let mut stream = settings.stream(light_seed(settings.seed), pixel, s);
             out.rays +=
                 tracer.trace_light::<N, L>(&mut stream, aspect, &mut |film, radiance, lambdas| {
                     let mut value = SampleValue::default();
                     value.add(tracer, settings.outputs, radiance, lambdas);
                     if value.finite() {
-                        out.splats.push(Splat { film, value });
+                        out.splats.push(Splat {
+                            film,
+                            value,
+                            second: settings.replicas.group(s) == 1,
+                        });
                     } else {
                         out.rejected += 1;
                     }

@@ -251,66 +251,72 @@ fn variance_sum(film: &Film) -> f64 {
         .sum()
 }
 
+/// The squared error of `film` against `reference`, summed over pixels and R, G, B.
+fn squared_error(film: &Film, reference: &[[f32; 3]]) -> f64 {
+    let rgb = film.to_rgb(RgbSpaceId::Srgb.space());
+    rgb.iter()
+        .zip(reference)
+        .map(|(a, b)| (0..3).map(|k| f64::from(a[k] - b[k]).powi(2)).sum::<f64>())
+        .sum()
+}
+
+/// predicted / measured: the variance AOV's sum over `seeds` renders of `scene` against
+/// their squared error from `reference`.
+fn prediction_ratio(scene: &Scene, s: &RenderSettings, seeds: u64, reference: &Film) -> f64 {
+    let reference = reference.to_rgb(RgbSpaceId::Srgb.space());
+    let (mut predicted, mut measured) = (0.0, 0.0);
+    for seed in 0..seeds {
+        let (film, _) = render(scene, &s.clone().seed(seed)).unwrap();
+        predicted += variance_sum(&film);
+        measured += squared_error(&film, &reference);
+    }
+    predicted / measured
+}
+
+fn unsplit(s: RenderSettings) -> RenderSettings {
+    s.reuse(prism_integrator::Reuse::Fixed(1))
+        .splits(prism_integrator::Splits::Fixed(1))
+}
+
+/// The variance AOV's sum over the image predicts the squared error against a converged
+/// render within 10%, at 2 to 64 samples, with and without path reuse and splitting
+/// (here the pilot picks reuse). The corner's noise is light-tailed, so four renders of
+/// 32 x 32 pixels measure both sums to a few percent. The spread of single samples over
+/// their number (the error of independent samples) came to 1.6, 2.5 and 4.3 times the
+/// error here at 2, 8 and 64 spp.
 #[test]
-fn the_variance_is_the_samples_spread_over_their_number_and_bounds_the_error() {
-    let scene = common::cornell();
-    let size = 24;
-    let space = RgbSpaceId::Srgb.space();
-    let plain = |spp: u64, seed: u64| {
-        settings("variance", size, spp)
-            .seed(seed)
-            .reuse(prism_integrator::Reuse::Fixed(1))
-            .splits(prism_integrator::Splits::Fixed(1))
-    };
-    // One sample per pixel under 32 seeds: the spread of a single sample, per pixel.
-    let singles: Vec<Vec<[f32; 3]>> = (0..32)
-        .map(|seed| {
-            render(&scene, &plain(1, 1000 + seed))
-                .unwrap()
-                .0
-                .to_rgb(space)
-        })
-        .collect();
-    let mut spread = 0.0;
-    for i in 0..singles[0].len() {
-        for k in 0..3 {
-            let mean = singles.iter().map(|r| f64::from(r[i][k])).sum::<f64>() / 32.0;
-            spread += singles
-                .iter()
-                .map(|r| (f64::from(r[i][k]) - mean).powi(2))
-                .sum::<f64>()
-                / 31.0;
+fn the_variance_predicts_the_squared_error() {
+    let scene = corner();
+    let (reference, _) = render(&scene, &unsplit(settings("", 32, 4096)).seed(99)).unwrap();
+    for spp in [2, 8, 64] {
+        for default in [false, true] {
+            let s = settings("variance", 32, spp);
+            let s = if default { s } else { unsplit(s) };
+            let ratio = prediction_ratio(&scene, &s, 4, &reference);
+            eprintln!("{spp} spp, default modes {default}: predicted / measured {ratio:.3}");
+            assert!(
+                (ratio - 1.0).abs() < 0.1,
+                "{spp} spp, default modes {default}: predicted / measured {ratio}"
+            );
         }
     }
-    // A 16-sample render's variance of the mean is that spread over 16.
-    let runs: Vec<Film> = (0..4)
-        .map(|seed| render(&scene, &plain(16, seed)).unwrap().0)
-        .collect();
-    let predicted = runs.iter().map(variance_sum).sum::<f64>() / 4.0;
-    let ratio = predicted * 16.0 / spread;
-    assert!(
-        (ratio - 1.0).abs() < 0.2,
-        "variance x 16 / single-sample spread {ratio}"
-    );
-    // Scrambled Sobol samples err less than independent ones would: the variance bounds
-    // the squared error against a converged render.
-    let (reference, _) = render(&scene, &plain(2048, 7)).unwrap();
-    let reference = reference.to_rgb(space);
-    let measured = runs
-        .iter()
-        .map(|film| {
-            let rgb = film.to_rgb(space);
-            rgb.iter()
-                .zip(&reference)
-                .map(|(a, b)| (0..3).map(|k| f64::from(a[k] - b[k]).powi(2)).sum::<f64>())
-                .sum::<f64>()
-        })
-        .sum::<f64>()
-        / 4.0;
-    assert!(
-        predicted > measured,
-        "predicted {predicted} vs measured {measured}"
-    );
+}
+
+/// The same on the Cornell box, whose error comes in fireflies near the light: 32 renders
+/// of 48 x 48 pixels, within 20%. Slow (`cargo test -- --ignored`).
+#[test]
+#[ignore]
+fn the_variance_predicts_the_cornell_boxs_squared_error() {
+    let scene = common::cornell();
+    let (reference, _) = render(&scene, &unsplit(settings("", 48, 8192)).seed(99)).unwrap();
+    for spp in [4, 16, 64] {
+        let ratio = prediction_ratio(&scene, &settings("variance", 48, spp), 32, &reference);
+        eprintln!("{spp} spp: predicted / measured {ratio:.3}");
+        assert!(
+            (ratio - 1.0).abs() < 0.2,
+            "{spp} spp: predicted / measured {ratio}"
+        );
+    }
 }
 
 #[test]
@@ -347,9 +353,14 @@ fn aovs_are_the_same_on_any_thread_count_merged_and_through_files() {
 fn no_aov_leaves_the_image_as_it_was() {
     let scene = corner();
     let (plain, _) = render(&scene, &settings("", 12, 4)).unwrap();
-    let (with, _) = render(&scene, &settings("all", 12, 4)).unwrap();
+    let traced = "albedo,normal,depth,position,material_id";
+    let (with, _) = render(&scene, &settings(traced, 12, 4)).unwrap();
     assert_eq!(plain.sums(), with.sums());
     assert!(images(&plain).is_empty());
+    // The variance splits the samples into two independently scrambled halves: another
+    // image of the same expectation.
+    let (variance, _) = render(&scene, &settings("variance", 12, 4)).unwrap();
+    assert_ne!(plain.sums(), variance.sums());
 }
 
 #[cfg(feature = "exr")]

@@ -15,13 +15,16 @@
 //! - `position`: that surface point, world space, averaged likewise.
 //! - `material_id`: 1 + the index of that surface's material in the scene's list, 0 for
 //!   nothing; the lowest-numbered sample's, so that merged ranges agree with one render.
-//! - `variance`: the variance of each pixel's mean (R, G, B), from the running sums of
-//!   its samples' colours and their products (the full covariance, so that it is exact in
-//!   every output space): Var(mean) = (E[x x^T] - E[x] E[x]^T) / (n - 1). This is the
-//!   error of a mean of independent samples. prism's samples are scrambled Sobol points
-//!   (randomized quasi-Monte Carlo), whose means err less: the variance is an upper bound
-//!   of the squared error, by a factor that grows with the samples (on the Cornell box,
-//!   2.2 at 4 spp, 7.8 at 16, 11.9 at 64: docs/trade-offs.md, "AOVs").
+//! - `variance`: the variance of each pixel's mean (R, G, B): its expected squared error.
+//!   prism's samples are scrambled Sobol points (randomized quasi-Monte Carlo), whose
+//!   means err less than the spread of their samples says, by a factor of the integrand
+//!   (3-25x on the test scenes). So a film that records the variance splits its samples
+//!   into two independently scrambled sequences (`Replicas`: even and odd samples),
+//!   sums the second's colours apart, and estimates the variance of the pixel from the
+//!   two means' difference, without bias: n_a n_b / n^2 (A - B)^2. The radiance is then
+//!   the mean of two sequences of n / 2 points rather than one of n, another image of the
+//!   same expectation with more error (1.4x the squared error on the Cornell box:
+//!   docs/trade-offs.md, "Denoising").
 //!
 //! The features are traced by a pass of their own (`trace`), one camera ray per sample
 //! with the radiance's film point, lens point, time and wavelengths, followed through
@@ -29,7 +32,6 @@
 //! path reuse, and a render that asks for no AOV never runs it.
 
 mod sums;
-pub(crate) use sums::products;
 mod trace;
 
 pub use sums::AovSums;

@@ -26,8 +26,9 @@ pub struct AovSums {
     pub(crate) hits: Vec<f64>,
     /// (the lowest sample index seen, 1 + its material index or 0).
     pub(crate) material: Vec<[f64; 2]>,
-    /// Sums of the products of each sample's colour channels: XX, YY, ZZ, XY, XZ, YZ.
-    pub(crate) moments: Vec<[f64; 6]>,
+    /// The second replicate's sums (`Replicas`: odd samples, scrambled apart from the
+    /// even ones): the colour of its samples and light-path splats, and its samples.
+    pub(crate) replica: Vec<[f64; 4]>,
 }
 
 /// The mutable per-pixel sums of one row (empty slices for AOVs not asked for).
@@ -80,7 +81,7 @@ impl AovSums {
             } else {
                 Vec::new()
             },
-            moments: zeros(set.has(Aov::Variance), pixels),
+            replica: zeros(set.has(Aov::Variance), pixels),
         }
     }
 
@@ -92,7 +93,7 @@ impl AovSums {
         self.position.fill([0.0; 3]);
         self.hits.fill(0.0);
         self.material.fill([NO_SAMPLE, 0.0]);
-        self.moments.fill([0.0; 6]);
+        self.replica.fill([0.0; 4]);
     }
 
     /// The AOVs these sums hold.
@@ -133,7 +134,7 @@ impl AovSums {
         add_all(&mut self.albedo, &other.albedo);
         add_all(&mut self.normal, &other.normal);
         add_all(&mut self.position, &other.position);
-        add_all(&mut self.moments, &other.moments);
+        add_all(&mut self.replica, &other.replica);
         for (a, b) in self.depth.iter_mut().zip(&other.depth) {
             *a += b;
         }
@@ -148,12 +149,11 @@ impl AovSums {
         Ok(())
     }
 
-    /// The colour moments transformed as the colours are by `m` (white balance).
+    /// The replicate's colours transformed as the film's are by `m` (white balance).
     pub(crate) fn adapt(&mut self, m: &Mat3) {
-        for s in &mut self.moments {
-            let c = covariance_matrix(s);
-            let t = m.mul(&c).mul(&transpose(m));
-            *s = packed(&t);
+        for s in &mut self.replica {
+            let c = m.apply([s[0], s[1], s[2]]);
+            s[..3].copy_from_slice(&c);
         }
     }
 
@@ -188,10 +188,10 @@ impl AovSums {
                 self.material.iter().map(|v| v[k]).collect(),
             );
         }
-        for k in 0..6 {
+        for k in 0..4 {
             put(
-                &format!("AovMoment{k}"),
-                self.moments.iter().map(|v| v[k]).collect(),
+                &format!("AovReplica{k}"),
+                self.replica.iter().map(|v| v[k]).collect(),
             );
         }
         out
@@ -238,9 +238,9 @@ impl AovSums {
                 fill(&mut sums.material, k, read(&format!("AovMaterial{k}"))?);
             }
         }
-        if !sums.moments.is_empty() {
-            for k in 0..6 {
-                fill(&mut sums.moments, k, read(&format!("AovMoment{k}"))?);
+        if !sums.replica.is_empty() {
+            for k in 0..4 {
+                fill(&mut sums.replica, k, read(&format!("AovReplica{k}"))?);
             }
         }
         Ok(sums)
@@ -305,10 +305,10 @@ impl AovSums {
         if self.set.has(Aov::Variance) {
             let to_rgb = space.xyz_to_rgb_matrix();
             let values = self
-                .moments
+                .replica
                 .iter()
                 .zip(xyz)
-                .map(|(m, s)| variance_of_mean(m, s, n, &to_rgb))
+                .map(|(r, s)| variance_of_mean(r, s, n, &to_rgb))
                 .collect();
             put3(&mut out, "variance", ["R", "G", "B"], values);
         }
@@ -322,16 +322,16 @@ impl AovSums {
     /// compare` reports against a reference. None without the variance AOV or below two
     /// samples.
     pub(crate) fn estimated_relmse(&self, samples: u64, xyz: &[[f64; 3]]) -> Option<f64> {
-        if self.moments.is_empty() || samples < 2 || xyz.is_empty() {
+        if self.replica.is_empty() || samples < 2 || xyz.is_empty() {
             return None;
         }
         let n = samples as f64;
         let total: f64 = self
-            .moments
+            .replica
             .iter()
             .zip(xyz)
-            .map(|(m, s)| {
-                let variance = variance_of_mean(m, s, n, &Mat3::IDENTITY);
+            .map(|(r, s)| {
+                let variance = variance_of_mean(r, s, n, &Mat3::IDENTITY);
                 (0..3)
                     .map(|k| {
                         let mean = s[k] / n;
@@ -345,49 +345,23 @@ impl AovSums {
     }
 }
 
-/// The 3 x 3 symmetric matrix of packed moments (XX, YY, ZZ, XY, XZ, YZ).
-fn covariance_matrix(s: &[f64; 6]) -> Mat3 {
-    Mat3([[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]])
-}
-
-fn transpose(m: &Mat3) -> Mat3 {
-    Mat3(std::array::from_fn(|i| std::array::from_fn(|j| m.0[j][i])))
-}
-
-fn packed(m: &Mat3) -> [f64; 6] {
-    let m = m.0;
-    [m[0][0], m[1][1], m[2][2], m[0][1], m[0][2], m[1][2]]
-}
-
 /// Per RGB channel, the variance of a pixel's mean of `n` samples whose colours sum to
-/// `sum` and whose products sum to `moments`: the sample covariance over n - 1, over n,
-/// carried into RGB by `to_rgb` (M C M^T); 0 below two samples, never negative.
-fn variance_of_mean(moments: &[f64; 6], sum: &[f64; 3], n: f64, to_rgb: &Mat3) -> [f64; 3] {
-    if n < 2.0 {
+/// `sum`, from the two replicates' means (`replica`: the second's colour sum and
+/// samples; the first's are the rest). With A and B the replicates' means over n_a and
+/// n_b samples, the pixel is (n_a A + n_b B) / n, and since A and B are independent
+/// and unbiased, E[(A - B)^2] = Var A + Var B: for variances inversely proportional to
+/// the samples, Var(pixel) = n_a n_b / n^2 E[(A - B)^2]. Carried into RGB by `to_rgb`
+/// (a linear map of A - B); 0 until both replicates have a sample.
+fn variance_of_mean(replica: &[f64; 4], sum: &[f64; 3], n: f64, to_rgb: &Mat3) -> [f64; 3] {
+    let n_b = replica[3];
+    let n_a = n - n_b;
+    if n_a < 1.0 || n_b < 1.0 {
         return [0.0; 3];
     }
-    let mean = sum.map(|v| v / n);
-    let mut c = covariance_matrix(moments).0;
-    for (i, row) in c.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = (*v / n - mean[i] * mean[j]) * n / (n - 1.0) / n;
-        }
-    }
-    let rgb = to_rgb.mul(&Mat3(c)).mul(&transpose(to_rgb));
-    [0, 1, 2].map(|k| rgb.0[k][k].max(0.0))
-}
-
-/// The packed products of one sample's colour `c`.
-#[inline]
-pub(crate) fn products(c: &[f64; 3]) -> [f64; 6] {
-    [
-        c[0] * c[0],
-        c[1] * c[1],
-        c[2] * c[2],
-        c[0] * c[1],
-        c[0] * c[2],
-        c[1] * c[2],
-    ]
+    let difference: [f64; 3] =
+        std::array::from_fn(|k| (sum[k] - replica[k]) / n_a - replica[k] / n_b);
+    let weight = n_a * n_b / (n * n);
+    to_rgb.apply(difference).map(|d| d * d * weight)
 }
 
 #[cfg(test)]
@@ -396,42 +370,31 @@ mod tests {
     use prism_spectrum::color::RgbSpaceId;
 
     #[test]
-    fn variance_of_a_known_sample_set() {
-        // Samples 1, 3 (XYZ all equal): mean 2, sample variance 2, of the mean 1.
-        let mut m = [0.0; 6];
-        let mut s = [0.0; 3];
-        for v in [1.0, 3.0] {
-            let c = [v, v, v];
-            for (a, b) in m.iter_mut().zip(products(&c)) {
-                *a += b;
-            }
-            for (a, b) in s.iter_mut().zip(c) {
-                *a += b;
-            }
-        }
-        let v = variance_of_mean(&m, &s, 2.0, &Mat3::IDENTITY);
+    fn variance_of_two_replicates() {
+        // Replicate means 1 (first, 2 samples summing to 2) and 3 (second, 2 samples
+        // summing to 6): pixel mean 2, Var = 2 * 2 / 16 * (1 - 3)^2 = 1.
+        let replica = [6.0, 6.0, 6.0, 2.0];
+        let sum = [8.0; 3];
+        let v = variance_of_mean(&replica, &sum, 4.0, &Mat3::IDENTITY);
         for c in v {
             assert!((c - 1.0).abs() < 1e-12, "{v:?}");
         }
-        // In RGB, the same as the variance of each RGB channel's own samples.
+        // Not defined until both replicates have a sample.
+        assert_eq!(
+            variance_of_mean(&[0.0; 4], &[1.0; 3], 1.0, &Mat3::IDENTITY),
+            [0.0; 3]
+        );
+        // In RGB, the squared difference of the replicates' RGB means.
         let space = RgbSpaceId::Srgb.space();
         let to_rgb = space.xyz_to_rgb_matrix();
-        let samples = [[0.2, 0.3, 0.1], [0.5, 0.4, 0.9], [0.05, 0.6, 0.3]];
-        let (mut m, mut s) = ([0.0; 6], [0.0; 3]);
-        for c in &samples {
-            for (a, b) in m.iter_mut().zip(products(c)) {
-                *a += b;
-            }
-            for (a, b) in s.iter_mut().zip(c) {
-                *a += b;
-            }
-        }
-        let got = variance_of_mean(&m, &s, 3.0, &to_rgb);
-        let rgb: Vec<[f64; 3]> = samples.iter().map(|c| to_rgb.apply(*c)).collect();
+        let (a, b) = ([0.2, 0.3, 0.1], [0.5, 0.4, 0.9]);
+        let replica = [b[0] * 3.0, b[1] * 3.0, b[2] * 3.0, 3.0];
+        let sum: [f64; 3] = std::array::from_fn(|k| a[k] * 3.0 + b[k] * 3.0);
+        let got = variance_of_mean(&replica, &sum, 6.0, &to_rgb);
+        let (ra, rb) = (to_rgb.apply(a), to_rgb.apply(b));
         for k in 0..3 {
-            let mean = rgb.iter().map(|c| c[k]).sum::<f64>() / 3.0;
-            let var = rgb.iter().map(|c| (c[k] - mean).powi(2)).sum::<f64>() / 2.0 / 3.0;
-            assert!((got[k] - var).abs() < 1e-12, "{k}: {} vs {var}", got[k]);
+            let want = (ra[k] - rb[k]).powi(2) / 4.0;
+            assert!((got[k] - want).abs() < 1e-12, "{k}: {} vs {want}", got[k]);
         }
     }
 

@@ -35,7 +35,7 @@
 //! pixel's (that pixel's wavelength dimension), stratified over the samples.
 
 use glam::Vec3;
-use prism_sampling::stream::{SampleStream, SobolStream};
+use prism_sampling::stream::SampleStream;
 use prism_scene::bsdf::BsdfSample;
 use prism_scene::geometry::Ray;
 use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, Scene};
@@ -283,7 +283,7 @@ pub(crate) fn trace_tile_at<'a, const N: usize>(
     tile: &mut Tile<'a, N>,
 ) {
     let corner = u64::from(ys.start) * u64::from(rows.width) + u64::from(xs.start);
-    let lambda = SobolStream::new(rows.seed, corner, s).next_1d();
+    let lambda = rows.stream(rows.seed, corner, s).next_1d();
     tracer.trace_tile::<N>(filter, rows, xs, ys, s, lambda, tile);
 }
 

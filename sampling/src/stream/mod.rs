@@ -5,11 +5,13 @@
 
 mod hash;
 mod independent;
+mod replicas;
 mod sobol;
 mod sobol_lanes;
 
 pub use hash::mix64;
 pub use independent::IndependentStream;
+pub use replicas::Replicas;
 pub use sobol::{SobolStream, sobol_sample};
 pub use sobol_lanes::SobolLanes;
 
