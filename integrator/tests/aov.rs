@@ -302,6 +302,32 @@ fn the_variance_predicts_the_squared_error() {
     }
 }
 
+/// The relative MSE the progress bar shows (`Film::estimated_relmse`, from the variance)
+/// is the one `prism compare` measures against a converged render (in XYZ, floored at
+/// 0.01), within 10% over four renders of the corner.
+#[test]
+fn the_estimated_relmse_is_the_measured_one() {
+    let scene = corner();
+    let (reference, _) = render(&scene, &unsplit(settings("", 32, 4096)).seed(99)).unwrap();
+    let (mut estimated, mut measured) = (0.0, 0.0);
+    for seed in 0..4 {
+        let (film, _) = render(&scene, &settings("variance", 32, 16).seed(seed)).unwrap();
+        estimated += film.estimated_relmse().unwrap();
+        let mut sum = 0.0;
+        for y in 0..32 {
+            for x in 0..32 {
+                let (a, b) = (film.xyz(x, y), reference.xyz(x, y));
+                for (p, q) in [(a.x, b.x), (a.y, b.y), (a.z, b.z)] {
+                    sum += (p - q).powi(2) / (q * q + 0.01);
+                }
+            }
+        }
+        measured += sum / (3.0 * 1024.0);
+    }
+    let ratio = estimated / measured;
+    assert!((ratio - 1.0).abs() < 0.1, "estimated / measured {ratio}");
+}
+
 /// The same on the Cornell box, whose error comes in fireflies near the light: 32 renders
 /// of 48 x 48 pixels, within 20%. Slow (`cargo test -- --ignored`).
 #[test]
