@@ -61,6 +61,10 @@ pub(crate) fn check_settings(settings: &RenderSettings) -> Result<(), RenderErro
     }
 }
 
+/// The Sobol dimension of bounce 0's first-collision pair (bounce k's is this + k): far
+/// above any bounce's block, so that drawing it moves no other number.
+const FLIGHT_DIMENSION: u64 = 1 << 32;
+
 /// Interfaces a path crosses between two vertices at most (coplanar or degenerate
 /// boundaries would otherwise hold it forever).
 const MAX_INTERFACES: u32 = 256;
@@ -108,6 +112,8 @@ impl<'a> Tracer<'a> {
         let mut ratios = Ratios::<N>::one();
         let mut media = self.camera_media;
         let (mut rays, mut covered, mut interfaces) = (0u64, false, 0u32);
+        // The bounce whose first flight has drawn its stratified pair.
+        let mut stratified: Option<u32> = None;
         loop {
             rays += 1;
             let hit = self.scene.intersect(&walk.ray);
@@ -120,6 +126,17 @@ impl<'a> Tracer<'a> {
                 let emits = walk.depth < self.max_depth;
                 let medium = self.scene.media().get(m);
                 let origin = walk.ray.origin;
+                // A bounce's first flight takes its first collision from the sample's
+                // Sobol stream (a pair of its own, apart from the bounce's block), so
+                // that the pixel's samples stratify it; later stretches of the same
+                // bounce, after an interface, draw independent numbers, since the first
+                // flight's outcome conditions that pair.
+                numbers.first = (stratified != Some(walk.depth)).then(|| {
+                    stratified = Some(walk.depth);
+                    let mut pair = stream.clone();
+                    pair.set_dimension(FLIGHT_DIMENSION + u64::from(walk.depth));
+                    pair.next_2d()
+                });
                 let flight = fly(
                     medium,
                     origin,

@@ -6,7 +6,7 @@
 //! chromatic medium right (the mistake of Mitsuba 3 issue #1387: a null-collision
 //! probability from the hero alone, with no ratio to correct the other lanes).
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{IndependentStream, SampleStream};
 use prism_scene::geometry::Ray;
@@ -34,10 +34,14 @@ pub(crate) enum Flight {
 
 /// The numbers a path's flights draw: free-flight distances, and the collisions' kinds.
 /// Independent of the Sobol dimensions, whose bounces need the same dimensions whatever
-/// number of collisions came before.
+/// number of collisions came before; except that the first collision of a bounce's
+/// first stretch may be drawn from a stratified pair (`first`), as its own dimensions
+/// of the sample's Sobol stream.
 pub(crate) struct FlightNumbers {
     pub distances: IndependentStream,
     pub kinds: IndependentStream,
+    /// (distance, kind) numbers for the next flight's first collision, used once.
+    pub first: Option<Vec2>,
 }
 
 impl FlightNumbers {
@@ -48,6 +52,7 @@ impl FlightNumbers {
         Self {
             distances: IndependentStream::new(seed ^ DISTANCES, pixel, sample),
             kinds: IndependentStream::new(seed ^ KINDS, pixel, sample),
+            first: None,
         }
     }
 }
@@ -78,8 +83,13 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     let wavelengths = walk.transport;
     let emits = emits && medium.emissive();
     let mut flight = Flight::Through;
-    let u = numbers.distances.next_1d();
-    let FlightNumbers { distances, kinds } = numbers;
+    let (u, mut first_kind) = match numbers.first.take() {
+        Some(pair) => (pair.x, Some(pair.y)),
+        None => (numbers.distances.next_1d(), None),
+    };
+    let FlightNumbers {
+        distances, kinds, ..
+    } = numbers;
     let t_maj = sample_majorant(
         medium,
         &Ray::new(origin, direction, length),
@@ -97,7 +107,7 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
                 let le = c.point.emission * c.t_maj / hero_density * weight;
                 walk.beta.add_emitted(&mut walk.radiance, &le, 1.0);
             }
-            let u = kinds.next_1d();
+            let u = first_kind.take().unwrap_or_else(|| kinds.next_1d());
             let decided = match medium.fluorescence() {
                 None => collide(c, u, walk, ratios),
                 Some(dye) => super::dye::collide(c, u, &mut || kinds.next_1d(), dye, walk, ratios),

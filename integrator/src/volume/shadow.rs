@@ -75,7 +75,9 @@ impl Tracer<'_> {
                 let dyed = medium.fluorescence().is_some();
                 let length = hit.as_ref().map_or(ray.t_max, |h| h.t);
                 let u = numbers.distances.next_1d();
-                let FlightNumbers { distances, kinds } = numbers;
+                let FlightNumbers {
+                    distances, kinds, ..
+                } = numbers;
                 let t_maj = sample_majorant(
                     medium,
                     &Ray::new(ray.origin, direction, length),
