@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Efficiency of two prism builds on one scene: error at equal samples, and time.
+
+Renders SCENE with each build under seeds 0..SEEDS-1 (alternating builds), measures
+each image's relative MSE against a converged render (the first build at 8192 spp, seed
+999, made once into --out), and prints per build the mean relMSE, its spread over the
+seeds, the median seconds and the efficiency 1 / (relMSE x seconds) relative to the
+first build. For changes that alter images on purpose (sampling, estimators), where
+`ab_render.py --same` cannot apply.
+
+    pip install OpenEXR numpy
+    python3 benches/ab_error.py OLD/prism NEW/prism --seeds 6 -- scenes/cornell-medium.gltf \
+        --width 128 --height 128 --spp 64
+"""
+import argparse, hashlib, json, os, subprocess, sys
+
+import numpy as np
+import OpenEXR
+
+
+def read(path):
+    channels = OpenEXR.File(path, separate_channels=True).channels()
+    return np.stack([np.asarray(channels[c].pixels, dtype=np.float64) for c in "RGB"], -1)
+
+
+def relmse(img, ref):
+    """prism compare's relative MSE: noise relative to the reference, floored in the dark."""
+    return float(np.mean((img - ref) ** 2 / (ref ** 2 + 0.01)))
+
+
+def main(argv):
+    if "--" not in argv:
+        sys.exit("ab_error: give the scene and render arguments after --")
+    split = argv.index("--")
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("builds", nargs=2)
+    ap.add_argument("--seeds", type=int, default=6)
+    ap.add_argument("--out", default="ab-error")
+    args = ap.parse_args(argv[:split])
+    scene, *render_args = argv[split + 1:]
+    os.makedirs(args.out, exist_ok=True)
+
+    def render(build, path, *extra):
+        done = subprocess.run([build, "render", scene, "-o", path, "-q", "--stats", *render_args, *extra],
+                              check=True, capture_output=True, text=True)
+        return json.loads((done.stdout.strip() or done.stderr.strip()).splitlines()[-1])
+
+    stem = os.path.splitext(os.path.basename(scene))[0]
+    key = hashlib.sha1(" ".join(render_args).encode()).hexdigest()[:8]
+    reference = os.path.join(args.out, f"reference-{stem}-{key}.exr")
+    if not os.path.exists(reference):
+        flags = list(render_args)
+        if "--spp" in flags:
+            del flags[flags.index("--spp"):flags.index("--spp") + 2]
+        subprocess.run([args.builds[0], "render", scene, "-o", reference, "-q", *flags,
+                        "--spp", "8192", "--seed", "999"], check=True)
+    ref = read(reference)
+    work = os.path.join(args.out, "render.exr")
+    errors = {b: [] for b in args.builds}
+    seconds = {b: [] for b in args.builds}
+    for seed in range(args.seeds):
+        for build in args.builds:
+            stats = render(build, work, "--seed", str(seed))
+            errors[build].append(relmse(read(work), ref))
+            seconds[build].append(stats["seconds"])
+    base = None
+    for build in args.builds:
+        e, t = np.mean(errors[build]), float(np.median(seconds[build]))
+        efficiency = 1.0 / (e * t)
+        base = base or efficiency
+        spread = np.std(errors[build]) / np.sqrt(len(errors[build])) / e
+        print(f"{build}: relMSE {e:.4e} (+-{100 * spread:.1f}%), {t:.2f} s, efficiency {efficiency / base:.3f}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
