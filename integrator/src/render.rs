@@ -278,6 +278,16 @@ impl<'a> Renderer<'a> {
         }
     }
 
+    /// The sample rows for the pilots: one sequence of samples whatever the film
+    /// records, so that asking for the variance (two replicates) changes the image's
+    /// randomization but not the splits and reuse the pilot picks.
+    pub(crate) fn pilot_rows(&self, seed: u64, samples: Range<u64>) -> Rows {
+        Rows {
+            replicas: Replicas::ONE,
+            ..self.rows(seed, samples)
+        }
+    }
+
     /// The filter sampler.
     pub(crate) fn filter(&self) -> &FilterSampler {
         &self.filter
@@ -413,7 +423,7 @@ impl<'a> Renderer<'a> {
     /// rays they traced. For the splits pilot (`splits::LightPilot`).
     pub(crate) fn light_pass(&self, seed: u64) -> (Film, u64) {
         let tracer = self.tracer(1);
-        let rows = self.rows(seed, 0..1);
+        let rows = self.pilot_rows(seed, 0..1);
         let mut pass = Film::for_settings(&self.settings);
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         self.add_light_paths(

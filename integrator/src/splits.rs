@@ -158,7 +158,7 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     let (width, height) = (settings.width, settings.height);
     let (columns, rows) = (width.min(GRID), height.min(GRID));
     let tracers = [renderer.tracer(1), renderer.tracer(2)];
-    let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
+    let seeds = PILOT_SEEDS.map(|s| renderer.pilot_rows(settings.seed ^ s, 0..SAMPLES));
     let light = LightPilot::trace(renderer);
     let per_pixel: Vec<Pilot> = (0..columns * rows)
         .into_par_iter()
@@ -246,7 +246,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     let (width, height) = (settings.width, settings.height);
     let (columns, rows) = (width.min(REUSE_GRID), height.min(REUSE_GRID));
     let tracers = [renderer.tracer(1), renderer.tracer(2)];
-    let seeds = PILOT_SEEDS.map(|s| renderer.rows(settings.seed ^ s, 0..SAMPLES));
+    let seeds = PILOT_SEEDS.map(|s| renderer.pilot_rows(settings.seed ^ s, 0..SAMPLES));
     let light = LightPilot::trace(renderer);
     let corner = |i: u32| {
         (

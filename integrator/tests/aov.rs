@@ -387,6 +387,14 @@ fn no_aov_leaves_the_image_as_it_was() {
     // image of the same expectation.
     let (variance, _) = render(&scene, &settings("variance", 12, 4)).unwrap();
     assert_ne!(plain.sums(), variance.sums());
+    // Its pilot is the plain render's: the same splits and reuse.
+    let box_scene = common::cornell();
+    let (_, plain) = render(&box_scene, &settings("", 128, 1)).unwrap();
+    let (_, variance) = render(&box_scene, &settings("variance", 128, 1)).unwrap();
+    assert_eq!(
+        (plain.splits, plain.reuse),
+        (variance.splits, variance.reuse)
+    );
 }
 
 #[cfg(feature = "exr")]
