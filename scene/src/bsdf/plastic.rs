@@ -205,7 +205,12 @@ impl<'a, const N: usize> Plastic<'a, N> {
         if !same_hemisphere(wo, wi) {
             return 0.0;
         }
-        let p = self.specular_probability(wo);
+        self.pdf_given(self.specular_probability(wo), wo, wi)
+    }
+
+    /// [`Plastic::pdf`] of `wi` in `wo`'s hemisphere, the coating's lobe chosen with
+    /// probability `p` (what `sample` has already computed).
+    fn pdf_given(&self, p: f32, wo: Vec3, wi: Vec3) -> f32 {
         let diffuse = (1.0 - p) * cosine_hemisphere_pdf(Vec3::new(wi.x, wi.y, wi.z.abs()));
         if p == 0.0 || self.coating.distribution.effectively_smooth() {
             return diffuse;
@@ -250,7 +255,7 @@ impl<'a, const N: usize> Plastic<'a, N> {
         if !same_hemisphere(wo, wi) {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
+        let pdf = self.pdf_given(p, wo, wi);
         if !positive_finite(pdf) {
             return None;
         }
