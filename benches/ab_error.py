@@ -5,7 +5,8 @@ Renders SCENE with each build under seeds 0..SEEDS-1 (alternating builds), measu
 each image's relative MSE against a converged render (the first build at 8192 spp, seed
 999, made once into --out), and prints per build the mean relMSE, its spread over the
 seeds, the median seconds and the efficiency 1 / (relMSE x seconds) relative to the
-first build. For changes that alter images on purpose (sampling, estimators), where
+first build (the median relMSE too: where fireflies dominate, the mean is their
+noise). For changes that alter images on purpose (sampling, estimators), where
 `ab_render.py --same` cannot apply.
 
     pip install OpenEXR numpy
@@ -69,7 +70,9 @@ def main(argv):
         efficiency = 1.0 / (e * t)
         base = base or efficiency
         spread = np.std(errors[build]) / np.sqrt(len(errors[build])) / e
-        print(f"{build}: relMSE {e:.4e} (+-{100 * spread:.1f}%), {t:.2f} s, efficiency {efficiency / base:.3f}")
+        median = float(np.median(errors[build]))
+        print(f"{build}: relMSE {e:.4e} (+-{100 * spread:.1f}%; median {median:.4e}), {t:.2f} s, "
+              f"efficiency {efficiency / base:.3f}")
 
 
 if __name__ == "__main__":
