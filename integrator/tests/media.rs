@@ -271,6 +271,43 @@ fn scattering_furnace_returns_the_environment() {
     }
 }
 
+/// Kirchhoff's law as a furnace: a sphere of medium that absorbs (sigma_a rising sixfold
+/// across the spectrum), scatters (sigma_s falling fivefold) and emits epsilon = sigma_a
+/// L, in a uniform environment of radiance L = 1, is in equilibrium with it: every pixel
+/// sees 1 at every wavelength. What absorption takes at a collision the emission there
+/// gives back, so a collision's absorption weight that were wrong for any lane, or any
+/// mismatch between the lanes' albedos and their densities, would show.
+#[test]
+fn absorbing_glowing_furnace_is_in_equilibrium() {
+    let sphere = icosphere(3);
+    let ids = vec![0; sphere.len()];
+    for g in [0.0, 0.9] {
+        let medium = Medium::new(
+            linear(0.5, 3.0),
+            linear(4.0, 0.8),
+            Phase::henyey_greenstein(g).unwrap(),
+            Some(linear(0.5, 3.0)),
+        )
+        .unwrap();
+        let mut scene = furnace(sphere.clone(), ids.clone(), vec![Material::Interface], 1.2);
+        scene
+            .set_media(Media::new(vec![medium], vec![Some(0)], None).unwrap())
+            .unwrap();
+        let (film, stats) = render(&scene, &settings(12, 48, 4)).unwrap();
+        assert_eq!(stats.nonfinite, 0);
+        let expected = constant_xyz(1.0);
+        for (k, &value) in expected.iter().enumerate() {
+            // A wrong weight can diverge instead of biasing: its error bar would be huge.
+            let (_, error) = common::mean_and_error(&film, k);
+            assert!(
+                error < 0.01 * value,
+                "g {g} channel {k}: standard error {error}"
+            );
+        }
+        assert_image_mean(&film, expected, &format!("g {g}"));
+    }
+}
+
 /// Fog filling the world, scattering by Rayleigh's phase function with sigma_s rising
 /// eightfold across the spectrum, with a sphere of another medium in it, inside a closed
 /// black room whose walls glow with radiance 1: without absorption the radiance is 1

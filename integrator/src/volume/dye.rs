@@ -3,11 +3,10 @@
 //!
 //! At a tentative collision the path integral has three terms that continue the path: real
 //! scattering (sigma_s), the dye's re-emission (sigma_fo, from other wavelengths) and the
-//! null collision (sigma_n = sigma_maj - sigma_a - sigma_s, straight on). The analog
-//! scheme's absorption would end paths that the dye's term wants to continue, so here the
-//! hero chooses among the three in proportion to their coefficients, whose sum is S, and
-//! absorption is a weight instead (S / sigma_maj per collision: survival
-//! biasing; Russian roulette ends paths). Every term keeps a positive probability wherever
+//! null collision (sigma_n = sigma_maj - sigma_a - sigma_s, straight on). The hero chooses
+//! among the three in proportion to their coefficients, whose sum is S, and absorption is a
+//! weight (S / sigma_maj per collision: survival biasing, as in a medium without a dye,
+//! `segment`; Russian roulette ends paths). Every term keeps a positive probability wherever
 //! it is positive, so the majorant needs no room of its own for the dye. The lanes keep
 //! their densities as ratios, as everywhere in the volumetric tracer.
 

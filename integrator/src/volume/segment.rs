@@ -1,6 +1,6 @@
 //! A camera path's flight through one stretch of medium: emission gathered at every
-//! tentative collision, and each collision absorbed, scattered or passed (null) by the
-//! hero's probabilities, the other lanes' densities kept in the ratios (pbrt-v4's
+//! tentative collision, and each collision real (scattered, its absorption a weight) or
+//! passed (null) by the hero's probabilities, the other lanes' densities kept in the ratios (pbrt-v4's
 //! `VolPathIntegrator::Li`, *PBR* 4th ed. §14.2.3; Miller, Georgiev and Jarosz 2019,
 //! §4-5). Choosing by the hero and weighing every lane by its own density is what keeps a
 //! chromatic medium right (the mistake of Mitsuba 3 issue #1387: a null-collision
@@ -143,10 +143,16 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     flight
 }
 
-/// A tentative collision decided by the hero's probabilities (the analog scheme of
-/// pbrt-v4's VolPath): `u` over the majorant, [0, a) absorbs, [a, a + s) scatters, the
-/// rest is null. None: the path goes straight on; else how its flight ends. Where rounding
-/// leaves no null coefficient, what would be null is the real collision it is.
+/// A tentative collision decided by the hero's probabilities: `u` over the majorant,
+/// [0, sigma_t) is a real collision, the rest null. A real collision always scatters, its
+/// absorption a weight (sigma_s / sigma_t per lane, over the hero's density of a real
+/// collision): survival biasing, as Mitsuba 3's `volpath` does, where pbrt-v4's analog
+/// scheme ends the path with probability sigma_a / sigma_maj. Absorbing ends nothing that
+/// the path integral counts here (emission is gathered at every tentative collision), so
+/// the weight loses no light an absorbed path would have found, and Russian roulette after
+/// the scattering ends paths whose weight has faded. None: the path goes straight on;
+/// else how its flight ends. Where rounding leaves no null coefficient, what would be null
+/// is the real collision it is.
 #[inline]
 fn collide<const N: usize, T: Throughput<N>>(
     c: &Collision<N>,
@@ -154,16 +160,18 @@ fn collide<const N: usize, T: Throughput<N>>(
     walk: &mut Walk<N, T>,
     ratios: &mut Ratios<N>,
 ) -> Option<Flight> {
-    let (a, s) = (c.point.sigma_a[0], c.point.sigma_s[0]);
-    let n = (c.sigma_maj[0] - a - s).max(0.0);
+    let t = c.point.sigma_a[0] + c.point.sigma_s[0];
+    let n = (c.sigma_maj[0] - t).max(0.0);
     let u = u * c.sigma_maj[0];
-    if u < a || (n <= 0.0 && s <= 0.0) {
+    if !(t > 0.0 || n > 0.0) {
         return Some(Flight::Ended);
     }
-    if u < a + s || n <= 0.0 {
-        let factor = c.t_maj * c.point.sigma_s / (c.t_maj[0] * s);
-        walk.beta.scale(factor);
-        ratios.r_u *= factor;
+    if u < t || n <= 0.0 {
+        // Lane j as hero would have collided for real with density T_maj sigma_t.
+        let hero = c.t_maj[0] * t;
+        let sigma_t = c.point.sigma_a + c.point.sigma_s;
+        walk.beta.scale(c.t_maj * c.point.sigma_s / hero);
+        ratios.r_u *= c.t_maj * sigma_t / hero;
         return Some(if alive(walk, ratios) {
             Flight::Scattered(c.p)
         } else {
