@@ -163,7 +163,7 @@ impl Tracer<'_> {
             return 0;
         }
         let ray = at.shadow_ray(light.wi, light.distance);
-        let (shadow, rays) = self.shadow(ray, media(light.wi), &walk.transport, numbers);
+        let (shadow, rays) = self.shadow(ray, media(light.wi), &walk.transport, numbers, emission);
         let Some(shadow) = shadow else {
             return rays;
         };

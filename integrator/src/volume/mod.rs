@@ -142,8 +142,10 @@ impl<'a> Tracer<'a> {
                     let distance = numbers.next_1d();
                     Vec2::new(distance, numbers.next_1d())
                 });
+                let base = emission.medium(m, medium, &walk.transport);
                 let flight = fly(
                     medium,
+                    &base,
                     origin,
                     direction,
                     length,

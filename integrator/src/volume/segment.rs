@@ -10,8 +10,8 @@ use glam::{Vec2, Vec3};
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{IndependentStream, SampleStream};
 use prism_scene::geometry::Ray;
-use prism_scene::medium::Medium;
-use prism_scene::medium::track::{Collision, sample_majorant};
+use prism_scene::medium::track::{Collision, sample_majorant_at};
+use prism_scene::medium::{Medium, MediumPoint};
 use prism_spectrum::SampledSpectrum;
 
 use super::ratios::{Ratios, spectral_weight};
@@ -67,11 +67,12 @@ pub(crate) fn null_coefficient<const N: usize>(c: &Collision<N>) -> SampledSpect
 }
 
 /// Flies `walk` from `origin` along unit `direction` for `length` (infinite where nothing
-/// is met) through `medium`. Emission is gathered at each tentative collision by the
+/// is met) through `medium`, whose coefficients at the walk's wavelengths are `base`. Emission is gathered at each tentative collision by the
 /// collision estimator unless the path has used its bounces (`emits`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     medium: &Medium,
+    base: &MediumPoint<N>,
     origin: Vec3,
     direction: Vec3,
     length: f32,
@@ -90,8 +91,9 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     let FlightNumbers {
         distances, kinds, ..
     } = numbers;
-    let t_maj = sample_majorant(
+    let t_maj = sample_majorant_at(
         medium,
+        base,
         &Ray::new(origin, direction, length),
         u,
         &mut || distances.next_1d(),

@@ -10,7 +10,8 @@
 use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::SampleStream;
 use prism_scene::geometry::Ray;
-use prism_scene::medium::track::{self, sample_majorant};
+use prism_scene::medium::track::{self, sample_majorant_at};
+use prism_scene::world::EmissionCache;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::dye::straight_density;
@@ -35,7 +36,7 @@ pub(crate) struct Shadow<const N: usize> {
 
 impl Tracer<'_> {
     /// Traces `ray` (unit direction, ending short of the light) from a vertex inside
-    /// `media`, at `wavelengths`: None where a surface other than an interface blocks
+    /// `media`, at `wavelengths` (the media's coefficients there kept in `cache`): None where a surface other than an interface blocks
     /// it or no light is left, else the transmittance and ratios, and the rays traced.
     pub(crate) fn shadow<const N: usize>(
         &self,
@@ -43,6 +44,7 @@ impl Tracer<'_> {
         mut media: MediumStack,
         wavelengths: &SampledWavelengths<N>,
         numbers: &mut FlightNumbers,
+        cache: &mut EmissionCache<N>,
     ) -> (Option<Shadow<N>>, u64) {
         let mut transmittance = SampledSpectrum::splat(1.0);
         let mut ratios = Ratios::one();
@@ -56,63 +58,63 @@ impl Tracer<'_> {
             {
                 return (None, rays);
             }
-            if let Some(m) = media.current()
-                && self.scene.media().get(m).transmittance_in_closed_form()
-            {
-                // Light sampling crosses the stretch with density 1 and the exact
-                // transmittance; unidirectional sampling would have flown through it with
-                // density T per lane (no null collisions to meet in such a medium).
+            if let Some(m) = media.current() {
                 let medium = self.scene.media().get(m);
+                let base = cache.medium(m, medium, wavelengths);
                 let length = hit.as_ref().map_or(ray.t_max, |h| h.t);
-                let crossed = track::transmittance(&medium.extinction(wavelengths), length);
-                transmittance *= crossed;
-                ratios.r_u *= crossed;
-                if transmittance.is_black() {
-                    return (None, rays);
-                }
-            } else if let Some(m) = media.current() {
-                let medium = self.scene.media().get(m);
-                let dyed = medium.fluorescence().is_some();
-                let length = hit.as_ref().map_or(ray.t_max, |h| h.t);
-                let u = numbers.distances.next_1d();
-                let FlightNumbers {
-                    distances, kinds, ..
-                } = numbers;
-                let t_maj = sample_majorant(
-                    medium,
-                    &Ray::new(ray.origin, direction, length),
-                    u,
-                    &mut || distances.next_1d(),
-                    wavelengths,
-                    |c| {
-                        let sigma_n = null_coefficient(c);
-                        let hero_density = c.t_maj[0] * c.sigma_maj[0];
-                        transmittance *= c.t_maj * sigma_n / hero_density;
-                        ratios.r_l *= c.t_maj * c.sigma_maj / hero_density;
-                        // Unidirectional sampling would have gone straight on here: with
-                        // density T_maj sigma_n, or its share under a dye (`dye`).
-                        let straight = if dyed { straight_density(c) } else { sigma_n };
-                        ratios.r_u *= c.t_maj * straight / hero_density;
-                        let estimate =
-                            (transmittance / (ratios.r_l + ratios.r_u).average()).max_value();
-                        if estimate < ROULETTE_BELOW {
-                            if kinds.next_1d() < 0.75 {
-                                transmittance = SampledSpectrum::splat(0.0);
-                            } else {
-                                transmittance *= 1.0 / 0.25;
+                if medium.transmittance_in_closed_form() {
+                    // Light sampling crosses the stretch with density 1 and the exact
+                    // transmittance; unidirectional sampling would have flown through it
+                    // with density T per lane (no null collisions to meet in such a medium).
+                    let crossed = track::transmittance(&(base.sigma_a + base.sigma_s), length);
+                    transmittance *= crossed;
+                    ratios.r_u *= crossed;
+                    if transmittance.is_black() {
+                        return (None, rays);
+                    }
+                } else {
+                    let dyed = medium.fluorescence().is_some();
+                    let u = numbers.distances.next_1d();
+                    let FlightNumbers {
+                        distances, kinds, ..
+                    } = numbers;
+                    let t_maj = sample_majorant_at(
+                        medium,
+                        &base,
+                        &Ray::new(ray.origin, direction, length),
+                        u,
+                        &mut || distances.next_1d(),
+                        wavelengths,
+                        |c| {
+                            let sigma_n = null_coefficient(c);
+                            let hero_density = c.t_maj[0] * c.sigma_maj[0];
+                            transmittance *= c.t_maj * sigma_n / hero_density;
+                            ratios.r_l *= c.t_maj * c.sigma_maj / hero_density;
+                            // Unidirectional sampling would have gone straight on here:
+                            // with density T_maj sigma_n, or its share under a dye (`dye`).
+                            let straight = if dyed { straight_density(c) } else { sigma_n };
+                            ratios.r_u *= c.t_maj * straight / hero_density;
+                            let estimate =
+                                (transmittance / (ratios.r_l + ratios.r_u).average()).max_value();
+                            if estimate < ROULETTE_BELOW {
+                                if kinds.next_1d() < 0.75 {
+                                    transmittance = SampledSpectrum::splat(0.0);
+                                } else {
+                                    transmittance *= 1.0 / 0.25;
+                                }
                             }
-                        }
-                        transmittance.max_value() > 0.0
-                    },
-                );
-                if !positive_finite(t_maj[0]) {
-                    return (None, rays);
-                }
-                let factor = t_maj / t_maj[0];
-                transmittance *= factor;
-                ratios.scale(&factor);
-                if !positive_finite(transmittance.max_value()) {
-                    return (None, rays);
+                            transmittance.max_value() > 0.0
+                        },
+                    );
+                    if !positive_finite(t_maj[0]) {
+                        return (None, rays);
+                    }
+                    let factor = t_maj / t_maj[0];
+                    transmittance *= factor;
+                    ratios.scale(&factor);
+                    if !positive_finite(transmittance.max_value()) {
+                        return (None, rays);
+                    }
                 }
             }
             let Some(h) = hit else {

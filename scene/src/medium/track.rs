@@ -41,6 +41,21 @@ pub struct Collision<const N: usize> {
 pub fn sample_majorant<const N: usize>(
     medium: &Medium,
     ray: &Ray,
+    u: f32,
+    next_u: &mut impl FnMut() -> f32,
+    wavelengths: &SampledWavelengths<N>,
+    collide: impl FnMut(&Collision<N>) -> bool,
+) -> SampledSpectrum<N> {
+    let base = medium.at(wavelengths);
+    sample_majorant_at(medium, &base, ray, u, next_u, wavelengths, collide)
+}
+
+/// [`sample_majorant`] with the medium's coefficients at `wavelengths` already evaluated
+/// (`base`, [`Medium::at`]'s): a path evaluates them once for all its flights.
+pub fn sample_majorant_at<const N: usize>(
+    medium: &Medium,
+    base: &MediumPoint<N>,
+    ray: &Ray,
     mut u: f32,
     next_u: &mut impl FnMut() -> f32,
     wavelengths: &SampledWavelengths<N>,
@@ -52,12 +67,11 @@ pub fn sample_majorant<const N: usize>(
     } else {
         ray.t_max.max(0.0)
     };
-    let base = medium.at(wavelengths);
     // The majorant transmittance since the last collision, and whether `collide` stopped.
     let mut t_maj = SampledSpectrum::splat(1.0);
     let mut stopped = false;
     let mut span = |span: Span| -> bool {
-        let sigma_maj = medium.majorant_over(&base, span.bound);
+        let sigma_maj = medium.majorant_over(base, span.bound);
         if sigma_maj[0] <= 0.0 {
             t_maj *= transmittance(&sigma_maj, span.t1 - span.t0);
             return true;
@@ -75,7 +89,7 @@ pub fn sample_majorant<const N: usize>(
             let collision = Collision {
                 t,
                 p,
-                point: medium.point(&base, p, wavelengths),
+                point: medium.point(base, p, wavelengths),
                 sigma_maj,
                 t_maj,
             };
