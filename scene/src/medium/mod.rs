@@ -59,7 +59,7 @@ pub struct Medium {
 }
 
 /// The coefficients of a medium at a point, at a package's wavelengths.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MediumPoint<const N: usize> {
     /// Absorption coefficient per lane.
     pub sigma_a: SampledSpectrum<N>,

@@ -18,12 +18,12 @@ const SLOTS: usize = 8;
 #[derive(Debug, Clone)]
 pub struct EmissionCache<const N: usize> {
     lambdas: [f32; N],
-    emission: Slots<N>,
+    emission: Slots<SampledSpectrum<N>>,
     /// Lambertian materials' constant reflectances at these wavelengths, by material
     /// index (the first `SLOTS` materials): a path meets the same few walls again and
     /// again, and each evaluation is a sigmoid per lane (measured: 7% of the Cornell
     /// box's time went to evaluating reflectances).
-    reflectances: Slots<N>,
+    reflectances: Slots<SampledSpectrum<N>>,
     /// The lights' choice weights at these wavelengths, once computed (scenes whose
     /// lights differ in spectrum; see `light_choice`).
     pub(crate) choice_weights: Option<Weights>,
@@ -31,7 +31,7 @@ pub struct EmissionCache<const N: usize> {
     /// first `SLOTS` media): a path through a medium evaluates them for every flight and
     /// every shadow ray, two to four spectra each (measured: 7% of the instructions of the
     /// medium box).
-    media: MediaSlots<N>,
+    media: Slots<MediumPoint<N>>,
 }
 
 impl<const N: usize> Default for EmissionCache<N> {
@@ -41,7 +41,7 @@ impl<const N: usize> Default for EmissionCache<N> {
             emission: Slots::default(),
             reflectances: Slots::default(),
             choice_weights: None,
-            media: MediaSlots::default(),
+            media: Slots::default(),
         }
     }
 }
@@ -83,7 +83,7 @@ impl<const N: usize> EmissionCache<N> {
             return spectrum.at(wavelengths);
         }
         self.refresh(wavelengths);
-        self.emission.get(slot, spectrum, wavelengths)
+        self.emission.get(slot, || spectrum.at(wavelengths))
     }
 
     /// Material number `material`'s reflectance `spectrum` (not a texture) at
@@ -100,7 +100,7 @@ impl<const N: usize> EmissionCache<N> {
             return None;
         }
         self.refresh(wavelengths);
-        Some(self.reflectances.get(slot, spectrum, wavelengths))
+        Some(self.reflectances.get(slot, || spectrum.at(wavelengths)))
     }
 
     /// Medium number `index` (`medium`)'s coefficients at `wavelengths`, evaluated at most
@@ -116,63 +116,23 @@ impl<const N: usize> EmissionCache<N> {
             return medium.at(wavelengths);
         }
         self.refresh(wavelengths);
-        if self.media.filled & (1 << slot) == 0 {
-            self.media.values[slot] = medium.at(wavelengths);
-            self.media.filled |= 1 << slot;
-        }
-        self.media.values[slot]
+        self.media.get(slot, || medium.at(wavelengths))
     }
 }
 
-/// Media's coefficients at the cache's wavelengths, by slot (as [`Slots`]).
-#[derive(Debug, Clone)]
-struct MediaSlots<const N: usize> {
+/// Values at the cache's wavelengths, by slot, each computed once until the cache refills
+/// (`filled`: a bit per slot holding a value).
+#[derive(Debug, Clone, Default)]
+struct Slots<V> {
     filled: u32,
-    values: [MediumPoint<N>; SLOTS],
+    values: [V; SLOTS],
 }
 
-impl<const N: usize> Default for MediaSlots<N> {
-    fn default() -> Self {
-        let zero = SampledSpectrum::splat(0.0);
-        Self {
-            filled: 0,
-            values: [MediumPoint {
-                sigma_a: zero,
-                sigma_s: zero,
-                emission: zero,
-                sigma_fo: zero,
-            }; SLOTS],
-        }
-    }
-}
-
-/// Spectra evaluated at the cache's wavelengths, by slot, each once until the cache
-/// refills (`filled`: a bit per slot holding a value).
-#[derive(Debug, Clone)]
-struct Slots<const N: usize> {
-    filled: u32,
-    values: [SampledSpectrum<N>; SLOTS],
-}
-
-impl<const N: usize> Default for Slots<N> {
-    fn default() -> Self {
-        Self {
-            filled: 0,
-            values: [SampledSpectrum::splat(0.0); SLOTS],
-        }
-    }
-}
-
-impl<const N: usize> Slots<N> {
-    /// Slot `slot` (below `SLOTS`): `spectrum` at `wavelengths`, evaluated the first time.
-    fn get(
-        &mut self,
-        slot: usize,
-        spectrum: &SceneSpectrum,
-        wavelengths: &SampledWavelengths<N>,
-    ) -> SampledSpectrum<N> {
+impl<V: Copy> Slots<V> {
+    /// Slot `slot` (below `SLOTS`): `compute`'s value, computed the first time.
+    fn get(&mut self, slot: usize, compute: impl FnOnce() -> V) -> V {
         if self.filled & (1 << slot) == 0 {
-            self.values[slot] = spectrum.at(wavelengths);
+            self.values[slot] = compute();
             self.filled |= 1 << slot;
         }
         self.values[slot]
