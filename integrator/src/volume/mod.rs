@@ -4,8 +4,8 @@
 //! It follows the null-scattering path integral of Miller, Georgiev and Jarosz ("A
 //! null-scattering path integral formulation of light transport", SIGGRAPH 2019, §4-5) as
 //! pbrt-v4's `VolPathIntegrator` does (*PBR* 4th ed. §14.2.3): free-flight distances drawn
-//! against a majorant, real (scattering, absorption a weight) and null collisions chosen by the
-//! hero's probabilities (`segment`), every lane's density kept as a ratio to the hero's
+//! against a majorant, real (scattering, absorption a weight) and null collisions chosen
+//! by the hero's probabilities (`segment`), every lane's density kept as a ratio to the hero's
 //! (`ratios`) so that the balance heuristic over every lane as hero and over unidirectional
 //! and light sampling weighs each contribution (`light`); next-event estimation through
 //! media by ratio tracking (`shadow`); and the nesting of volumes a path is in (`stack`).

@@ -1,9 +1,9 @@
 //! A camera path's flight through one stretch of medium: emission gathered at every
 //! tentative collision, and each collision real (scattered, its absorption a weight) or
-//! passed (null) by the hero's probabilities, the other lanes' densities kept in the ratios (pbrt-v4's
-//! `VolPathIntegrator::Li`, *PBR* 4th ed. §14.2.3; Miller, Georgiev and Jarosz 2019,
-//! §4-5). Choosing by the hero and weighing every lane by its own density is what keeps a
-//! chromatic medium right (the mistake of Mitsuba 3 issue #1387: a null-collision
+//! passed (null) by the hero's probabilities, the other lanes' densities kept in the
+//! ratios (pbrt-v4's `VolPathIntegrator::Li`, *PBR* 4th ed. §14.2.3; Miller, Georgiev and
+//! Jarosz 2019, §4-5). Choosing by the hero and weighing every lane by its own density is
+//! what keeps a chromatic medium right (the mistake of Mitsuba 3 issue #1387: a null-collision
 //! probability from the hero alone, with no ratio to correct the other lanes).
 
 use glam::{Vec2, Vec3};
@@ -67,8 +67,9 @@ pub(crate) fn null_coefficient<const N: usize>(c: &Collision<N>) -> SampledSpect
 }
 
 /// Flies `walk` from `origin` along unit `direction` for `length` (infinite where nothing
-/// is met) through `medium`, whose coefficients at the walk's wavelengths are `base`. Emission is gathered at each tentative collision by the
-/// collision estimator unless the path has used its bounces (`emits`).
+/// is met) through `medium`, whose coefficients at the walk's wavelengths are `base`.
+/// Emission is gathered at each tentative collision by the collision estimator unless the
+/// path has used its bounces (`emits`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     medium: &Medium,

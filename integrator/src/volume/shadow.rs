@@ -36,8 +36,9 @@ pub(crate) struct Shadow<const N: usize> {
 
 impl Tracer<'_> {
     /// Traces `ray` (unit direction, ending short of the light) from a vertex inside
-    /// `media`, at `wavelengths` (the media's coefficients there kept in `cache`): None where a surface other than an interface blocks
-    /// it or no light is left, else the transmittance and ratios, and the rays traced.
+    /// `media`, at `wavelengths` (the media's coefficients there kept in `cache`): None
+    /// where a surface other than an interface blocks it or no light is left, else the
+    /// transmittance and ratios, and the rays traced.
     pub(crate) fn shadow<const N: usize>(
         &self,
         mut ray: Ray,
