@@ -249,8 +249,8 @@ fn reused_renders_are_deterministic_and_merge() {
 }
 
 /// The automatic choice shares second vertices where the error is in indirect light on
-/// Lambertian surfaces (the Cornell box) and not where it is in what the camera ray finds
-/// (the textured scene); renders report it.
+/// Lambertian surfaces (the Cornell box, the medium box) and not where it is in what the
+/// camera ray finds (the textured scene); renders report it.
 #[test]
 fn auto_reuses_where_indirect_light_dominates() {
     let auto = |scene: &Scene| {
@@ -261,6 +261,9 @@ fn auto_reuses_where_indirect_light_dominates() {
     let box_ = cornell();
     assert_eq!(auto(&box_), (1, 4));
     assert_eq!(auto(&repository_scene("textured.gltf", |_| {})).1, 1);
+    // The medium box's walls are lit through and beside its medium: reuse pays there too
+    // (its gathers counted at what they cost, a third of a path's ray).
+    assert!(auto(&repository_scene("cornell-medium.gltf", |_| {})).1 > 1);
     let (_, stats) = render(
         &box_,
         &RenderSettings::default().width(64).height(64).samples(0..1),

@@ -72,6 +72,7 @@ impl<const N: usize> Lane<N> {
         PathResult {
             valid: true,
             rays: self.rays,
+            connections: 0,
             covered: self.covered,
         }
     }

@@ -88,6 +88,9 @@ pub(crate) struct PathResult {
     pub valid: bool,
     /// Rays traced (camera, continuation and shadow rays).
     pub rays: u64,
+    /// Of `rays`, path reuse's connections to other pixels' second vertices (each a
+    /// shadow ray, and cheaper than a ray of the path with the work around it).
+    pub connections: u64,
     /// Whether the camera ray met geometry (the pixel's coverage, its alpha).
     pub covered: bool,
 }
@@ -99,6 +102,7 @@ impl PathResult {
         Self {
             valid,
             rays: 0,
+            connections: 0,
             covered: false,
         }
     }
@@ -364,6 +368,7 @@ impl<'a> Tracer<'a> {
         PathResult {
             valid: true,
             rays,
+            connections: 0,
             covered,
         }
     }

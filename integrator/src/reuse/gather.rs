@@ -215,6 +215,7 @@ impl<const N: usize> Gathering<N> {
                 }
                 if m != k {
                     pixels[m].result.rays += 1;
+                    pixels[m].result.connections += 1;
                     let Some(start) = &self.starts[m] else {
                         continue;
                     };

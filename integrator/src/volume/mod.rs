@@ -281,6 +281,7 @@ impl<'a> Tracer<'a> {
         PathResult {
             valid: true,
             rays,
+            connections: 0,
             covered,
         }
     }
