@@ -200,6 +200,12 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
 /// non-positive q ends it).
 #[inline(always)]
 pub(crate) fn roulette<R: Real>(throughput: R, u: R) -> (R::Mask, R) {
-    let q = (throughput / R::splat(ROULETTE_THROUGHPUT)).min(R::splat(0.95));
+    roulette_capped(throughput, u, R::splat(0.95))
+}
+
+/// [`roulette`] with the survival probability at most `cap` rather than 0.95.
+#[inline(always)]
+pub(crate) fn roulette_capped<R: Real>(throughput: R, u: R, cap: R) -> (R::Mask, R) {
+    let q = (throughput / R::splat(ROULETTE_THROUGHPUT)).min(cap);
     (q.gt(R::splat(0.0)) & !q.le(u), q)
 }
