@@ -327,10 +327,16 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         cell.variance[2 + j] = means.iter().map(weighted_error).sum::<f64>() / pixels as f64;
         cell.rays[2 + j] = rays / samples;
         let (mut unsplit, mut unsplit_rays) = (0.0, 0.0);
-        for y in ys.clone() {
-            for x in xs.clone() {
+        for py in ys.clone() {
+            for px in xs.clone() {
+                // The corner pixel's unsplit estimate is mode 0's, traced already.
+                if (px, py) == (x, y) {
+                    unsplit += cell.variance[0];
+                    unsplit_rays += cell.rays[0] * (2 * SAMPLES) as f64;
+                    continue;
+                }
                 let (means, rays) =
-                    unsplit_estimates::<N, FLUORESCENCE, T>(renderer, &tracers[0], &seeds, x, y);
+                    unsplit_estimates::<N, FLUORESCENCE, T>(renderer, &tracers[0], &seeds, px, py);
                 unsplit += weighted_error(&means);
                 unsplit_rays += rays;
             }
