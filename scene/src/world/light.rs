@@ -323,6 +323,20 @@ impl Lights {
             .filter(|&l| l != u32::MAX)
     }
 
+    /// Whether a light path can start from some light: every light but the
+    /// environment's, which light paths never leave (see [`Scene::sample_emission`]), and
+    /// only one with a chance of being chosen.
+    ///
+    /// [`Scene::sample_emission`]: super::Scene::sample_emission
+    pub fn start_light_paths(&self) -> bool {
+        self.lights.iter().enumerate().any(|(i, light)| {
+            !matches!(
+                light,
+                Light::Environment { .. } | Light::EnvironmentMap { .. }
+            ) && self.pmf(i as u32) > 0.0
+        })
+    }
+
     /// The environment light's index, if the scene has one.
     pub fn environment(&self) -> Option<u32> {
         self.environment
