@@ -83,7 +83,7 @@ fn sampling_matches_the_density() {
     let mut counts = vec![0u64; nu * nv];
     let (mut valid, mut mismatched) = (0u64, 0u64);
     for _ in 0..samples {
-        if let Some((d, pdf, radiance)) = m.sample(stream.next_2d(), &lambdas) {
+        if let Some((d, pdf, radiance)) = m.sample(stream.next_2d(), &lambdas, &m.white(&lambdas)) {
             // The density looked up by direction is the sampled one, except where rounding
             // puts a direction on the other side of a cell's edge.
             if (pdf - m.pdf(d)).abs() > 1e-3 * pdf {
@@ -142,7 +142,9 @@ fn chi_square_rejects_a_density_without_the_area_element() {
     let mut stream = IndependentStream::new(3, 0, 0);
     let mut counts = vec![0u64; nv];
     for _ in 0..samples {
-        let (d, _, _) = m.sample(stream.next_2d(), &lambdas).unwrap();
+        let (d, _, _) = m
+            .sample(stream.next_2d(), &lambdas, &m.white(&lambdas))
+            .unwrap();
         counts[((m.uv(d).y * nv as f32) as usize).min(nv - 1)] += 1;
     }
     let uniform_in_v = vec![samples as f64 / nv as f64; nv];
@@ -153,7 +155,10 @@ fn chi_square_rejects_a_density_without_the_area_element() {
 fn a_black_image_gives_no_samples_and_no_density() {
     let m = map(&rgbe_file(4, 2, |_, _| [0.0; 3]), 0.0);
     let lambdas = SampledWavelengths::<1>::new([550.0], [1.0]).unwrap();
-    assert!(m.sample(Vec2::new(0.3, 0.6), &lambdas).is_none());
+    assert!(
+        m.sample(Vec2::new(0.3, 0.6), &lambdas, &m.white(&lambdas))
+            .is_none()
+    );
     assert_eq!(m.pdf(Vec3::Y), 0.0);
 }
 
@@ -221,7 +226,7 @@ mod extremes {
             prop_assert!(pdf.is_finite() && pdf >= 0.0);
             let l = map.radiance(d, &lambdas);
             prop_assert!(l.0.iter().all(|v| v.is_finite() && *v >= 0.0));
-            if let Some((w, pdf, l)) = map.sample(Vec2::from(u), &lambdas) {
+            if let Some((w, pdf, l)) = map.sample(Vec2::from(u), &lambdas, &map.white(&lambdas)) {
                 prop_assert!(w.is_finite() && pdf.is_finite() && pdf > 0.0);
                 prop_assert!(l.0.iter().all(|v| v.is_finite() && *v >= 0.0));
             }

@@ -508,7 +508,8 @@ impl Lights {
                 delta: false,
             },
             Light::EnvironmentMap { map } => {
-                let (wi, pdf, radiance) = map.sample(u, wavelengths)?;
+                let white = cache.environment_white(map, wavelengths);
+                let (wi, pdf, radiance) = map.sample(u, wavelengths, &white)?;
                 LightSample {
                     light: index as u32,
                     wi,

@@ -922,10 +922,11 @@ impl Scene {
                 radiance.at(wavelengths),
                 self.lights.pmf_at(l, wavelengths, cache) / (4.0 * std::f32::consts::PI),
             )),
-            Light::EnvironmentMap { map } => Some((
-                map.radiance(direction, wavelengths),
-                self.lights.pmf_at(l, wavelengths, cache) * map.pdf(direction),
-            )),
+            Light::EnvironmentMap { map } => {
+                let white = cache.environment_white(map, wavelengths);
+                let (radiance, pdf) = map.radiance_and_pdf(direction, wavelengths, &white);
+                Some((radiance, self.lights.pmf_at(l, wavelengths, cache) * pdf))
+            }
             _ => None,
         }
     }

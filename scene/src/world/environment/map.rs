@@ -18,7 +18,7 @@ use glam::{Vec2, Vec3};
 use prism_sampling::distribution::PiecewiseConstant2D;
 use prism_spectrum::spectra::DenselySampled;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
-use prism_upsample::{CoefficientTable, FitContext};
+use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum};
 
 use crate::world::SceneSpectrum;
 use crate::world::texture::illuminant_spectrum;
@@ -179,24 +179,68 @@ impl EnvironmentMap {
         d: Vec3,
         wavelengths: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let rgb = self.rgb(self.uv(d));
+        self.radiance_at(self.uv(d), wavelengths, &self.white(wavelengths))
+    }
+
+    /// The illuminant that RGB (1, 1, 1) emits, at the package's wavelengths: what
+    /// [`EnvironmentMap::radiance_at`] multiplies the texels' shapes by. A path looks the
+    /// image up at the same wavelengths again and again, so callers keep this.
+    pub fn white<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> [f32; N] {
+        self.illuminant.evaluate_lanes(wavelengths.lambdas())
+    }
+
+    /// Radiance at image coordinates `uv`, given [`EnvironmentMap::white`] at the same
+    /// wavelengths.
+    fn radiance_at<const N: usize>(
+        &self,
+        uv: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        white: &[f32; N],
+    ) -> SampledSpectrum<N> {
+        let rgb = self.rgb(uv);
         if rgb == [0.0; 3] {
             return SampledSpectrum::splat(0.0);
         }
-        match illuminant_spectrum(rgb, &self.table, &self.context, &self.illuminant) {
-            Ok(s) => SampledSpectrum(s.evaluate_lanes(wavelengths.lambdas())),
+        // The illuminant shape without the illuminant, which `white` holds: the same
+        // products in the same order as `RgbSpectrum::evaluate_lanes` with it.
+        match RgbSpectrum::from_table(
+            &self.table,
+            &self.context,
+            rgb.map(f64::from),
+            RgbKind::Illuminant,
+            None,
+            0,
+        ) {
+            Ok(s) => {
+                let shape = s.evaluate_lanes(wavelengths.lambdas());
+                SampledSpectrum(std::array::from_fn(|k| (shape[k] * white[k]).min(f32::MAX)))
+            }
             // Texels are finite: unreachable, and dark rather than a panic.
             Err(_) => SampledSpectrum::splat(0.0),
         }
     }
 
+    /// Radiance arriving from unit world direction `d` and the density (solid angle) with
+    /// which [`EnvironmentMap::sample`] picks it, from one conversion of `d` to image
+    /// coordinates; `white` is [`EnvironmentMap::white`] at `wavelengths`.
+    pub fn radiance_and_pdf<const N: usize>(
+        &self,
+        d: Vec3,
+        wavelengths: &SampledWavelengths<N>,
+        white: &[f32; N],
+    ) -> (SampledSpectrum<N>, f32) {
+        let uv = self.uv(d);
+        (self.radiance_at(uv, wavelengths, white), self.pdf_at(uv))
+    }
+
     /// A direction sampled with `u` in proportion to luminance times sin(theta), its
     /// density with respect to solid angle, and the radiance from it; None for a black
-    /// image or a sample at a pole.
+    /// image or a sample at a pole; `white` is [`EnvironmentMap::white`] at `wavelengths`.
     pub fn sample<const N: usize>(
         &self,
         u: Vec2,
         wavelengths: &SampledWavelengths<N>,
+        white: &[f32; N],
     ) -> Option<(Vec3, f32, SampledSpectrum<N>)> {
         let s = self
             .distribution
@@ -208,16 +252,20 @@ impl EnvironmentMap {
         // The radiance is looked up by direction, as a ray that escapes towards it is:
         // both estimators of MIS see the same function.
         (pdf.is_finite() && pdf > 0.0 && d.is_finite())
-            .then(|| (d, pdf, self.radiance(d, wavelengths)))
+            .then(|| (d, pdf, self.radiance_at(self.uv(d), wavelengths, white)))
     }
 
     /// The density (solid angle) with which [`EnvironmentMap::sample`] picks unit world
     /// direction `d`.
     pub fn pdf(&self, d: Vec3) -> f32 {
+        self.pdf_at(self.uv(d))
+    }
+
+    /// The density of [`EnvironmentMap::sample`] at image coordinates `uv`.
+    fn pdf_at(&self, uv: Vec2) -> f32 {
         let Some(distribution) = &self.distribution else {
             return 0.0;
         };
-        let uv = self.uv(d);
         let sin_theta = (PI * uv.y).sin();
         let pdf = distribution.pdf([f64::from(uv.x), f64::from(uv.y)]) as f32
             / (2.0 * PI * PI * sin_theta);
