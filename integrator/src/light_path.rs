@@ -15,10 +15,15 @@
 //! narrow (a glossy highlight seen directly is the camera's to find), k >= 2 and no vertex
 //! fluorescent; camera paths skip the light found along such paths (`Walk::advance`: a
 //! first bounce that is not focused, no fluorescent vertex, and a focused bounce onto the
-//! emitter; `Tracer::next_event`: no light sample from a narrow
-//! surface past the first bounce, but the environment's, which light paths never start
-//! from). Everything else stays with the camera paths, so the sum is unbiased and each
+//! emitter or out to the environment; `Tracer::next_event`: no light sample from a narrow
+//! surface past the first bounce). Everything else stays with the camera paths, so the
+//! sum is unbiased and each
 //! path is counted once.
+//!
+//! Light from infinity (a directional light, the environment: the sun in an HDR sky,
+//! focused by a metal sphere onto the floor) leaves a disk that covers only the surfaces
+//! where a first bounce can be focused (`Material::focuses`, their bounding sphere
+//! `Tracer::aim`), not the whole scene: every other ray would end at its first hit.
 
 use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
@@ -94,9 +99,9 @@ impl Tracer<'_> {
         let u_choice = stream.next_1d();
         let u_position = stream.next_2d();
         let u_direction = stream.next_2d();
-        let Some(emitted) = self
-            .scene
-            .sample_emission(u_choice, u_position, u_direction, &lambdas)
+        let Some(emitted) =
+            self.scene
+                .sample_emission(u_choice, u_position, u_direction, &lambdas, self.aim)
         else {
             return 0;
         };
@@ -129,6 +134,11 @@ impl Tracer<'_> {
             let material = self.scene.material(&hit);
             if material.fluorescent() {
                 // Re-radiation changes wavelength: this light stays with camera paths.
+                break;
+            }
+            // Light whose first bounce cannot be focused is no caustic (the test below,
+            // made before building the BSDF: most light from infinity lands so).
+            if depth == 0 && !material.focuses(CAUSTIC_ALPHA) {
                 break;
             }
             let bsdf = self.scene.bsdf(&hit, &lambdas, TransportMode::Importance);

@@ -66,6 +66,8 @@ pub struct Renderer<'a> {
     /// per pass, and a fresh film each time cost page faults and TLB flushes on every
     /// thread (7% of a render with AOVs: its sums are large).
     scratch: std::sync::Mutex<Option<Film>>,
+    /// Where light paths from infinity aim (`Tracer::aim`).
+    aim: Option<prism_scene::world::Aim>,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -139,7 +141,11 @@ impl<'a> Renderer<'a> {
             focus: None,
             system: None,
             scratch: Default::default(),
+            aim: None,
         };
+        if renderer.light_caustics() {
+            renderer.aim = scene.aim(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA));
+        }
         let aspect = settings.width as f32 / settings.height as f32;
         renderer.focus = scene.camera().focus(aspect, || auto_focus(scene, aspect));
         if let Some(mounted) = &scene.camera().system {
@@ -239,6 +245,7 @@ impl<'a> Renderer<'a> {
             camera: settings.camera.as_deref(),
             max_depth: settings.max_depth.unwrap_or(u32::MAX),
             light_caustics: self.light_caustics(),
+            aim: self.aim.as_ref(),
             transparent: settings.transparent,
             footprint: self.scene.filters_textures().then(|| {
                 Footprint::new(

@@ -8,14 +8,19 @@
 //!   sees the caustic and where it sees it after a bounce, and the image must not depend
 //!   on the thread count.
 
+#[path = "../../scene/tests/support/rgbe.rs"]
+mod rgbe;
+
 use std::sync::Arc;
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 use prism_integrator::{Film, Filter, LambdaSampler, RenderSettings, render};
 use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Projection, ThinLens};
 use prism_scene::geometry::BvhQuality;
-use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_scene::load::environment_map;
+use prism_scene::world::{EnvironmentMap, Light, Material, Scene, SceneParts, SceneSpectrum};
 use prism_spectrum::optics::named_glass;
+use rgbe::rgbe_file;
 
 /// A quad as two triangles, wound so that its front faces along `(b - a) x (c - a)`.
 fn quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> [[Vec3; 3]; 2] {
@@ -196,6 +201,10 @@ fn a_directional_light_in_a_mirror_lights_the_floor_as_its_image_does() {
 /// after a bounce on the floor. `roughness` roughens the glass (GGX alpha its square);
 /// `lens` puts a thin lens on the camera that looks at the wall.
 fn glass_block_scene(wall: bool, roughness: f32, lens: Option<ThinLens>) -> Scene {
+    Scene::new(glass_block_parts(wall, roughness, lens)).unwrap()
+}
+
+fn glass_block_parts(wall: bool, roughness: f32, lens: Option<ThinLens>) -> SceneParts {
     let mut triangles: Vec<[Vec3; 3]> = floor(3.0).to_vec();
     if wall {
         triangles.extend(quad(
@@ -244,7 +253,7 @@ fn glass_block_scene(wall: bool, roughness: f32, lens: Option<ThinLens>) -> Scen
             two_sided: false,
         })
         .collect();
-    Scene::new(SceneParts {
+    SceneParts {
         attributes: Default::default(),
         triangle_material,
         triangles,
@@ -277,8 +286,22 @@ fn glass_block_scene(wall: bool, roughness: f32, lens: Option<ThinLens>) -> Scen
             camera_above(3.5, 40.0)
         },
         quality: BvhQuality::Medium,
-    })
-    .unwrap()
+    }
+}
+
+/// A sky of 0.2 with a sun 2.4 texels wide (2000, high to the +x +z side), as
+/// `environment.rs`'s.
+fn sunny_sky() -> Arc<EnvironmentMap> {
+    let (w, h) = (64u32, 32u32);
+    let bytes = rgbe_file(w, h, |x, y| {
+        let d = Vec2::new(x as f32 + 0.5 - 40.0, y as f32 + 0.5 - 9.0).length();
+        if d < 1.2 {
+            [2000.0; 3]
+        } else {
+            [0.2, 0.18, 0.25]
+        }
+    });
+    environment_map(&bytes, 0.0, 1.0).unwrap()
 }
 
 /// With and without light paths the glass block's caustic and the floor converge to the
@@ -324,6 +347,18 @@ fn light_paths_and_camera_paths_agree_through_a_thin_lens() {
         ..ThinLens::new(ApertureSize::Radius(0.8))
     };
     assert_light_and_camera_paths_agree(&glass_block_scene(true, 0.0, Some(lens)), 4);
+}
+
+/// The same under a sunny sky alone (the block's emitter dark): light paths leave the
+/// environment through a disk over the block alone (`Tracer::aim`), and camera paths leave
+/// them the sky they would reach through the glass past their first bounce, by a bounce
+/// or a light sample.
+#[test]
+fn light_paths_and_camera_paths_agree_on_a_sun_caustic() {
+    let mut parts = glass_block_parts(false, 0.0, None);
+    parts.lights = vec![Light::EnvironmentMap { map: sunny_sky() }];
+    let scene = Scene::new(parts).unwrap();
+    assert_light_and_camera_paths_agree(&scene, 4);
 }
 
 /// Renders `scene` with and without light paths over seeds and checks every block of
@@ -382,31 +417,4 @@ fn light_paths_do_not_depend_on_the_thread_count() {
     let (a, _) = render(&scene, &one).unwrap();
     let (b, _) = render(&scene, &two).unwrap();
     assert_eq!(a.sums(), b.sums());
-}
-
-#[test]
-fn light_paths_are_traced_only_from_lights_they_can_leave() {
-    // Light paths never start from an environment (camera paths find its caustics), so a
-    // mirror under an environment alone traces none: before, it traced a pass of them
-    // that found no light, about 6% of the textured sky scene's instructions.
-    let environment = |_| Light::Environment {
-        radiance: SceneSpectrum::Constant(1.0),
-    };
-    let point = |image| Light::Point {
-        position: mirrored(Vec3::new(0.4, 1.0, 0.0), image),
-        intensity: SceneSpectrum::Constant(1.0),
-    };
-    let s = settings(16, 1, 0);
-    let lit_by_sky = mirror_scene(true, &environment);
-    assert!(
-        !prism_integrator::Renderer::new(&lit_by_sky, &s)
-            .unwrap()
-            .light_caustics()
-    );
-    let lit_by_lamp = mirror_scene(true, &point);
-    assert!(
-        prism_integrator::Renderer::new(&lit_by_lamp, &s)
-            .unwrap()
-            .light_caustics()
-    );
 }

@@ -19,6 +19,10 @@ impl Tracer<'_> {
         walk: &mut Walk<N, T>,
         emission: &mut EmissionCache<N>,
     ) {
+        // Light a light path carries (they leave the environment too).
+        if walk.light_caustic {
+            return;
+        }
         let Some((mut le, light_pdf)) =
             self.scene
                 .escaped(walk.ray.direction.normalize(), &walk.transport, emission)
@@ -80,13 +84,8 @@ impl Tracer<'_> {
         else {
             return 0;
         };
-        // Light reaching a narrow surface past the path's first bounce is the light paths'
-        // (every light but the environment, which they do not start from).
-        if walk.depth > 0
-            && walk.caustic_eligible
-            && vertex.bsdf.is_narrow(CAUSTIC_ALPHA)
-            && self.scene.environment_light() != Some(light.light)
-        {
+        // Light reaching a narrow surface past the path's first bounce is the light paths'.
+        if walk.depth > 0 && walk.caustic_eligible && vertex.bsdf.is_narrow(CAUSTIC_ALPHA) {
             return 0;
         }
         if let Some(times) = &walk.times {

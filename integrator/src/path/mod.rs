@@ -39,6 +39,10 @@ pub(crate) struct Tracer<'a> {
     /// non-fluorescent surfaces, the last a non-delta one the camera sees): camera paths
     /// then leave those to them, so that each path is counted by one estimator.
     pub light_caustics: bool,
+    /// Light paths' aim at the surfaces where their first bounce can be focused
+    /// (`Material::focuses`): light from infinity crosses their bounding sphere (None: no
+    /// light paths).
+    pub aim: Option<&'a prism_scene::world::Aim>,
     /// Whether camera rays that leave the scene show nothing (a transparent background).
     pub transparent: bool,
     /// How wide a pixel's footprint is where a path meets a surface, for filtering

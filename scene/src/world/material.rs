@@ -195,6 +195,16 @@ impl Material {
         }
     }
 
+    /// Whether light leaving it can be focused ([`Material::narrow`] with `alpha`, or a
+    /// delta lobe of any kind: a smooth plastic's coating too): every surface at which a
+    /// light path's first bounce can count as a caustic's.
+    pub fn focuses(&self, alpha: f32) -> bool {
+        match self {
+            Material::Plastic { coating, .. } => coating.distribution().effectively_smooth(),
+            _ => self.narrow(alpha),
+        }
+    }
+
     /// Whether its reflectance or metallic-roughness parameters come from textures (what
     /// footprint filtering applies to).
     pub fn textured(&self) -> bool {

@@ -33,7 +33,7 @@ pub use layers::{
     AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, Layers, SheenDesc,
     SpecularDesc, SurfaceFrame, TransmissionDesc,
 };
-pub use light::{EmissionSample, Light, LightSample, Lights};
+pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
 pub use material::{Bsdf, Material};
 pub use normal_map::NormalMap;
@@ -301,18 +301,7 @@ impl Scene {
             !attributes.uvs.is_empty() && materials.iter().any(Material::textured);
         let oriented_materials = materials.iter().any(Material::oriented);
         let bvh = Bvh::build(&triangles, quality);
-        let (lo, hi) = triangles
-            .iter()
-            .flatten()
-            .filter(|v| v.is_finite())
-            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(*v), hi.max(*v))
-            });
-        let (centre, radius) = if lo.x <= hi.x {
-            (0.5 * (lo + hi), (0.5 * (hi - lo)).length().max(1e-3))
-        } else {
-            (Vec3::ZERO, 1.0)
-        };
+        let (centre, radius) = bounding_sphere(triangles.iter()).unwrap_or((Vec3::ZERO, 1.0));
         let features = Features {
             dispersion: materials.iter().any(Material::dispersive),
             fluorescence: materials.iter().any(Material::fluorescent),
@@ -934,14 +923,18 @@ impl Scene {
     /// Chooses a light with `u_choice` in proportion to its power and samples a ray
     /// leaving it (the start of a light path): a point with `u_position` and a direction
     /// with `u_direction`, cosine-weighted from an emitting triangle, uniform from a point
-    /// light, within the cone of a spot, parallel through a disk covering the scene for a
-    /// directional light; an environment gives None (camera paths find its caustics).
+    /// light, within the cone of a spot; for light from infinity (directional and
+    /// environment lights, the environment's direction sampled as next-event estimation
+    /// samples it) a parallel ray through a disk covering the scene, from outside it. With
+    /// an `aim` ([`Scene::aim`]), the disk covers the aim's sphere only, and lights are
+    /// chosen by the power that reaches it.
     pub fn sample_emission<const N: usize>(
         &self,
         u_choice: f32,
         u_position: Vec2,
         u_direction: Vec2,
         wavelengths: &SampledWavelengths<N>,
+        aim: Option<&Aim>,
     ) -> Option<EmissionSample<N>> {
         self.lights.sample_emission(
             u_choice,
@@ -950,7 +943,38 @@ impl Scene {
             wavelengths,
             &self.emission,
             (self.centre, self.radius),
+            aim,
         )
+    }
+
+    /// Light paths that count only light reaching the triangles whose material `keep`s
+    /// first aimed at them: their bounding sphere ([`Scene::bounding_sphere_where`]), and
+    /// the lights' choice by the power that can reach it. None when `keep` keeps nothing.
+    pub fn aim(&self, keep: impl Fn(&Material) -> bool) -> Option<Aim> {
+        let sphere = self.bounding_sphere_where(keep)?;
+        Some(self.lights.aimed(sphere, self.radius))
+    }
+
+    /// A bounding sphere (centre, radius) of the triangles whose material `keep`s (None
+    /// when it keeps none): centred on their bounding box, as small as that centre allows
+    /// (a sphere's own, where the box's corners would give sqrt(3) times its radius).
+    pub fn bounding_sphere_where(&self, keep: impl Fn(&Material) -> bool) -> Option<(Vec3, f32)> {
+        let kept: Vec<bool> = self.materials.iter().map(keep).collect();
+        let triangles = || {
+            self.triangles
+                .iter()
+                .zip(&self.triangle_material)
+                .filter(|(_, m)| kept.get(**m as usize).copied().unwrap_or(false))
+                .map(|(t, _)| t)
+        };
+        let (centre, _) = bounding_sphere(triangles())?;
+        let radius = triangles()
+            .flatten()
+            .filter(|v| v.is_finite())
+            .map(|v| v.distance(centre))
+            .fold(1e-3f32, f32::max);
+        // A hair more, so that rounding never leaves a vertex outside.
+        Some((centre, radius * (1.0 + 1e-5)))
     }
 
     /// Chooses a light and samples a direction to it from `hit`, both with `u` (`u.x`
@@ -1018,4 +1042,16 @@ fn choose_lights(
         })
         .collect();
     Lights::new(lights, &power, &extent, emission, triangles, attributes)
+}
+
+/// The sphere around the bounding box of `triangles`' finite vertices (its radius at least
+/// 1e-3), None when there are none.
+fn bounding_sphere<'t>(triangles: impl Iterator<Item = &'t [Vec3; 3]>) -> Option<(Vec3, f32)> {
+    let (lo, hi) = triangles
+        .flatten()
+        .filter(|v| v.is_finite())
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(*v), hi.max(*v))
+        });
+    (lo.x <= hi.x).then(|| (0.5 * (lo + hi), (0.5 * (hi - lo)).length().max(1e-3)))
 }
