@@ -562,9 +562,8 @@ impl Lights {
 impl Lights {
     /// Chooses a light with `u_choice` and samples a ray leaving it: a position with `u_position`
     /// and a direction with `u_direction` (light tracing). The scene's bounding sphere
-    /// (`centre`, `radius`) places the rays of a directional light. An environment gives
-    /// None: light paths from it would start at infinity, and camera paths find its
-    /// caustics instead.
+    /// `scene` (centre, radius) places the rays of light from infinity, which cross `aim`'s
+    /// sphere (the scene's without one) and are chosen by `aim`'s power.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn sample_emission<const N: usize>(
         &self,
