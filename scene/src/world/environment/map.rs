@@ -182,8 +182,8 @@ impl EnvironmentMap {
         self.radiance_at(self.uv(d), wavelengths, &self.white(wavelengths))
     }
 
-    /// The illuminant that RGB (1, 1, 1) emits, at the package's wavelengths: what
-    /// [`EnvironmentMap::radiance_at`] multiplies the texels' shapes by. A path looks the
+    /// The illuminant that RGB (1, 1, 1) emits, at the package's wavelengths: what every
+    /// lookup multiplies the texels' spectral shapes by. A path looks the
     /// image up at the same wavelengths again and again, so callers keep this.
     pub fn white<const N: usize>(&self, wavelengths: &SampledWavelengths<N>) -> [f32; N] {
         self.illuminant.evaluate_lanes(wavelengths.lambdas())
