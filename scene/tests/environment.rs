@@ -70,10 +70,64 @@ fn directions_and_coordinates_invert_each_other() {
     assert!(turned.uv(-Vec3::Z).abs_diff_eq(Vec2::new(0.5, 0.5), 1e-6));
 }
 
+/// What a test draws directions with: next-event estimation's sampler and density, or
+/// light paths'.
+#[derive(Clone, Copy)]
+enum Sampler {
+    LightSamples,
+    Emitted,
+}
+
+impl Sampler {
+    fn sample(
+        self,
+        m: &EnvironmentMap,
+        u: Vec2,
+        lambdas: &SampledWavelengths<4>,
+    ) -> Option<(Vec3, f32, prism_spectrum::SampledSpectrum<4>)> {
+        match self {
+            Sampler::LightSamples => m.sample(u, lambdas, &m.white(lambdas)),
+            Sampler::Emitted => m.sample_emitted(u, lambdas, &m.white(lambdas)),
+        }
+    }
+
+    fn pdf(self, m: &EnvironmentMap, d: Vec3) -> f32 {
+        match self {
+            Sampler::LightSamples => m.pdf(d),
+            Sampler::Emitted => m.pdf_emitted(d),
+        }
+    }
+}
+
 /// Sampled directions, binned on the map's own (u, v) grid, against the density
-/// integrated over each cell in solid angle; the density integrates to 1.
+/// integrated over each cell in solid angle; the density integrates to 1. Both for
+/// next-event estimation's MIS-compensated sampler and for light paths'.
 #[test]
 fn sampling_matches_the_density() {
+    assert_sampling_matches_the_density(Sampler::LightSamples);
+    assert_sampling_matches_the_density(Sampler::Emitted);
+}
+
+/// Light samples go only where the image is brighter than its mean (MIS compensation:
+/// BSDF sampling finds the rest), light paths leave from wherever it has light.
+#[test]
+fn light_samples_leave_the_sky_below_its_mean_to_bsdf_sampling() {
+    let m = map(&sky_with_sun(32, 16, 0.2, 400.0), 0.0);
+    let sky = m.direction(Vec2::new(0.8, 0.7)).0;
+    let sun = m
+        .direction(Vec2::new(0.3 + 0.5 / 32.0, 0.25 + 0.5 / 16.0))
+        .0;
+    assert_eq!(m.pdf(sky), 0.0);
+    assert!(m.pdf_emitted(sky) > 0.0);
+    // The sun's share of the light samples grows by what the sky gave up.
+    assert!(m.pdf(sun) > m.pdf_emitted(sun));
+    // A constant image has nothing above its mean: both sample alike.
+    let flat = map(&rgbe_file(16, 8, |_, _| [1.0; 3]), 0.0);
+    let d = flat.direction(Vec2::new(0.4, 0.6)).0;
+    assert_eq!(flat.pdf(d), flat.pdf_emitted(d));
+}
+
+fn assert_sampling_matches_the_density(sampler: Sampler) {
     let m = map(&sky_with_sun(32, 16, 0.2, 400.0), 30.0);
     // Bins of 2 x 2 cells of the sampler's grid (4 cells a texel per axis for an image
     // this small), so that the midpoint rule below integrates its steps exactly.
@@ -83,10 +137,10 @@ fn sampling_matches_the_density() {
     let mut counts = vec![0u64; nu * nv];
     let (mut valid, mut mismatched) = (0u64, 0u64);
     for _ in 0..samples {
-        if let Some((d, pdf, radiance)) = m.sample(stream.next_2d(), &lambdas, &m.white(&lambdas)) {
+        if let Some((d, pdf, radiance)) = sampler.sample(&m, stream.next_2d(), &lambdas) {
             // The density looked up by direction is the sampled one, except where rounding
             // puts a direction on the other side of a cell's edge.
-            if (pdf - m.pdf(d)).abs() > 1e-3 * pdf {
+            if (pdf - sampler.pdf(&m, d)).abs() > 1e-3 * pdf {
                 mismatched += 1;
             }
             // What next-event estimation sees is what an escaping ray sees.
@@ -108,7 +162,7 @@ fn sampling_matches_the_density() {
                     let v = (j as f64 + (b as f64 + 0.5) / Q as f64) / nv as f64;
                     let (d, sin_theta) = m.direction(Vec2::new(u as f32, v as f32));
                     // dw = 2 pi^2 sin(theta) du dv.
-                    mass += f64::from(m.pdf(d))
+                    mass += f64::from(sampler.pdf(&m, d))
                         * 2.0
                         * std::f64::consts::PI.powi(2)
                         * f64::from(sin_theta);
@@ -222,11 +276,17 @@ mod extremes {
             prop_assert!(uv.is_finite() && uv.min_element() >= 0.0 && uv.max_element() <= 1.0);
             let (w, _) = map.direction(uv);
             prop_assert!((w.length() - 1.0).abs() < 1e-4);
-            let pdf = map.pdf(d);
-            prop_assert!(pdf.is_finite() && pdf >= 0.0);
+            for pdf in [map.pdf(d), map.pdf_emitted(d)] {
+                prop_assert!(pdf.is_finite() && pdf >= 0.0);
+            }
             let l = map.radiance(d, &lambdas);
             prop_assert!(l.0.iter().all(|v| v.is_finite() && *v >= 0.0));
-            if let Some((w, pdf, l)) = map.sample(Vec2::from(u), &lambdas, &map.white(&lambdas)) {
+            let white = map.white(&lambdas);
+            let samples = [
+                map.sample(Vec2::from(u), &lambdas, &white),
+                map.sample_emitted(Vec2::from(u), &lambdas, &white),
+            ];
+            for (w, pdf, l) in samples.into_iter().flatten() {
                 prop_assert!(w.is_finite() && pdf.is_finite() && pdf > 0.0);
                 prop_assert!(l.0.iter().all(|v| v.is_finite() && *v >= 0.0));
             }

@@ -674,7 +674,7 @@ impl Lights {
             }
             Light::EnvironmentMap { map } => {
                 let (wi, pdf, radiance) =
-                    map.sample(u_direction, wavelengths, &map.white(wavelengths))?;
+                    map.sample_emitted(u_direction, wavelengths, &map.white(wavelengths))?;
                 let (origin, area) = distant(-wi);
                 (
                     Ray::new(origin, -wi, f32::INFINITY),

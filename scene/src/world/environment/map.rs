@@ -2,7 +2,9 @@
 //! equirectangular (latitude-longitude) image, upsampled per lookup as an illuminant
 //! spectrum, and importance sampled in proportion to its luminance times sin(theta) (the
 //! 2D piecewise-constant construction of pbrt-v4's image infinite light, *PBR* 4th ed.
-//! §12.5.3, on the latitude-longitude parameterization of its §12.5.2 predecessor).
+//! §12.5.3, on the latitude-longitude parameterization of its §12.5.2 predecessor); light
+//! samples, which MIS combines with BSDF sampling, in proportion to the luminance less
+//! its mean (MIS compensation).
 //!
 //! Mapping (the convention of Blender's and three.js's equirectangular environments, so
 //! that an HDRI lights a model as it does in a glTF viewer): +y is up and the top row is
@@ -43,8 +45,12 @@ pub struct EnvironmentMap {
     table: Arc<CoefficientTable>,
     context: Arc<FitContext>,
     illuminant: Arc<DenselySampled>,
-    /// Over (u, v) in [0, 1)^2; None when the image is black.
+    /// Over (u, v) in [0, 1)^2, in proportion to luminance times sin(theta): where light
+    /// paths leave the image. None when the image is black.
     distribution: Option<PiecewiseConstant2D>,
+    /// The same less the image's mean (MIS compensation): what next-event estimation
+    /// samples. None where it would be the same (a constant image) or empty.
+    compensated: Option<PiecewiseConstant2D>,
     /// The spectrum of the solid-angle-weighted mean colour: the power light choice sees.
     mean: SceneSpectrum,
 }
@@ -100,9 +106,10 @@ impl EnvironmentMap {
             context,
             illuminant,
             distribution: None,
+            compensated: None,
             mean: SceneSpectrum::Rgb(Arc::new(mean)),
         };
-        map.distribution = map.sampling_distribution();
+        (map.distribution, map.compensated) = map.sampling_distributions();
         Ok(map)
     }
 
@@ -233,19 +240,50 @@ impl EnvironmentMap {
         (self.radiance_at(uv, wavelengths, white), self.pdf_at(uv))
     }
 
-    /// A direction sampled with `u` in proportion to luminance times sin(theta), its
-    /// density with respect to solid angle, and the radiance from it; None for a black
-    /// image or a sample at a pole; `white` is [`EnvironmentMap::white`] at `wavelengths`.
+    /// A direction for next-event estimation sampled with `u`, its density with respect to
+    /// solid angle, and the radiance from it; None for a black image or a sample at a
+    /// pole; `white` is [`EnvironmentMap::white`] at `wavelengths`. The density is
+    /// luminance times sin(theta) less the image's mean where that is positive, 0 elsewhere
+    /// (MIS compensation: Karlik et al., "MIS Compensation: Optimizing Sampling Techniques
+    /// in Multiple Importance Sampling", SIGGRAPH Asia 2019; pbrt-v4's
+    /// `ImageInfiniteLight` with `allowIncompletePDF`): directions a BSDF or phase
+    /// function samples as well are left to it, and light samples go to the sun. Only
+    /// for estimators combined by MIS with one whose density is positive wherever light
+    /// arrives; light paths use [`EnvironmentMap::sample_emitted`].
     pub fn sample<const N: usize>(
         &self,
         u: Vec2,
         wavelengths: &SampledWavelengths<N>,
         white: &[f32; N],
     ) -> Option<(Vec3, f32, SampledSpectrum<N>)> {
-        let s = self
-            .distribution
-            .as_ref()?
-            .sample([f64::from(u.x), f64::from(u.y)]);
+        self.sample_from(self.for_light_samples()?, u, wavelengths, white)
+    }
+
+    /// A direction sampled with `u` in proportion to luminance times sin(theta) (positive
+    /// wherever the image has light: the start of light paths), its density with respect
+    /// to solid angle and the radiance from it, as [`EnvironmentMap::sample`] gives them.
+    pub fn sample_emitted<const N: usize>(
+        &self,
+        u: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        white: &[f32; N],
+    ) -> Option<(Vec3, f32, SampledSpectrum<N>)> {
+        self.sample_from(self.distribution.as_ref()?, u, wavelengths, white)
+    }
+
+    /// The distribution of next-event estimation's samples.
+    fn for_light_samples(&self) -> Option<&PiecewiseConstant2D> {
+        self.compensated.as_ref().or(self.distribution.as_ref())
+    }
+
+    fn sample_from<const N: usize>(
+        &self,
+        distribution: &PiecewiseConstant2D,
+        u: Vec2,
+        wavelengths: &SampledWavelengths<N>,
+        white: &[f32; N],
+    ) -> Option<(Vec3, f32, SampledSpectrum<N>)> {
+        let s = distribution.sample([f64::from(u.x), f64::from(u.y)]);
         let uv = Vec2::new(s.point[0] as f32, s.point[1] as f32);
         let (d, sin_theta) = self.direction(uv);
         let pdf = s.pdf as f32 / (2.0 * PI * PI * sin_theta);
@@ -261,9 +299,20 @@ impl EnvironmentMap {
         self.pdf_at(self.uv(d))
     }
 
+    /// The density (solid angle) with which [`EnvironmentMap::sample_emitted`] picks unit
+    /// world direction `d`.
+    pub fn pdf_emitted(&self, d: Vec3) -> f32 {
+        self.density(self.distribution.as_ref(), self.uv(d))
+    }
+
     /// The density of [`EnvironmentMap::sample`] at image coordinates `uv`.
     fn pdf_at(&self, uv: Vec2) -> f32 {
-        let Some(distribution) = &self.distribution else {
+        self.density(self.for_light_samples(), uv)
+    }
+
+    /// `distribution`'s density (solid angle) at image coordinates `uv`.
+    fn density(&self, distribution: Option<&PiecewiseConstant2D>, uv: Vec2) -> f32 {
+        let Some(distribution) = distribution else {
             return 0.0;
         };
         let sin_theta = (PI * uv.y).sin();
@@ -297,7 +346,12 @@ impl EnvironmentMap {
     /// per-pixel spread at 16 spp: 14% with one cell a texel, see the integrator's
     /// environment tests). Larger images get one cell a texel, whose mean is 3/4 of the
     /// texel and 1/8 of each neighbour per axis.
-    fn sampling_distribution(&self) -> Option<PiecewiseConstant2D> {
+    ///
+    /// Returns that distribution and its MIS-compensated twin (see
+    /// [`EnvironmentMap::sample`]): each cell's mean less the image's mean over the sphere
+    /// (solid-angle weighted), where positive, times sin(theta); None when no cell is above
+    /// the mean (a constant image).
+    fn sampling_distributions(&self) -> (Option<PiecewiseConstant2D>, Option<PiecewiseConstant2D>) {
         let (w, h) = (self.width as usize, self.height as usize);
         let k = [4usize, 2]
             .into_iter()
@@ -307,7 +361,6 @@ impl EnvironmentMap {
         let mut values = vec![0.0; fw * fh];
         for y in 0..fh {
             let v = (y as f64 + 0.5) / fh as f64;
-            let sin_theta = (std::f64::consts::PI * v).sin();
             for x in 0..fw {
                 let mean = if k > 1 {
                     let u = (x as f64 + 0.5) / fw as f64;
@@ -322,10 +375,29 @@ impl EnvironmentMap {
                     }
                     mean
                 };
-                values[y * fw + x] = mean * sin_theta;
+                values[y * fw + x] = mean;
             }
         }
-        PiecewiseConstant2D::new(&values, fw, fh, [[0.0, 1.0], [0.0, 1.0]]).ok()
+        let sin_theta = |y: usize| (std::f64::consts::PI * (y as f64 + 0.5) / fh as f64).sin();
+        let (mut sum, mut weight) = (0.0f64, 0.0f64);
+        for (y, row) in values.chunks(fw).enumerate() {
+            sum += row.iter().sum::<f64>() * sin_theta(y);
+            weight += sin_theta(y) * fw as f64;
+        }
+        let average = sum / weight.max(f64::MIN_POSITIVE);
+        let weighted = |offset: f64| -> Option<PiecewiseConstant2D> {
+            let cells: Vec<f64> = values
+                .chunks(fw)
+                .enumerate()
+                .flat_map(|(y, row)| {
+                    row.iter()
+                        .map(move |v| (v - offset).max(0.0) * sin_theta(y))
+                })
+                .collect();
+            cells.iter().any(|&c| c > 0.0).then_some(())?;
+            PiecewiseConstant2D::new(&cells, fw, fh, [[0.0, 1.0], [0.0, 1.0]]).ok()
+        };
+        (weighted(0.0), weighted(average))
     }
 }
 
