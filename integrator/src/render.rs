@@ -307,8 +307,8 @@ impl<'a> Renderer<'a> {
     }
 
     /// Whether light paths carry caustics: when the scene has surfaces that focus light
-    /// (smooth or nearly smooth glass or metal, `Material::narrow`, which includes every
-    /// delta surface) and a light with power to start them, the settings allow it, there
+    /// (smooth or nearly smooth glass or metal and every delta lobe, a smooth plastic's
+    /// coating too: `Material::focuses`) and a light with power to start them, the settings allow it, there
     /// are no media, and the camera is
     /// perspective without a lens system (an orthographic camera cannot be connected to,
     /// nor can a lens system's film be found from a point of the scene).
@@ -325,7 +325,7 @@ impl<'a> Renderer<'a> {
                 .scene
                 .materials()
                 .iter()
-                .any(|m| m.narrow(crate::light_path::CAUSTIC_ALPHA))
+                .any(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA))
     }
 
     /// Renders sample indices `samples` of every pixel into `film` (which must have the

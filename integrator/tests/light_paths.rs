@@ -361,6 +361,34 @@ fn light_paths_and_camera_paths_agree_on_a_sun_caustic() {
     assert_light_and_camera_paths_agree(&scene, 4);
 }
 
+/// The same with the block a smooth plastic instead of glass (the only material focusing
+/// light): its coating's mirror reflection is a delta lobe beside a diffuse one, so light
+/// paths carry the light the mirror throws onto the floor and the wall (the lobe sampled
+/// at their first bounce decides), and camera paths leave them what they find through
+/// that lobe alone.
+#[test]
+fn light_paths_and_camera_paths_agree_on_a_smooth_plastic_caustic() {
+    let mut parts = glass_block_parts(true, 0.0, None);
+    parts.materials[1] = Material::Plastic {
+        reflectance: SceneSpectrum::Constant(0.3),
+        nonlinear: false,
+        coating: Arc::new(prism_scene::bsdf::PlasticCoating::new(1.49, 0.0)),
+    };
+    let scene = Scene::new(parts).unwrap();
+    assert!(
+        render_light_paths(&scene),
+        "a smooth plastic starts light paths"
+    );
+    assert_light_and_camera_paths_agree(&scene, 2);
+}
+
+/// Whether rendering `scene` traces light paths.
+fn render_light_paths(scene: &Scene) -> bool {
+    prism_integrator::Renderer::new(scene, &settings(8, 1, 0))
+        .unwrap()
+        .light_caustics()
+}
+
 /// Renders `scene` with and without light paths over seeds and checks every block of
 /// pixels agrees, and that light paths carry a visible share in at least `caustic`
 /// blocks.
