@@ -228,30 +228,54 @@ pub(crate) struct ModePilot {
 impl ModePilot {
     /// (splits, reuse tile side) predicted to reach a given error soonest.
     pub(crate) fn choice(&self) -> (u32, u32) {
-        let split = Pilot {
-            variance: [self.variance[0], self.variance[1]],
-            rays: [self.rays[0], self.rays[1]],
-        };
-        let k = split.choice();
-        let split_cost = self.variance[k as usize - 1] * self.rays[k as usize - 1];
+        let (k, split_cost) = self.best_split();
         if !(split_cost.is_finite() && split_cost > 0.0) {
             return (k, 1);
         }
-        // Unsplit, the corner pixels' error per ray; with reuse, that times what reuse
-        // did to its own tiles' pixels.
-        let unsplit_cost = self.variance[0] * self.rays[0];
         let mut best = (k, 1, split_cost);
         for (j, &t) in REUSE_CHOICES.iter().enumerate() {
-            let gain = (self.variance[2 + j] / self.unsplit[j])
-                * (self.rays[2 + j] / self.unsplit_rays[j]);
-            let c = unsplit_cost * gain;
+            let c = self.reuse_cost(j);
             if c.is_finite() && c > 0.0 && c < REUSE_MARGIN * split_cost && c < best.2 {
                 best = (1, t, c);
             }
         }
         (best.0, best.1)
     }
+
+    /// The best number of continuations and its error per ray.
+    fn best_split(&self) -> (u32, f64) {
+        let split = Pilot {
+            variance: [self.variance[0], self.variance[1]],
+            rays: [self.rays[0], self.rays[1]],
+        };
+        let k = split.choice();
+        (k, self.variance[k as usize - 1] * self.rays[k as usize - 1])
+    }
+
+    /// The error per ray predicted with reuse on tiles of side `REUSE_CHOICES[j]`: the
+    /// corner pixels' unsplit, times what reuse did to its own tiles' pixels (NaN where
+    /// not measured).
+    fn reuse_cost(&self, j: usize) -> f64 {
+        let gain =
+            (self.variance[2 + j] / self.unsplit[j]) * (self.rays[2 + j] / self.unsplit_rays[j]);
+        self.variance[0] * self.rays[0] * gain
+    }
+
+    /// Whether the smallest tiles promise enough for the larger ones to be worth trying
+    /// (at most [`WIDE_TILES_BELOW`] of the best split's error per ray).
+    fn worth_wider_tiles(&self) -> bool {
+        self.reuse_cost(0) <= WIDE_TILES_BELOW * self.best_split().1
+    }
 }
+
+/// The larger tiles of [`REUSE_CHOICES`] are tried only where the smallest promise at most
+/// this share of the best split's error per ray. Measured with every repository scene at
+/// 64, 128 and 256 pixels square, two seeds each: tiles of four were chosen where tiles
+/// of two promised 0.39-0.73 (the Cornell and bunny boxes, where four measure 1.4-2.3x
+/// better than two), and where two promised 0.74-0.84 (the medium, plastic and specular
+/// boxes) four measured 0.88-1.02x two, for a stage of the pilot that costs three times
+/// the rest (0.2 s of a 2.3 s render of the specular box at 128 x 128, 64 spp).
+const WIDE_TILES_BELOW: f64 = 0.8;
 
 /// Traces the pilot for a scene whose paths can share their second vertices: up to
 /// `REUSE_GRID` x `REUSE_GRID` cells, in each the pixel at the cell's corner unsplit and
@@ -344,8 +368,8 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         cell.unsplit[j] = unsplit / pixels as f64;
         cell.unsplit_rays[j] = unsplit_rays / samples;
     };
-    // The larger tiles cost their pixels: they are tried only where the smallest promises
-    // to pay (a scene whose error is in what the camera ray finds pays for two modes).
+    // The larger tiles cost their pixels: they are tried only where the smallest promise
+    // to pay well (a scene whose error is in what the camera ray finds pays for two modes).
     let mut per_cell: Vec<ModePilot> = (0..columns * rows)
         .into_par_iter()
         .map(|i| {
@@ -356,7 +380,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         })
         .collect();
     let first = summarize_modes(&per_cell, 3);
-    if first.choice().1 == 1 {
+    if first.choice().1 == 1 || !first.worth_wider_tiles() {
         return first;
     }
     per_cell.par_iter_mut().enumerate().for_each(|(i, cell)| {
@@ -649,6 +673,23 @@ mod tests {
             })
             .collect();
         assert_eq!(summarize_modes(&halved, 3).choice(), (1, 2));
+    }
+
+    /// The larger tiles are tried where the smallest halve the error per ray, not where
+    /// they cut it by a sixth (though both choose reuse over splitting).
+    #[test]
+    fn wider_tiles_are_tried_where_the_smallest_gain_much() {
+        let cells = |reuse: f64| -> Vec<ModePilot> {
+            (0..100).map(|_| cell([2.0, 2.5], reuse, 2.0)).collect()
+        };
+        // Unsplit 2 x 5 rays is the best split; reuse's cost is that times
+        // (reuse / 2) x (6 / 5).
+        let much = summarize_modes(&cells(0.8), 3);
+        assert_eq!(much.choice(), (1, 2));
+        assert!(much.worth_wider_tiles());
+        let little = summarize_modes(&cells(1.38), 3);
+        assert_eq!(little.choice(), (1, 2));
+        assert!(!little.worth_wider_tiles());
     }
 
     /// A cell whose unsplit estimates met a firefly does not decide for reuse, and does
