@@ -6,8 +6,7 @@
 mod common;
 #[path = "../../scene/tests/support/rgbe.rs"]
 mod rgbe;
-
-use std::sync::Arc;
+mod sky;
 
 use common::{ortho_camera, square_z0};
 use glam::{Vec2, Vec3};
@@ -18,6 +17,7 @@ use prism_scene::world::{
     EnvironmentMap, Light, Material, Scene, SceneParts, SceneSpectrum, grey_environment,
 };
 use rgbe::rgbe_file;
+use sky::sunny_sky;
 
 fn white() -> Material {
     Material::Diffuse {
@@ -106,20 +106,6 @@ fn a_constant_image_is_a_furnace_and_means_what_a_number_means() {
             "Y {mean} +- {error}, expected 0.5"
         );
     }
-}
-
-/// A sky of radiance ~0.2 with a sun of radiance 2000 a few texels wide.
-fn sunny_sky() -> Arc<EnvironmentMap> {
-    let (w, h) = (64u32, 32u32);
-    let bytes = rgbe_file(w, h, |x, y| {
-        let d = Vec2::new(x as f32 + 0.5 - 40.0, y as f32 + 0.5 - 9.0).length();
-        if d < 1.2 {
-            [2000.0; 3]
-        } else {
-            [0.2, 0.18, 0.25]
-        }
-    });
-    environment_map(&bytes, 0.0, 1.0).unwrap()
 }
 
 /// (1 / pi) times the integral of the map's luminance times cos(theta) over the hemisphere

@@ -10,17 +10,17 @@
 
 #[path = "../../scene/tests/support/rgbe.rs"]
 mod rgbe;
+mod sky;
 
 use std::sync::Arc;
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec3};
 use prism_integrator::{Film, Filter, LambdaSampler, RenderSettings, render};
 use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Projection, ThinLens};
 use prism_scene::geometry::BvhQuality;
-use prism_scene::load::environment_map;
-use prism_scene::world::{EnvironmentMap, Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
 use prism_spectrum::optics::named_glass;
-use rgbe::rgbe_file;
+use sky::sunny_sky;
 
 /// A quad as two triangles, wound so that its front faces along `(b - a) x (c - a)`.
 fn quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> [[Vec3; 3]; 2] {
@@ -287,21 +287,6 @@ fn glass_block_parts(wall: bool, roughness: f32, lens: Option<ThinLens>) -> Scen
         },
         quality: BvhQuality::Medium,
     }
-}
-
-/// A sky of 0.2 with a sun 2.4 texels wide (2000, high to the +x +z side), as
-/// `environment.rs`'s.
-fn sunny_sky() -> Arc<EnvironmentMap> {
-    let (w, h) = (64u32, 32u32);
-    let bytes = rgbe_file(w, h, |x, y| {
-        let d = Vec2::new(x as f32 + 0.5 - 40.0, y as f32 + 0.5 - 9.0).length();
-        if d < 1.2 {
-            [2000.0; 3]
-        } else {
-            [0.2, 0.18, 0.25]
-        }
-    });
-    environment_map(&bytes, 0.0, 1.0).unwrap()
 }
 
 /// With and without light paths the glass block's caustic and the floor converge to the
