@@ -308,10 +308,10 @@ impl<'a> Renderer<'a> {
 
     /// Whether light paths carry caustics: when the scene has surfaces that focus light
     /// (smooth or nearly smooth glass or metal and every delta lobe, a smooth plastic's
-    /// coating too: `Material::focuses`) and a light with power to start them, the settings allow it, there
-    /// are no media, and the camera is
-    /// perspective without a lens system (an orthographic camera cannot be connected to,
-    /// nor can a lens system's film be found from a point of the scene).
+    /// coating too: `Material::focuses`) and a light with power to start them, the
+    /// settings allow it, there are no media, and the camera is perspective without a lens
+    /// system (an orthographic camera cannot be connected to, nor can a lens system's film
+    /// be found from a point of the scene).
     pub fn light_caustics(&self) -> bool {
         self.settings.light_paths
             && !self.scene.features().media

@@ -280,7 +280,8 @@ const WIDE_TILES_BELOW: f64 = 0.8;
 /// Traces the pilot for a scene whose paths can share their second vertices: up to
 /// `REUSE_GRID` x `REUSE_GRID` cells, in each the pixel at the cell's corner unsplit and
 /// split in two (as [`pilot`]), and the tiles of [`REUSE_CHOICES`] at that corner with
-/// reuse, each estimated twice (two seeds, `SAMPLES` samples each). A cell's error per
+/// reuse (the larger only where the smallest promise much, [`WIDE_TILES_BELOW`]), each
+/// estimated twice (two seeds, `SAMPLES` samples each). A cell's error per
 /// mode is its pixels' mean; the cells with the largest errors are left out as in
 /// [`pilot`].
 pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(

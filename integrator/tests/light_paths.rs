@@ -361,14 +361,14 @@ fn light_paths_and_camera_paths_agree_on_a_smooth_plastic_caustic() {
     };
     let scene = Scene::new(parts).unwrap();
     assert!(
-        render_light_paths(&scene),
+        traces_light_paths(&scene),
         "a smooth plastic starts light paths"
     );
     assert_light_and_camera_paths_agree(&scene, 2);
 }
 
 /// Whether rendering `scene` traces light paths.
-fn render_light_paths(scene: &Scene) -> bool {
+fn traces_light_paths(scene: &Scene) -> bool {
     prism_integrator::Renderer::new(scene, &settings(8, 1, 0))
         .unwrap()
         .light_caustics()
