@@ -76,6 +76,7 @@ pub fn run(
     let renderer = Renderer::new(scene, settings).map_err(|e| e.to_string())?;
     stats.splits = renderer.splits();
     stats.reuse = renderer.reuse();
+    stats.adaptive = renderer.adaptive();
     stats.focus_distance = renderer.focus_distance();
     if let prism_integrator::Reuse::Fixed(t) = settings.reuse
         && t > 1
@@ -92,9 +93,12 @@ pub fn run(
             ending = Ending::Interrupted;
             break;
         }
-        if options
-            .time_budget
-            .is_some_and(|budget| started.elapsed() >= budget)
+        // A time budget ends a render between groups of adaptive sampling's passes, where
+        // every tile has its share of samples.
+        if s.is_multiple_of(renderer.pass_group())
+            && options
+                .time_budget
+                .is_some_and(|budget| started.elapsed() >= budget)
         {
             ending = Ending::TimeBudget;
             break;

@@ -88,6 +88,7 @@
 
 #[cfg(feature = "exr")]
 mod accumulation;
+mod adaptive;
 mod aov;
 mod bands;
 mod batch;

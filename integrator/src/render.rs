@@ -12,8 +12,9 @@ use prism_scene::world::{EmissionCache, Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
+use crate::adaptive::{SampleMap, samples_of};
 use crate::aov::features_pass;
-use crate::batch::row_tracer;
+use crate::batch::{RowTracer, row_tracer};
 use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
@@ -44,6 +45,8 @@ pub struct RenderStats {
     pub reuse: u32,
     /// The distance in focus of the camera's thin lens (None: a pinhole).
     pub focus_distance: Option<f32>,
+    /// Whether the samples were spread by adaptive sampling's pilot.
+    pub adaptive: bool,
 }
 
 /// Everything a render sets up once (the wavelength distribution, the filter table, the
@@ -68,6 +71,8 @@ pub struct Renderer<'a> {
     scratch: std::sync::Mutex<Option<Film>>,
     /// Where light paths from infinity aim (`Tracer::aim`).
     aim: Option<prism_scene::world::Aim>,
+    /// Where adaptive sampling spreads the samples (None: uniformly).
+    map: Option<std::sync::Arc<SampleMap>>,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -107,6 +112,20 @@ macro_rules! specialized_reuse {
     };
 }
 
+/// Adaptive sampling's pilot of a band of reuse's tiles, specialized for a renderer's
+/// package size.
+macro_rules! specialized_reuse_pilot {
+    ($renderer:expr) => {
+        match $renderer.settings.wavelengths {
+            1 => pilot_band::<1>,
+            2 => pilot_band::<2>,
+            4 => pilot_band::<4>,
+            8 => pilot_band::<8>,
+            _ => pilot_band::<16>,
+        }
+    };
+}
+
 impl<'a> Renderer<'a> {
     /// Checks `settings` and prepares to render `scene` with them (`settings.samples` is
     /// ignored: each call to [`Renderer::render_into`] names its samples).
@@ -142,6 +161,7 @@ impl<'a> Renderer<'a> {
             system: None,
             scratch: Default::default(),
             aim: None,
+            map: None,
         };
         if renderer.light_caustics() {
             renderer.aim = scene.aim(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA));
@@ -193,6 +213,9 @@ impl<'a> Renderer<'a> {
                 (renderer.pool.install(|| pilot(&renderer)).choice(), 1)
             }
         };
+        if renderer.samples_adaptively() {
+            renderer.map = renderer.sample_map().map(std::sync::Arc::new);
+        }
         Ok(renderer)
     }
 
@@ -282,6 +305,7 @@ impl<'a> Renderer<'a> {
                 energy: settings.energy,
                 polarized: settings.is_polarized(),
             },
+            map: self.map.clone(),
         }
     }
 
@@ -291,6 +315,7 @@ impl<'a> Renderer<'a> {
     pub(crate) fn pilot_rows(&self, seed: u64, samples: Range<u64>) -> Rows {
         Rows {
             replicas: Replicas::ONE,
+            map: None,
             ..self.rows(seed, samples)
         }
     }
@@ -369,29 +394,14 @@ impl<'a> Renderer<'a> {
             Tracing::Paths => specialized!(self, trace_row),
         };
         let rows = self.rows(settings.seed, samples.clone());
-        self.pool.install(|| {
-            let mut outs = row_outputs(&mut pass, settings.width as usize, settings.height);
-            if self.reuse > 1 {
-                let band = specialized_reuse!(self);
-                for s in samples.clone() {
-                    if cancel.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    let (r, n) = band(self, &tracer, &rows, &mut outs, s);
-                    rays.fetch_add(r, Ordering::Relaxed);
-                    nonfinite.fetch_add(n, Ordering::Relaxed);
-                }
-                return;
-            }
-            outs.par_iter_mut().enumerate().for_each(|(y, out)| {
-                if cancel.load(Ordering::Relaxed) {
-                    return;
-                }
-                let (r, n) = trace(&tracer, &self.filter, &rows, y as u32, out);
-                rays.fetch_add(r, Ordering::Relaxed);
-                nonfinite.fetch_add(n, Ordering::Relaxed);
-            });
-        });
+        self.trace_camera(
+            trace,
+            &tracer,
+            &rows,
+            &mut pass,
+            cancel,
+            (&rays, &nonfinite),
+        );
         if settings.aovs.traced() {
             let features = match settings.wavelengths {
                 1 => features_pass::<1>,
@@ -424,7 +434,130 @@ impl<'a> Renderer<'a> {
             splits: self.splits,
             reuse: self.reuse,
             focus_distance: self.focus_distance(),
+            adaptive: self.adaptive(),
         }))
+    }
+
+    /// Traces the camera paths of `rows`' samples into `pass` (rows in parallel, or bands
+    /// of reuse's tiles), adding the rays traced and samples rejected to `counts`.
+    fn trace_camera(
+        &self,
+        trace: RowTracer,
+        tracer: &Tracer,
+        rows: &Rows,
+        pass: &mut Film,
+        cancel: &AtomicBool,
+        counts: (&AtomicU64, &AtomicU64),
+    ) {
+        let settings = &self.settings;
+        let (rays, nonfinite) = counts;
+        self.pool.install(|| {
+            let mut outs = row_outputs(pass, settings.width as usize, settings.height);
+            if self.reuse > 1 {
+                let band = specialized_reuse!(self);
+                for s in rows.samples.clone() {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let (r, n) = band(self, tracer, rows, &mut outs, s);
+                    rays.fetch_add(r, Ordering::Relaxed);
+                    nonfinite.fetch_add(n, Ordering::Relaxed);
+                }
+                return;
+            }
+            outs.par_iter_mut().enumerate().for_each(|(y, out)| {
+                if cancel.load(Ordering::Relaxed) {
+                    return;
+                }
+                let (r, n) = trace(tracer, &self.filter, rows, y as u32, out);
+                rays.fetch_add(r, Ordering::Relaxed);
+                nonfinite.fetch_add(n, Ordering::Relaxed);
+            });
+        });
+    }
+
+    /// Adaptive sampling's map for this render, from a pilot of the whole image
+    /// (`crate::adaptive`): every pixel traced once under each of two seeds of its own, in
+    /// the render's modes, without light paths (they are not spread). A pixel's rate
+    /// follows its error per ray traced, so that its rays go where they lower the error
+    /// most.
+    fn sample_map(&self) -> Option<SampleMap> {
+        let settings = &self.settings;
+        let tracer = self.tracer(self.splits);
+        let (width, height) = (settings.width, settings.height);
+        let pixels = (width * height) as usize;
+        let mut estimates = [vec![[0.0; 3]; pixels], vec![[0.0; 3]; pixels]];
+        let mut rays = vec![0u64; pixels];
+        for (seed, estimate) in crate::adaptive::PILOT_SEEDS.iter().zip(&mut estimates) {
+            let rows = self.pilot_rows(settings.seed ^ seed, 0..1);
+            let size = self.reuse;
+            let pilot: Vec<Vec<PilotPixel>> = self.pool.install(|| {
+                if size > 1 {
+                    let band = specialized_reuse_pilot!(self);
+                    (0..height.div_ceil(size))
+                        .into_par_iter()
+                        .map(|b| band(&tracer, &self.filter, &rows, size, b * size))
+                        .collect()
+                } else {
+                    let row = specialized!(self, pilot_row);
+                    (0..height)
+                        .into_par_iter()
+                        .map(|y| row(&tracer, &self.filter, &rows, y))
+                        .collect()
+                }
+            });
+            for pixel in pilot.into_iter().flatten() {
+                let i = (pixel.y * width + pixel.x) as usize;
+                estimate[i] = pixel.xyz;
+                rays[i] += pixel.rays;
+            }
+        }
+        let (errors, costs): (Vec<f64>, Vec<f64>) = (0..pixels)
+            .map(|i| {
+                let (a, b) = (estimates[0][i], estimates[1][i]);
+                let error = (0..3)
+                    .map(|k| crate::splits::channel_error(a[k], b[k], 0.5 * (a[k] + b[k])))
+                    .sum::<f64>();
+                (error, rays[i] as f64 / 2.0)
+            })
+            .unzip();
+        SampleMap::from_errors(
+            width,
+            height,
+            SampleMap::tile_side(self.reuse),
+            &errors,
+            &costs,
+        )
+    }
+
+    /// Whether the render spreads its samples by adaptive sampling's pilot.
+    pub fn adaptive(&self) -> bool {
+        self.map.is_some()
+    }
+
+    /// Whether this render spreads its samples by a pilot (`RenderSettings::adaptive`): the
+    /// path tracer's, over whole groups of passes from the first, enough of them that the
+    /// pilot's two samples per pixel are small beside them, and without the variance AOV
+    /// (whose two replicates split samples by their index).
+    fn samples_adaptively(&self) -> bool {
+        let s = &self.settings;
+        let group = crate::adaptive::GROUP;
+        s.adaptive
+            && matches!(s.tracing, Tracing::Paths)
+            && !s.aovs.has(crate::Aov::Variance)
+            && s.samples.start == 0
+            && s.samples.end >= crate::adaptive::MIN_SAMPLES
+            && s.samples.end.is_multiple_of(group)
+    }
+
+    /// Passes that make one group of adaptive sampling (1 without it): a render stopped
+    /// between a group's passes has that group's samples weighted as if it were complete.
+    pub fn pass_group(&self) -> u64 {
+        if self.map.is_some() {
+            crate::adaptive::GROUP
+        } else {
+            1
+        }
     }
 
     /// One light path per pixel under `seed` (the light paths of one pass), splatted into
@@ -513,6 +646,8 @@ pub(crate) struct Rows {
     /// records its variance, whose estimate is their spread (`crate::aov`).
     pub replicas: Replicas,
     pub outputs: Outputs,
+    /// Where adaptive sampling spreads the samples (None: one per pixel per pass).
+    pub map: Option<std::sync::Arc<SampleMap>>,
 }
 
 impl Rows {
@@ -619,8 +754,9 @@ pub(crate) struct RowOutput<'a> {
 }
 
 impl RowOutput<'_> {
-    /// Adds pixel `x`'s sample `s` (`result`, `value`) to the sums; returns whether it was
-    /// rejected (invalid wavelengths or a non-finite value).
+    /// Adds pixel `x`'s sample `s` (`result`, `value`) to the sums with `weight` (1, or
+    /// adaptive sampling's); returns whether it was rejected (invalid wavelengths or a
+    /// non-finite value).
     pub(crate) fn add(
         &mut self,
         x: usize,
@@ -628,8 +764,9 @@ impl RowOutput<'_> {
         result: &PathResult,
         value: &SampleValue,
         rows: &Rows,
+        weight: f64,
     ) -> bool {
-        self.coverage[x] += f64::from(u8::from(result.covered));
+        self.coverage[x] += f64::from(u8::from(result.covered)) * weight;
         let replica = match self.replica.get_mut(x) {
             Some(r) if rows.replicas.group(s) == 1 => {
                 r[3] += 1.0;
@@ -645,7 +782,7 @@ impl RowOutput<'_> {
             .spectral
             .get_mut(x * band_count..(x + 1) * band_count)
             .unwrap_or_default();
-        let scale = value.clamp_scale(rows.clamp);
+        let scale = value.clamp_scale(rows.clamp) * weight;
         value.add_to(
             scale,
             &mut self.xyz[x],
@@ -672,15 +809,88 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
 ) -> (u64, u64) {
     let (mut rays, mut rejected) = (0u64, 0u64);
     let mut value = SampleValue::default();
+    let map = settings.map.as_deref();
     for x in 0..settings.width {
-        for s in settings.samples.clone() {
-            let result =
-                trace_sample::<N, FLUORESCENCE, T>(tracer, filter, settings, x, y, s, &mut value);
-            rays += result.rays;
-            rejected += u64::from(out.add(x as usize, s, &result, &value, settings));
+        for pass in settings.samples.clone() {
+            let (samples, weight) = samples_of(map, x, y, pass);
+            for s in samples {
+                let result = trace_sample::<N, FLUORESCENCE, T>(
+                    tracer, filter, settings, x, y, s, &mut value,
+                );
+                rays += result.rays;
+                rejected += u64::from(out.add(x as usize, s, &result, &value, settings, weight));
+            }
         }
     }
     (rays, rejected)
+}
+
+/// Adaptive sampling's pilot of row `y`: each pixel's first sample of `rows` (its colour,
+/// 0 where rejected) and the rays it traced.
+fn pilot_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
+    tracer: &Tracer,
+    filter: &FilterSampler,
+    rows: &Rows,
+    y: u32,
+) -> Vec<PilotPixel> {
+    let mut value = SampleValue::default();
+    (0..rows.width)
+        .map(|x| {
+            let s = rows.samples.start;
+            let result =
+                trace_sample::<N, FLUORESCENCE, T>(tracer, filter, rows, x, y, s, &mut value);
+            PilotPixel {
+                x,
+                y,
+                xyz: pilot_colour(&result, &value, rows),
+                rays: result.rays,
+            }
+        })
+        .collect()
+}
+
+/// Adaptive sampling's pilot of the tiles of reuse (`size` pixels) in the band from row
+/// `y0`, as [`pilot_row`].
+fn pilot_band<const N: usize>(
+    tracer: &Tracer,
+    filter: &FilterSampler,
+    rows: &Rows,
+    size: u32,
+    y0: u32,
+) -> Vec<PilotPixel> {
+    let mut out = Vec::new();
+    let ys = y0..(y0 + size).min(rows.height);
+    let mut tile = crate::reuse::Tile::new();
+    for x0 in (0..rows.width).step_by(size as usize) {
+        let xs = x0..(x0 + size).min(rows.width);
+        let s = rows.samples.start;
+        crate::reuse::trace_tile_at::<N>(tracer, filter, rows, xs, ys.clone(), s, &mut tile);
+        out.extend(tile.pixels().iter().map(|pixel| PilotPixel {
+            x: pixel.x,
+            y: pixel.y,
+            xyz: pilot_colour(&pixel.result, &pixel.value, rows),
+            rays: pixel.result.rays,
+        }));
+    }
+    out
+}
+
+/// One pixel of adaptive sampling's pilot: its sample's colour and the rays it traced.
+struct PilotPixel {
+    x: u32,
+    y: u32,
+    xyz: [f64; 3],
+    rays: u64,
+}
+
+/// A pilot sample's colour as the film would add it (0 where it would be rejected).
+fn pilot_colour(result: &PathResult, value: &SampleValue, rows: &Rows) -> [f64; 3] {
+    if result.valid && value.finite() {
+        let scale = value.clamp_scale(rows.clamp);
+        value.xyz.map(|v| v * scale)
+    } else {
+        [0.0; 3]
+    }
 }
 
 /// Traces sample `s` of every pixel in tiles whose paths share their second vertices
@@ -711,14 +921,15 @@ fn reuse_pass<const N: usize>(
                 size,
                 ys,
                 s,
-                &mut |pixel| {
+                &mut |pixel, sample, weight| {
                     rays += pixel.result.rays;
                     rejected += u64::from(band[(pixel.y - y0) as usize].add(
                         pixel.x as usize,
-                        s,
+                        sample,
                         &pixel.result,
                         &pixel.value,
                         rows,
+                        weight,
                     ));
                 },
             );

@@ -129,6 +129,11 @@ pub struct RenderSettings {
     /// surfaces (smooth glass or metal). Off, camera paths alone find them (unbiased, but
     /// a small light's caustic stays noise and a punctual light's is missing).
     pub light_paths: bool,
+    /// Adaptive sampling: the samples spread over the image where a pilot finds the error
+    /// (off by default here, on in the CLI; docs/trade-offs.md). It applies to renders of the path tracer from
+    /// sample 0 to a multiple of 4 samples, at least 16, without the variance AOV; others
+    /// sample uniformly.
+    pub adaptive: bool,
     /// A transparent background: camera rays that leave the scene add nothing (the
     /// environment still lights it), so the image is premultiplied by its alpha.
     pub transparent: bool,
@@ -179,6 +184,7 @@ impl Default for RenderSettings {
             bands: None,
             energy: false,
             light_paths: true,
+            adaptive: false,
             transparent: false,
             polarized: false,
             camera_polarizer: None,
@@ -210,6 +216,7 @@ setters!(RenderSettings {
     bands: Option<SpectralBands>,
     energy: bool,
     light_paths: bool,
+    adaptive: bool,
     transparent: bool,
     polarized: bool,
     camera_polarizer: Option<f32>,

@@ -461,7 +461,7 @@ fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
 
 /// Half the squared difference of two estimates `a` and `b` of a channel whose value is
 /// about `mean`, weighted as the relative MSE weighs errors.
-fn channel_error(a: f64, b: f64, mean: f64) -> f64 {
+pub(crate) fn channel_error(a: f64, b: f64, mean: f64) -> f64 {
     let weight = 1.0 / (mean * mean + 0.01);
     0.5 * (a - b).powi(2) * weight
 }

@@ -82,7 +82,7 @@ fn row<const N: usize, const W: usize>(
             );
             for (i, (result, value)) in results.iter().zip(&values).take(count).enumerate() {
                 rays += result.rays;
-                rejected += u64::from(out.add(x0 as usize + i, s, result, value, rows));
+                rejected += u64::from(out.add(x0 as usize + i, s, result, value, rows, 1.0));
             }
         }
         x0 += W as u32;

@@ -287,8 +287,9 @@ pub(crate) fn trace_tile_at<'a, const N: usize>(
     tracer.trace_tile::<N>(filter, rows, xs, ys, s, lambda, tile);
 }
 
-/// Traces sample `s` of every pixel of the rows `ys` (one row of tiles) in tiles `size`
-/// pixels wide, and hands each pixel's sample to `add`.
+/// Traces pass `s` of every pixel of the rows `ys` (one row of tiles) in tiles `size`
+/// pixels wide (one sample, or adaptive sampling's samples of the pass), and hands each
+/// pixel's sample to `add` with its index and weight.
 pub(crate) fn trace_band<const N: usize>(
     tracer: &Tracer,
     filter: &FilterSampler,
@@ -296,14 +297,26 @@ pub(crate) fn trace_band<const N: usize>(
     size: u32,
     ys: std::ops::Range<u32>,
     s: u64,
-    add: &mut impl FnMut(&TilePixel<'_, N>),
+    add: &mut impl FnMut(&TilePixel<'_, N>, u64, f64),
 ) {
     let mut tile = Tile::new();
     for x0 in (0..rows.width).step_by(size as usize) {
         let xs = x0..(x0 + size).min(rows.width);
-        trace_tile_at::<N>(tracer, filter, rows, xs, ys.clone(), s, &mut tile);
-        for pixel in tile.pixels() {
-            add(pixel);
+        // A tile of reuse lies in one tile of adaptive sampling's rates.
+        let (samples, weight) = crate::adaptive::samples_of(rows.map.as_deref(), x0, ys.start, s);
+        for sample in samples {
+            trace_tile_at::<N>(
+                tracer,
+                filter,
+                rows,
+                xs.clone(),
+                ys.clone(),
+                sample,
+                &mut tile,
+            );
+            for pixel in tile.pixels() {
+                add(pixel, sample, weight);
+            }
         }
     }
 }

@@ -200,6 +200,12 @@ pub struct RenderArgs {
     /// closes its stop, `--focus-distance` moves its film.
     #[arg(long, value_name = "FILE", conflicts_with = "aperture_radius")]
     pub lens: Option<std::path::PathBuf>,
+    /// Adaptive sampling: on (a pilot of two samples per pixel spreads the samples where
+    /// the error is, in tiles, keeping the total; unbiased) or off (every pixel takes
+    /// --spp). It applies from 16 samples per pixel, in multiples of 4; a --sample-range
+    /// render samples uniformly, so that farm pieces add up.
+    #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
+    pub adaptive: String,
     /// Leave caustics to camera paths alone: no light paths, even in scenes with smooth
     /// glass or metal (unbiased either way; without light paths a small light's caustic
     /// is noise and a punctual light's is missing).

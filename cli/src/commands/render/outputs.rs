@@ -56,6 +56,9 @@ pub fn write_render(
     if stats.reuse > 1 {
         facts.push(("reuse".into(), stats.reuse.to_string()));
     }
+    if stats.adaptive {
+        facts.push(("adaptive".into(), "1".into()));
+    }
     let shown = match white_balance {
         Some(m) => film.adapted(m),
         None => film.clone(),
@@ -129,6 +132,7 @@ pub fn stats_json(
         "wavelengths": args.wavelengths,
         "splits": stats.splits,
         "reuse": stats.reuse,
+        "adaptive": stats.adaptive,
         "focus_distance": stats.focus_distance.map(|d| {
             if d.is_finite() { serde_json::json!(d) } else { serde_json::json!("infinity") }
         }),

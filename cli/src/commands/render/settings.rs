@@ -87,6 +87,7 @@ pub(super) fn render_settings(
         .at(args.at)
         .shutter(args.shutter.as_deref().map(parse_shutter).transpose()?)
         .light_paths(!args.no_light_paths)
+        .adaptive(args.adaptive == "on" && args.sample_range.is_none())
         .transparent(args.transparent)
         .range(range)
         .aovs(aovs(args)?)
