@@ -12,8 +12,13 @@ noise). For changes that alter images on purpose (sampling, estimators), where
     pip install OpenEXR numpy
     python3 benches/ab_error.py OLD/prism NEW/prism --seeds 6 -- scenes/cornell-medium.gltf \
         --width 128 --height 128 --spp 64
+
+A build may carry flags of its own ("target/release/prism --adaptive off" against
+"target/release/prism": one build, two settings), and --reference names a converged
+image to measure against instead (a peer's, such as Mitsuba's references of the scene
+kinds).
 """
-import argparse, hashlib, json, os, subprocess, sys
+import argparse, hashlib, json, os, shlex, subprocess, sys
 
 import numpy as np
 import OpenEXR
@@ -37,23 +42,25 @@ def main(argv):
     ap.add_argument("builds", nargs=2)
     ap.add_argument("--seeds", type=int, default=6)
     ap.add_argument("--out", default="ab-error")
+    ap.add_argument("--reference", help="a converged image (EXR) to measure against")
     args = ap.parse_args(argv[:split])
     scene, *render_args = argv[split + 1:]
     os.makedirs(args.out, exist_ok=True)
 
     def render(build, path, *extra):
-        done = subprocess.run([build, "render", scene, "-o", path, "-q", "--stats", *render_args, *extra],
+        exe, *flags = shlex.split(build)
+        done = subprocess.run([exe, "render", scene, "-o", path, "-q", "--stats", *render_args, *flags, *extra],
                               check=True, capture_output=True, text=True)
         return json.loads((done.stdout.strip() or done.stderr.strip()).splitlines()[-1])
 
     stem = os.path.splitext(os.path.basename(scene))[0]
     key = hashlib.sha1(" ".join(render_args).encode()).hexdigest()[:8]
-    reference = os.path.join(args.out, f"reference-{stem}-{key}.exr")
+    reference = args.reference or os.path.join(args.out, f"reference-{stem}-{key}.exr")
     if not os.path.exists(reference):
         flags = list(render_args)
         if "--spp" in flags:
             del flags[flags.index("--spp"):flags.index("--spp") + 2]
-        subprocess.run([args.builds[0], "render", scene, "-o", reference, "-q", *flags,
+        subprocess.run([*shlex.split(args.builds[0])[:1], "render", scene, "-o", reference, "-q", *flags,
                         "--spp", "8192", "--seed", "999"], check=True)
     ref = read(reference)
     work = os.path.join(args.out, "render.exr")

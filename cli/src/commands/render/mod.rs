@@ -226,7 +226,8 @@ pub struct RenderArgs {
     /// still lights it), and PNG outputs get the alpha channel too (EXR always has it).
     #[arg(long)]
     pub transparent: bool,
-    /// Stop at the first whole sample per pixel after this many seconds.
+    /// Stop at the first whole sample per pixel after this many seconds (with adaptive
+    /// sampling, the first whole group of four).
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub time: Option<f64>,
     /// Write a checkpoint (an accumulation file OUTPUT.checkpoint.exr next to the first
