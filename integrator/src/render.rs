@@ -99,29 +99,16 @@ macro_rules! specialized {
     }};
 }
 
-/// The reuse pass specialized for a renderer's package size.
-macro_rules! specialized_reuse {
-    ($renderer:expr) => {
+/// A function generic over the package size alone (the reuse pass, adaptive sampling's
+/// pilot of reuse's tiles) specialized for a renderer's.
+macro_rules! specialized_by_width {
+    ($renderer:expr, $function:ident) => {
         match $renderer.settings.wavelengths {
-            1 => reuse_pass::<1>,
-            2 => reuse_pass::<2>,
-            4 => reuse_pass::<4>,
-            8 => reuse_pass::<8>,
-            _ => reuse_pass::<16>,
-        }
-    };
-}
-
-/// Adaptive sampling's pilot of a band of reuse's tiles, specialized for a renderer's
-/// package size.
-macro_rules! specialized_reuse_pilot {
-    ($renderer:expr) => {
-        match $renderer.settings.wavelengths {
-            1 => pilot_band::<1>,
-            2 => pilot_band::<2>,
-            4 => pilot_band::<4>,
-            8 => pilot_band::<8>,
-            _ => pilot_band::<16>,
+            1 => $function::<1>,
+            2 => $function::<2>,
+            4 => $function::<4>,
+            8 => $function::<8>,
+            _ => $function::<16>,
         }
     };
 }
@@ -454,7 +441,7 @@ impl<'a> Renderer<'a> {
         self.pool.install(|| {
             let mut outs = row_outputs(pass, settings.width as usize, settings.height);
             if self.reuse > 1 {
-                let band = specialized_reuse!(self);
+                let band = specialized_by_width!(self, reuse_pass);
                 for s in rows.samples.clone() {
                     if cancel.load(Ordering::Relaxed) {
                         return;
@@ -493,7 +480,7 @@ impl<'a> Renderer<'a> {
             let size = self.reuse;
             let pilot: Vec<Vec<PilotPixel>> = self.pool.install(|| {
                 if size > 1 {
-                    let band = specialized_reuse_pilot!(self);
+                    let band = specialized_by_width!(self, pilot_band);
                     (0..height.div_ceil(size))
                         .into_par_iter()
                         .map(|b| band(&tracer, &self.filter, &rows, size, b * size))
