@@ -43,6 +43,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from peers import SCENES, script as peer_script  # noqa: E402
+from mitsuba_reference import variance_path  # noqa: E402
 
 
 def read_exr(path):
@@ -68,6 +69,20 @@ def agreement(a, b, grid):
 def relmse(img, ref):
     """prism compare's relative MSE: noise relative to the reference, floored in the dark."""
     return float(np.mean((img - ref) ** 2 / (ref ** 2 + 0.01)))
+
+
+def reference_noise(reference, ref):
+    """What a reference's own noise adds to any renderer's relative MSE against it (its
+    variance of the mean, written beside it by mitsuba_reference.py), or None without it.
+    An image independent of the reference has E[relmse] = its error against the converged
+    image + this; subtracting it leaves the renderers' own error."""
+    path = variance_path(reference)
+    if not os.path.exists(path):
+        print(f"note: no {os.path.basename(path)} beside the reference: its noise counts as every "
+              "renderer's error (render it again with mitsuba_reference.py to measure it)", file=sys.stderr)
+        return None
+    variance = read_exr(path)
+    return float(np.mean(variance / (ref ** 2 + 0.01)))
 
 
 def cpu():
@@ -230,6 +245,14 @@ def compare(scene, a, peer_reference):
         result["against_reference"] = {name: agreement(img, ref, a.grid) for name, img in images.items()}
         # Fireflies make one seed's error a poor estimate: the mean over the seeds.
         errors = {name: float(np.mean([relmse(img, ref) for img in runs])) for name, runs in seeded.items()}
+        noise = reference_noise(reference, ref)
+        if noise is not None:
+            result["reference_noise"] = noise
+            result["relmse_with_reference_noise"] = dict(errors)
+            errors = {name: e - noise for name, e in errors.items()}
+            if min(errors.values()) <= 0.0:
+                sys.exit(f"{scene}: the reference's noise ({noise:.3g}) is not below every renderer's error "
+                         "against it: render it with more samples (--peer-reference-spp)")
         if a.prism_reference_dir:
             own = os.path.join(a.prism_reference_dir, f"prism-ref-{scene}-{a.width}.exr")
             if not os.path.exists(own):
@@ -241,6 +264,9 @@ def compare(scene, a, peer_reference):
             result["prism_reference"] = own
             result["references_agree"] = agreement(own_ref, ref, a.grid)
             result["against_reference"]["prism"] = agreement(images["prism"], own_ref, a.grid)
+            # Kept beside the own-reference error: the two renderers' models' difference
+            # counts as prism's error in this one.
+            result["prism_relmse_against_peer_reference"] = errors["prism"]
             errors["prism"] = float(np.mean([relmse(img, own_ref) for img in seeded["prism"]]))
         if a.seeds > 1:
             result["seeds"] = a.seeds

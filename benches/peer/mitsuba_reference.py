@@ -8,6 +8,10 @@ LLVM variant).
 
 Uses the Mitsuba script peers.py names for the scene, so the reference is the same
 Mitsuba scene the timed renders use. Depth as there (-1: unbounded).
+
+Beside OUT it writes the reference's own noise, the variance of the mean per pixel and
+channel estimated from the passes (OUT with ".exr" replaced by ".variance.exr"):
+compare.py subtracts what it adds to every renderer's error against the reference.
 """
 import argparse, os, subprocess, sys, tempfile
 
@@ -31,7 +35,7 @@ def main():
     import mitsuba as mi
     mi.set_variant("scalar_rgb")
     passes = max(1, a.spp // a.pass_spp)
-    total = None
+    total = squares = None
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(passes):
             exr = os.path.join(tmp, "pass.exr")
@@ -40,11 +44,21 @@ def main():
                             "--seed", str(1000 + k), "--out", exr], check=True, capture_output=True)
             img = np.array(mi.Bitmap(exr), dtype=np.float64)[..., :3]
             total = img if total is None else total + img
+            squares = img ** 2 if squares is None else squares + img ** 2
             print(f"pass {k + 1}/{passes}", file=sys.stderr)
-    mean = (total / passes).astype(np.float32)
-    tmp_out = a.out + ".partial.exr"
-    mi.Bitmap(mean).write(tmp_out)
-    os.replace(tmp_out, a.out)
+    mean = total / passes
+    # The sample variance of one pass over the number of passes: the mean's variance.
+    variance = np.maximum(squares / passes - mean ** 2, 0.0) * passes / max(passes - 1, 1) / passes
+    for image, path in ((variance, variance_path(a.out)), (mean, a.out)):
+        tmp_out = path + ".partial.exr"
+        mi.Bitmap(image.astype(np.float32)).write(tmp_out)
+        os.replace(tmp_out, path)
+
+
+def variance_path(reference):
+    """Where a reference's per-pixel variance of the mean is written beside it."""
+    stem = reference[:-4] if reference.endswith(".exr") else reference
+    return stem + ".variance.exr"
 
 
 if __name__ == "__main__":
