@@ -193,7 +193,7 @@ impl<'a> Renderer<'a> {
             (Splits::Fixed(k), _) => (k, 1),
             (Splits::Auto, Reuse::Auto) if shareable => {
                 let pilot = specialized!(renderer, mode_pilot);
-                renderer.pool.install(|| pilot(&renderer)).choice()
+                renderer.pool.install(|| pilot(&renderer))
             }
             (Splits::Auto, _) => {
                 let pilot = specialized!(renderer, pilot);
@@ -526,7 +526,7 @@ impl<'a> Renderer<'a> {
     /// path tracer's, over whole groups of passes from the first, enough of them that the
     /// pilot's two samples per pixel are small beside them, and without the variance AOV
     /// (whose two replicates split samples by their index).
-    fn samples_adaptively(&self) -> bool {
+    pub(crate) fn samples_adaptively(&self) -> bool {
         let s = &self.settings;
         let group = crate::adaptive::GROUP;
         s.adaptive

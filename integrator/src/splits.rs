@@ -277,16 +277,29 @@ impl ModePilot {
 /// the rest (0.2 s of a 2.3 s render of the specular box at 128 x 128, 64 spp).
 const WIDE_TILES_BELOW: f64 = 0.8;
 
+/// The tiles a render that samples adaptively shares vertices in wherever the pilot
+/// chooses reuse: the largest of [`REUSE_CHOICES`], without the pilot's stage that
+/// compares them. The pilot measures each mode with uniform samples, where tiles of four
+/// measured 0.99x two on the medium box; with adaptive sampling's spread (`adaptive`),
+/// 1.17x. At 64 spp (noise from 4-6 seeds' variance), four against two: the medium box
+/// 1.09x, 1.16x and 1.16x at 64, 128 and 256 pixels square, the plastic box 1.12x,
+/// 1.09x, 1.01x, the specular box 1.01x and 1.13x at 64 and 128, the glossy box 1.03x at
+/// 64, the caustic box 1.16x and the milky bunny 1.03x at 256 (the pilot had chosen two
+/// on each but the medium box at 64); the boxes the pilot gave four keep them (images
+/// byte-identical), and every such render skips a stage that cost it 6-10%.
+const WIDEST_TILES: u32 = REUSE_CHOICES[REUSE_CHOICES.len() - 1];
+
 /// Traces the pilot for a scene whose paths can share their second vertices: up to
 /// `REUSE_GRID` x `REUSE_GRID` cells, in each the pixel at the cell's corner unsplit and
 /// split in two (as [`pilot`]), and the tiles of [`REUSE_CHOICES`] at that corner with
 /// reuse (the larger only where the smallest promise much, [`WIDE_TILES_BELOW`]), each
 /// estimated twice (two seeds, `SAMPLES` samples each). A cell's error per
 /// mode is its pixels' mean; the cells with the largest errors are left out as in
-/// [`pilot`].
+/// [`pilot`]. Returns (splits, reuse tile side); a render that samples adaptively takes
+/// [`WIDEST_TILES`] wherever it reuses.
 pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     renderer: &Renderer,
-) -> ModePilot {
+) -> (u32, u32) {
     use rayon::prelude::*;
     let settings = renderer.settings();
     let (width, height) = (settings.width, settings.height);
@@ -381,15 +394,22 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         })
         .collect();
     let first = summarize_modes(&per_cell, 3);
-    if first.choice().1 == 1 || !first.worth_wider_tiles() {
-        return first;
+    let choice = first.choice();
+    if choice.1 == 1 {
+        return choice;
+    }
+    if renderer.samples_adaptively() {
+        return (1, WIDEST_TILES);
+    }
+    if !first.worth_wider_tiles() {
+        return choice;
     }
     per_cell.par_iter_mut().enumerate().for_each(|(i, cell)| {
         for j in 1..REUSE_CHOICES.len() {
             reuse(i as u32, j, cell);
         }
     });
-    summarize_modes(&per_cell, 4)
+    summarize_modes(&per_cell, 4).choice()
 }
 
 /// The cells' mean errors and rays over the first `modes` modes; the other modes stay
