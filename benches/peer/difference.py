@@ -22,6 +22,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare import read_exr, reference_noise, relmse  # noqa: E402
+from mitsuba_reference import variance_path  # noqa: E402
 from peers import SCENES  # noqa: E402
 
 
@@ -54,6 +55,8 @@ def main():
     # Per pixel: the mean image's squared difference, less what both noises add to it.
     floor = ref ** 2 + 0.01
     variance = (images[0] - images[1]) ** 2 / 4  # the mean's variance, per pixel
+    if os.path.exists(variance_path(a.reference)):
+        variance = variance + read_exr(variance_path(a.reference))
     part = ((mean - ref) ** 2 - variance) / floor
     g = a.grid
     shares = part.sum(axis=2).reshape(g, height // g, g, width // g).sum(axis=(1, 3))
