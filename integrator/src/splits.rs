@@ -195,6 +195,24 @@ const REUSE_GRID: u32 = 16;
 /// noise is shared within tiles, and the pilot's estimates are themselves noisy.
 const REUSE_MARGIN: f64 = 0.85;
 
+/// The margin of [`REUSE_MARGIN`] for a render that samples adaptively, which reuses in
+/// [`WIDEST_TILES`]: the pilot measures tiles of two under uniform samples, and with
+/// adaptive sampling's spread tiles of four gain more than it sees. Measured against the
+/// margin of uniform renders (128 x 128 and 256 x 256, 64 spp, noise from 6 seeds'
+/// variance, each render's pilot included): the glossy box 1.08x and 1.37x, the specular
+/// box 1.10x and 1.36x, the caustic box 1.50x and 1.45x, the plastic box 1.27x at 256
+/// (at 128 it reused already); at 64 x 64 the glossy, specular and caustic boxes 1.07x,
+/// 1.48x, 1.61x, the plastic box 0.94x. A margin of 1.3 measured the same.
+const ADAPTIVE_REUSE_MARGIN: f64 = 1.1;
+
+/// What reuse must do to its own tiles' error per ray (at most this share of it without
+/// reuse, [`ModePilot::reuse_gain`]) to be chosen under [`ADAPTIVE_REUSE_MARGIN`]: where
+/// no path shares a vertex (textured walls, no Lambertian second vertex) the pilot
+/// measures 0.97-1.03, and 4 x 4 tiles that share nothing cost 5-7% (the textured scene
+/// at 128 x 128: their wavelengths are shared too). The glossy, specular and caustic
+/// boxes measure 0.86-0.96, the plastic box 0.70-0.81 (6 seeds each).
+const ADAPTIVE_REUSE_GAIN: f64 = 0.97;
+
 /// What a connection of path reuse costs in the pilot's unit, a ray of a path: its shadow
 /// ray, the pair's geometry (eight pairs at a time in SIMD lanes) and the BSDF's value.
 /// callgrind on the Cornell box (32 x 32, 32 spp, `--reuse 2`, one thread) counts 761
@@ -226,7 +244,8 @@ pub(crate) struct ModePilot {
 }
 
 impl ModePilot {
-    /// (splits, reuse tile side) predicted to reach a given error soonest.
+    /// (splits, reuse tile side) predicted to reach a given error soonest with uniform
+    /// samples.
     pub(crate) fn choice(&self) -> (u32, u32) {
         let (k, split_cost) = self.best_split();
         if !(split_cost.is_finite() && split_cost > 0.0) {
@@ -240,6 +259,23 @@ impl ModePilot {
             }
         }
         (best.0, best.1)
+    }
+
+    /// The choice for a render that samples adaptively, from the first stage (tiles of
+    /// two) alone: reuse in [`WIDEST_TILES`] where reuse changes its tiles' error
+    /// ([`ADAPTIVE_REUSE_GAIN`]) and promises no more than [`ADAPTIVE_REUSE_MARGIN`] times
+    /// the best split's error per ray, else the best split.
+    pub(crate) fn adaptive_choice(&self) -> (u32, u32) {
+        let (k, split_cost) = self.best_split();
+        let c = self.reuse_cost(0);
+        let gain = self.reuse_gain(0);
+        let reuses = split_cost.is_finite()
+            && split_cost > 0.0
+            && c.is_finite()
+            && c > 0.0
+            && gain < ADAPTIVE_REUSE_GAIN
+            && c < ADAPTIVE_REUSE_MARGIN * split_cost;
+        if reuses { (1, WIDEST_TILES) } else { (k, 1) }
     }
 
     /// The best number of continuations and its error per ray.
@@ -256,9 +292,13 @@ impl ModePilot {
     /// corner pixels' unsplit, times what reuse did to its own tiles' pixels (NaN where
     /// not measured).
     fn reuse_cost(&self, j: usize) -> f64 {
-        let gain =
-            (self.variance[2 + j] / self.unsplit[j]) * (self.rays[2 + j] / self.unsplit_rays[j]);
-        self.variance[0] * self.rays[0] * gain
+        self.variance[0] * self.rays[0] * self.reuse_gain(j)
+    }
+
+    /// What reuse on tiles of side `REUSE_CHOICES[j]` did to its own tiles' error per ray:
+    /// their error per ray with reuse over without (NaN where not measured).
+    fn reuse_gain(&self, j: usize) -> f64 {
+        (self.variance[2 + j] / self.unsplit[j]) * (self.rays[2 + j] / self.unsplit_rays[j])
     }
 
     /// Whether the smallest tiles promise enough for the larger ones to be worth trying
@@ -278,7 +318,7 @@ impl ModePilot {
 const WIDE_TILES_BELOW: f64 = 0.8;
 
 /// The tiles a render that samples adaptively shares vertices in wherever the pilot
-/// chooses reuse: the largest of [`REUSE_CHOICES`], without the pilot's stage that
+/// chooses reuse ([`ModePilot::adaptive_choice`]): the largest of [`REUSE_CHOICES`], without the pilot's stage that
 /// compares them. The pilot measures each mode with uniform samples, where tiles of four
 /// measured 0.99x two on the medium box; with adaptive sampling's spread (`adaptive`),
 /// 1.17x. At 64 spp (noise from 4-6 seeds' variance), four against two: the medium box
@@ -295,8 +335,8 @@ const WIDEST_TILES: u32 = REUSE_CHOICES[REUSE_CHOICES.len() - 1];
 /// reuse (the larger only where the smallest promise much, [`WIDE_TILES_BELOW`]), each
 /// estimated twice (two seeds, `SAMPLES` samples each). A cell's error per
 /// mode is its pixels' mean; the cells with the largest errors are left out as in
-/// [`pilot`]. Returns (splits, reuse tile side); a render that samples adaptively takes
-/// [`WIDEST_TILES`] wherever it reuses.
+/// [`pilot`]. Returns (splits, reuse tile side); a render that samples adaptively chooses
+/// from the first stage alone ([`ModePilot::adaptive_choice`]).
 pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     renderer: &Renderer,
 ) -> (u32, u32) {
@@ -394,12 +434,12 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         })
         .collect();
     let first = summarize_modes(&per_cell, 3);
+    if renderer.samples_adaptively() {
+        return first.adaptive_choice();
+    }
     let choice = first.choice();
     if choice.1 == 1 {
         return choice;
-    }
-    if renderer.samples_adaptively() {
-        return (1, WIDEST_TILES);
     }
     if !first.worth_wider_tiles() {
         return choice;
@@ -711,6 +751,28 @@ mod tests {
         let little = summarize_modes(&cells(1.38), 3);
         assert_eq!(little.choice(), (1, 2));
         assert!(!little.worth_wider_tiles());
+    }
+
+    /// A render that samples adaptively reuses (in tiles of four) where reuse promises
+    /// up to 1.1x the best split's error per ray, provided it changes its own tiles'
+    /// error; one that samples uniformly keeps the stricter margin.
+    #[test]
+    fn adaptive_renders_reuse_where_it_changes_the_error() {
+        // Unsplit 2 x 5 rays is the best split; reuse's gain is (reuse / 2) x (6 / 5).
+        let summary = |reuse: f64| summarize_modes(&vec![cell([2.0, 2.5], reuse, 2.0); 100], 3);
+        // Gain 0.93: within the adaptive margin, outside the uniform one.
+        let some = summary(1.55);
+        assert_eq!(some.adaptive_choice(), (1, 4));
+        assert_eq!(some.choice(), (1, 1));
+        // Gain 0.99: reuse shares next to nothing, however close its cost.
+        assert_eq!(summary(1.65).adaptive_choice(), (1, 1));
+        // Gain 1.2x the split's cost: over the margin.
+        assert_eq!(summary(2.0).adaptive_choice(), (1, 1));
+        // Much gain: both reuse.
+        assert_eq!(summary(0.8).adaptive_choice(), (1, 4));
+        assert_eq!(summary(0.8).choice(), (1, 2));
+        // A pilot that measured nothing neither reuses nor splits.
+        assert_eq!(ModePilot::default().adaptive_choice(), (1, 1));
     }
 
     /// A cell whose unsplit estimates met a firefly does not decide for reuse, and does

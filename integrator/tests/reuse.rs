@@ -208,6 +208,47 @@ fn reused_paths_with_media_estimate_the_plain_image() {
     }
 }
 
+/// Rough plastics' first vertices gather their tiles' second vertices with their own
+/// densities (both lobes): a cube of rough blue plastic (GGX alpha 0.05, 0.3) in the
+/// glowing enclosure, most of the view, renders the same blocks reused and plain, and so
+/// does the plastic box (scenes/cornell-plastic.gltf, whose smooth plastic does not share).
+#[test]
+fn reused_paths_from_plastic_estimate_the_plain_image() {
+    for alpha in [0.05f32, 0.3] {
+        let inside = cube(Vec3::new(0.1, -0.2, -0.3), 0.5)
+            .into_iter()
+            .map(|t| (t, 1))
+            .collect();
+        let plastic = Material::Plastic {
+            reflectance: SceneSpectrum::Table(std::sync::Arc::new(
+                PiecewiseLinear::new(vec![450.0, 600.0], vec![0.8, 0.1], Extrapolation::Clamp)
+                    .unwrap(),
+            )),
+            nonlinear: false,
+            coating: std::sync::Arc::new(prism_scene::bsdf::PlasticCoating::new(1.5, alpha)),
+        };
+        let scene = enclosure_with(0.6, inside, vec![plastic]);
+        let statistics =
+            |reuse: u32| block_statistics(&scene, |seed| settings(16, 32, reuse).seed(1100 + seed));
+        let plain = statistics(1);
+        for reuse in [2, 4] {
+            assert_blocks_agree(
+                &plain,
+                &statistics(reuse),
+                &format!("plastic alpha {alpha}: plain and reuse {reuse}"),
+            );
+        }
+    }
+    let scene = repository_scene("cornell-plastic.gltf", |_| {});
+    let statistics =
+        |reuse: u32| block_statistics(&scene, |seed| settings(16, 8, reuse).seed(1200 + seed));
+    assert_blocks_agree(
+        &statistics(1),
+        &statistics(4),
+        "plastic box: plain and reuse 4",
+    );
+}
+
 /// Reused and plain paths estimate the same image: the Cornell box's 4 x 4 blocks agree,
 /// each within five standard errors (over eight seeds of each) of the other.
 #[test]
@@ -290,6 +331,27 @@ fn adaptive_renders_reuse_in_the_widest_tiles() {
     };
     assert_eq!(choice(false), (1, 2));
     assert_eq!(choice(true), (1, 4));
+}
+
+/// With adaptive sampling reuse also wins by a wider margin over continuations: the
+/// glossy box's pilot splits a uniform render in two and reuses in an adaptive one; the
+/// textured scene, where nothing is shared, reuses in neither.
+#[test]
+fn adaptive_renders_reuse_by_a_wider_margin() {
+    let choice = |scene: &Scene, adaptive: bool| {
+        let s = RenderSettings::default()
+            .width(32)
+            .height(32)
+            .samples(0..16)
+            .adaptive(adaptive);
+        let r = Renderer::new(scene, &s).unwrap();
+        (r.splits(), r.reuse())
+    };
+    let glossy = repository_scene("cornell-glossy.gltf", |_| {});
+    assert_eq!(choice(&glossy, false), (2, 1));
+    assert_eq!(choice(&glossy, true), (1, 4));
+    let textured = repository_scene("textured.gltf", |_| {});
+    assert_eq!(choice(&textured, true), (1, 1));
 }
 
 /// Renders whose paths cannot share second vertices render without: polarized paths

@@ -194,7 +194,8 @@ impl<'a> Tracer<'a> {
     /// is what the path carries: a spectrum, or Mueller matrices for polarized renders.
     ///
     /// `REUSE` is whether the path shares its second vertex with its tile's other pixels
-    /// (`crate::reuse`; never with `SPLIT`): where its first vertex is Lambertian and its
+    /// (`crate::reuse`; never with `SPLIT`): where its first vertex can share (Lambertian,
+    /// or a plastic under a rough coating) and its
     /// second reflects alike in every direction, what the path gathers from the second
     /// vertex on goes to `record` instead of `sink`, and the first vertex and the bounce
     /// to the second are recorded with it.
