@@ -1,7 +1,8 @@
 """The scene kinds in Mitsuba 3, rendered by its `path` integrator. `textured`
 (scenes/textured-sky.gltf, written by scenes/tools/make_textured_sky.py) is read whole
 from its file: meshes with texture coordinates, Lambertian materials with their sRGB
-base colour textures, the gold conductor, the camera and scenes/sky.hdr. The Cornell box's
+base colour textures, the gold conductor, the camera and scenes/sky.hdr (resampled four
+times finer: `resampled_sky`). The Cornell box's
 kinds (scenes/cornell-specular.gltf, -glossy, -caustic, -plastic, written by
 scenes/tools/make_cornell_kinds.py) are
 Mitsuba's built-in `cornell_box()` (whose walls, light and camera prism's glTF copies)
@@ -24,6 +25,8 @@ import mitsuba as mi
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 KINDS = ("specular", "glossy", "caustic", "textured", "plastic")
 SKY = os.path.join(ROOT, "scenes", "sky.hdr")
+# How much finer than scenes/sky.hdr the sky Mitsuba is given is (`resampled_sky`).
+SKY_FACTOR = 4
 SHARED_NODES = {"light", "floor", "ceiling", "back", "green-wall", "red-wall", "camera"}
 
 
@@ -119,6 +122,27 @@ def rotate(q, v):
     return 2 * np.dot(u, v) * u + (w * w - np.dot(u, u)) * v + 2 * w * np.cross(u, v)
 
 
+def resampled_sky(tmp, factor=SKY_FACTOR):
+    """scenes/sky.hdr resampled `factor` times finer, each new texel prism's radiance at
+    its centre (bilinear in RGB between the texel centres (i + 0.5) / W, u wrapping, v
+    clamped: `EnvironmentMap::rgb`). Mitsuba's spectral `envmap` blends the four texels'
+    normalized spectra and their scales apart, which shifts the colour where brightness and
+    colour change together between neighbouring texels (the horizon, the sun's rim); on
+    texels that close together, it evaluates nearly the radiance prism does."""
+    sky = np.array(mi.Bitmap(SKY), dtype=np.float64)[..., :3]
+    h, w, _ = sky.shape
+    x = (np.arange(w * factor) + 0.5) / factor - 0.5
+    y = np.clip((np.arange(h * factor) + 0.5) / factor - 0.5, 0, h - 1)
+    x0, y0 = np.floor(x).astype(int), np.minimum(np.floor(y).astype(int), h - 2)
+    fx, fy = (x - x0)[None, :, None], (y - y0)[:, None, None]
+    x0, x1 = x0 % w, (x0 + 1) % w
+    rows = lambda r: sky[r][:, x0] * (1 - fx) + sky[r][:, x1] * fx
+    fine = rows(y0) * (1 - fy) + rows(y0 + 1) * fy
+    path = os.path.join(tmp, "sky.exr")
+    mi.Bitmap(fine.astype(np.float32)).write(path)
+    return path
+
+
 def textured_sky(tmp, width):
     """scenes/textured-sky.gltf as a whole Mitsuba scene: its meshes (with texture
     coordinates), Lambertian materials with their sRGB base colour textures, the gold
@@ -140,7 +164,7 @@ def textured_sky(tmp, width):
         assert pbr.get("metallicFactor") == 0 and pbr.get("roughnessFactor", 1) == 1, m["name"]
         return {"type": "diffuse", "reflectance": texture(pbr["baseColorTexture"]["index"])}
 
-    desc = {"type": "scene", "sky": {"type": "envmap", "filename": SKY,
+    desc = {"type": "scene", "sky": {"type": "envmap", "filename": resampled_sky(tmp),
                                      "to_world": mi.ScalarTransform4f().rotate([0, 1, 0], 90)}}
     for node in (doc["nodes"][i] for i in doc["scenes"][0]["nodes"]):
         if "camera" in node:
