@@ -38,7 +38,7 @@ for kind in ("specular", "glossy", "caustic"):
 # Scenes that are not Mitsuba's Cornell box: the whole description.
 WHOLE = {
     "textured": "scenes/textured-sky.gltf read whole (meshes, sRGB textures, the gold conductor, the camera, "
-                "scenes/sky.hdr turned by 90 degrees) by benches/peer/mitsuba_kinds.py",
+                "scenes/sky.hdr resampled four times finer and turned by 90 degrees) by benches/peer/mitsuba_kinds.py",
 }
 
 
