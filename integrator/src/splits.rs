@@ -318,8 +318,8 @@ impl ModePilot {
 const WIDE_TILES_BELOW: f64 = 0.8;
 
 /// The tiles a render that samples adaptively shares vertices in wherever the pilot
-/// chooses reuse ([`ModePilot::adaptive_choice`]): the largest of [`REUSE_CHOICES`], without the pilot's stage that
-/// compares them. The pilot measures each mode with uniform samples, where tiles of four
+/// chooses reuse ([`ModePilot::adaptive_choice`]): the largest of [`REUSE_CHOICES`],
+/// without the pilot's stage that compares them. The pilot measures each mode with uniform samples, where tiles of four
 /// measured 0.99x two on the medium box; with adaptive sampling's spread (`adaptive`),
 /// 1.17x. At 64 spp (noise from 4-6 seeds' variance), four against two: the medium box
 /// 1.09x, 1.16x and 1.16x at 64, 128 and 256 pixels square, the plastic box 1.12x,

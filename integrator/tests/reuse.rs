@@ -196,14 +196,20 @@ fn a_reused_glowing_enclosure_with_a_medium_returns_its_closed_form() {
 fn reused_paths_with_media_estimate_the_plain_image() {
     let scene = repository_scene("cornell-medium.gltf", |_| {});
     assert!(scene.features().media);
+    assert_reuse_agrees_with_plain(&scene, 8, 900, &[2, 4], "media");
+}
+
+/// Renders `scene` at 16 x 16 and `spp` under eight seeds from `seed`, plainly and with
+/// each of `tiles`, and asserts that their 4 x 4 blocks agree within five standard errors.
+fn assert_reuse_agrees_with_plain(scene: &Scene, spp: u64, seed: u64, tiles: &[u32], what: &str) {
     let statistics =
-        |reuse: u32| block_statistics(&scene, |seed| settings(16, 8, reuse).seed(900 + seed));
+        |reuse: u32| block_statistics(scene, |s| settings(16, spp, reuse).seed(seed + s));
     let plain = statistics(1);
-    for reuse in [2, 4] {
+    for &reuse in tiles {
         assert_blocks_agree(
             &plain,
             &statistics(reuse),
-            &format!("media: plain and reuse {reuse}"),
+            &format!("{what}: plain and reuse {reuse}"),
         );
     }
 }
@@ -228,42 +234,18 @@ fn reused_paths_from_plastic_estimate_the_plain_image() {
             coating: std::sync::Arc::new(prism_scene::bsdf::PlasticCoating::new(1.5, alpha)),
         };
         let scene = enclosure_with(0.6, inside, vec![plastic]);
-        let statistics =
-            |reuse: u32| block_statistics(&scene, |seed| settings(16, 32, reuse).seed(1100 + seed));
-        let plain = statistics(1);
-        for reuse in [2, 4] {
-            assert_blocks_agree(
-                &plain,
-                &statistics(reuse),
-                &format!("plastic alpha {alpha}: plain and reuse {reuse}"),
-            );
-        }
+        let what = format!("plastic alpha {alpha}");
+        assert_reuse_agrees_with_plain(&scene, 32, 1100, &[2, 4], &what);
     }
     let scene = repository_scene("cornell-plastic.gltf", |_| {});
-    let statistics =
-        |reuse: u32| block_statistics(&scene, |seed| settings(16, 8, reuse).seed(1200 + seed));
-    assert_blocks_agree(
-        &statistics(1),
-        &statistics(4),
-        "plastic box: plain and reuse 4",
-    );
+    assert_reuse_agrees_with_plain(&scene, 8, 1200, &[4], "plastic box");
 }
 
 /// Reused and plain paths estimate the same image: the Cornell box's 4 x 4 blocks agree,
 /// each within five standard errors (over eight seeds of each) of the other.
 #[test]
 fn reused_paths_estimate_the_plain_image() {
-    let scene = cornell();
-    let statistics =
-        |reuse: u32| block_statistics(&scene, |seed| settings(16, 8, reuse).seed(700 + seed));
-    let plain = statistics(1);
-    for reuse in [2, 3] {
-        assert_blocks_agree(
-            &plain,
-            &statistics(reuse),
-            &format!("plain and reuse {reuse}"),
-        );
-    }
+    assert_reuse_agrees_with_plain(&cornell(), 8, 700, &[2, 3], "Cornell box");
 }
 
 /// Each pixel gathers its tile's continuations: at 8 samples per pixel, tiles of four
