@@ -78,13 +78,14 @@ pub fn run(
     stats.reuse = renderer.reuse();
     stats.adaptive = renderer.adaptive();
     stats.focus_distance = renderer.focus_distance();
+    stats.estimators = renderer.estimators();
     if let prism_integrator::Reuse::Fixed(t) = settings.reuse
         && t > 1
         && renderer.reuse() == 1
     {
         eprintln!(
-            "prism: warning: --reuse {t} does not apply to this render (polarized, timed, \
-             fluorescent, dispersive or cut-out); rendering without it"
+            "prism: warning: --reuse {t} does not apply to this render ({}); rendering without it",
+            stats.estimators.reuse_why
         );
     }
     let mut ending = Ending::Complete;

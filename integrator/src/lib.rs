@@ -103,6 +103,7 @@ mod image;
 mod light_path;
 mod light_throughput;
 mod path;
+mod plan;
 mod png;
 mod render;
 mod reuse;
@@ -137,6 +138,7 @@ pub use filter::Filter;
 pub use image::{DisplaySettings, encode_png, encode_png_rgb, encode_polarization_png};
 #[cfg(feature = "exr")]
 pub use image::{ExrMetadata, encode_exr};
+pub use plan::estimators::{Estimators, TracerKind};
 pub use render::{RenderStats, Renderer, render, render_into};
 pub use settings::{
     LambdaSampler, MAX_REUSE, MAX_SPLITS, MAX_THREADS, RenderSettings, Reuse, Splits, Tracing,

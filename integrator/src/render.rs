@@ -12,6 +12,7 @@ use prism_scene::world::{EmissionCache, Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
+use crate::adaptive::error::PilotMeasure;
 use crate::adaptive::{SampleMap, samples_of};
 use crate::aov::features_pass;
 use crate::batch::{RowTracer, row_tracer};
@@ -21,9 +22,10 @@ use crate::light_path::light_seed;
 use crate::light_throughput::{LightThroughput, PolarizedLight};
 use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::plan::estimators::{Estimators, Modes, Resolution, resolve};
 use crate::reuse::Record;
 use crate::sample_value::{Outputs, SampleValue};
-use crate::settings::{Reuse, Splits, Tracing};
+use crate::settings::Tracing;
 use crate::splits::{mode_pilot, pilot};
 use crate::throughput::{CameraFrame, Polarized, Throughput};
 use crate::volume::FlightNumbers;
@@ -47,6 +49,8 @@ pub struct RenderStats {
     pub focus_distance: Option<f32>,
     /// Whether the samples were spread by adaptive sampling's pilot.
     pub adaptive: bool,
+    /// The estimators the render used, and why (`Renderer::estimators`).
+    pub estimators: Estimators,
 }
 
 /// Everything a render sets up once (the wavelength distribution, the filter table, the
@@ -73,6 +77,10 @@ pub struct Renderer<'a> {
     aim: Option<prism_scene::world::Aim>,
     /// Where adaptive sampling spreads the samples (None: uniformly).
     map: Option<std::sync::Arc<SampleMap>>,
+    /// The settings resolved into estimators, before the pilots ran.
+    resolution: Resolution,
+    /// The estimators this render uses, after the pilots.
+    estimators: Estimators,
 }
 
 /// The row tracer (or another function generic like it) specialized for a renderer's
@@ -117,7 +125,7 @@ impl<'a> Renderer<'a> {
     /// Checks `settings` and prepares to render `scene` with them (`settings.samples` is
     /// ignored: each call to [`Renderer::render_into`] names its samples).
     pub fn new(scene: &'a Scene, settings: &RenderSettings) -> Result<Self, RenderError> {
-        settings.validate()?;
+        let resolution = resolve(scene, settings, scene.camera().system.is_some())?;
         let light_spectra: Vec<&SceneSpectrum> = scene
             .lights()
             .all()
@@ -149,8 +157,10 @@ impl<'a> Renderer<'a> {
             scratch: Default::default(),
             aim: None,
             map: None,
+            resolution,
+            estimators: Estimators::default(),
         };
-        if renderer.light_caustics() {
+        if resolution.light_paths {
             renderer.aim = scene.aim(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA));
         }
         let aspect = settings.width as f32 / settings.height as f32;
@@ -159,50 +169,25 @@ impl<'a> Renderer<'a> {
             let focused = mounted
                 .focus(aspect, || auto_focus(scene, aspect))
                 .map_err(RenderError::Setting)?;
-            if let Tracing::Lanes(_) = settings.tracing {
-                return Err(RenderError::Setting(
-                    "tracing in lanes does not trace camera rays through lens systems: trace paths one by one".into(),
-                ));
-            }
             renderer.focus = None;
             renderer.system = Some(std::sync::Arc::new(focused));
         }
-        if scene.features().media {
-            crate::volume::check_settings(settings)?;
-        }
-        if let Tracing::Lanes(_) = settings.tracing {
-            (renderer.splits, renderer.reuse) = lanes_modes(settings)?;
-            return Ok(renderer);
-        }
-        // Reuse restarts a path's throughput at its second vertex, which a lens system's
-        // camera-ray weight would not survive.
-        let shareable = renderer.system.is_none()
-            && crate::reuse::supported(
-                scene,
-                settings.is_polarized(),
-                crate::path::Clock::of(settings).is_some(),
-            );
-        (renderer.splits, renderer.reuse) = match (settings.splits, settings.reuse) {
-            (_, Reuse::Fixed(t)) if t > 1 => (1, if shareable { t } else { 1 }),
-            // The volumetric tracer does not split (`volume::check_settings`).
-            _ if scene.features().media
-                && !(shareable && matches!(settings.reuse, Reuse::Auto)) =>
-            {
-                (1, 1)
-            }
-            (Splits::Fixed(k), _) => (k, 1),
-            (Splits::Auto, Reuse::Auto) if shareable => {
+        (renderer.splits, renderer.reuse) = match resolution.modes {
+            Modes::Fixed(splits, reuse) => (splits, reuse),
+            Modes::ModePilot => {
                 let pilot = specialized!(renderer, mode_pilot);
                 renderer.pool.install(|| pilot(&renderer))
             }
-            (Splits::Auto, _) => {
+            Modes::SplitsPilot => {
                 let pilot = specialized!(renderer, pilot);
                 (renderer.pool.install(|| pilot(&renderer)).choice(), 1)
             }
         };
-        if renderer.samples_adaptively() {
+        if resolution.adaptive {
             renderer.map = renderer.sample_map().map(std::sync::Arc::new);
         }
+        renderer.estimators =
+            resolution.estimators(renderer.splits, renderer.reuse, renderer.map.is_some());
         Ok(renderer)
     }
 
@@ -242,6 +227,12 @@ impl<'a> Renderer<'a> {
     /// settings' (where the scene allows reuse), or the pilot's choice.
     pub fn reuse(&self) -> u32 {
         self.reuse
+    }
+
+    /// The estimators this render uses (tracer, splits, reuse, light paths, adaptive
+    /// sampling), each with why: the settings resolved, and the pilots' choices.
+    pub fn estimators(&self) -> Estimators {
+        self.estimators
     }
 
     /// What every path of this render shares, with `splits` continuations per sample.
@@ -318,26 +309,9 @@ impl<'a> Renderer<'a> {
         self.scene.features().fluorescence
     }
 
-    /// Whether light paths carry caustics: when the scene has surfaces that focus light
-    /// (smooth or nearly smooth glass or metal and every delta lobe, a smooth plastic's
-    /// coating too: `Material::focuses`) and a light with power to start them, the
-    /// settings allow it, there are no media, and the camera is perspective without a lens
-    /// system (an orthographic camera cannot be connected to, nor can a lens system's film
-    /// be found from a point of the scene).
+    /// Whether light paths carry caustics (`crate::plan::estimators`).
     pub fn light_caustics(&self) -> bool {
-        self.settings.light_paths
-            && !self.scene.features().media
-            && self.scene.lights().start_light_paths()
-            && self.system.is_none()
-            && matches!(
-                self.scene.camera().projection,
-                prism_scene::camera::Projection::Perspective { .. }
-            )
-            && self
-                .scene
-                .materials()
-                .iter()
-                .any(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA))
+        self.resolution.light_paths
     }
 
     /// Renders sample indices `samples` of every pixel into `film` (which must have the
@@ -422,6 +396,7 @@ impl<'a> Renderer<'a> {
             reuse: self.reuse,
             focus_distance: self.focus_distance(),
             adaptive: self.adaptive(),
+            estimators: self.estimators,
         }))
     }
 
@@ -473,41 +448,31 @@ impl<'a> Renderer<'a> {
         let tracer = self.tracer(self.splits);
         let (width, height) = (settings.width, settings.height);
         let pixels = (width * height) as usize;
-        let mut estimates = [vec![[0.0; 3]; pixels], vec![[0.0; 3]; pixels]];
-        let mut rays = vec![0u64; pixels];
-        for (seed, estimate) in crate::adaptive::PILOT_SEEDS.iter().zip(&mut estimates) {
-            let rows = self.pilot_rows(settings.seed ^ seed, 0..1);
-            let size = self.reuse;
-            let pilot: Vec<Vec<PilotPixel>> = self.pool.install(|| {
-                if size > 1 {
-                    let band = specialized_by_width!(self, pilot_band);
-                    (0..height.div_ceil(size))
-                        .into_par_iter()
-                        .map(|b| band(&tracer, &self.filter, &rows, size, b * size))
-                        .collect()
-                } else {
-                    let row = specialized!(self, pilot_row);
-                    (0..height)
-                        .into_par_iter()
-                        .map(|y| row(&tracer, &self.filter, &rows, y))
-                        .collect()
-                }
-            });
-            for pixel in pilot.into_iter().flatten() {
-                let i = (pixel.y * width + pixel.x) as usize;
-                estimate[i] = pixel.xyz;
-                rays[i] += pixel.rays;
+        let seeds =
+            crate::adaptive::PILOT_SEEDS.map(|seed| self.pilot_rows(settings.seed ^ seed, 0..1));
+        let measure = PilotMeasure::new(seeds[0].outputs, settings.range, settings.observer);
+        let size = self.reuse;
+        let pilot: Vec<Vec<PilotPixel>> = self.pool.install(|| {
+            if size > 1 {
+                let band = specialized_by_width!(self, pilot_band);
+                (0..height.div_ceil(size))
+                    .into_par_iter()
+                    .map(|b| band(&tracer, &self.filter, &seeds, &measure, size, b * size))
+                    .collect()
+            } else {
+                let row = specialized!(self, pilot_row);
+                (0..height)
+                    .into_par_iter()
+                    .map(|y| row(&tracer, &self.filter, &seeds, &measure, y))
+                    .collect()
             }
+        });
+        let (mut errors, mut costs) = (vec![0.0; pixels], vec![0.0; pixels]);
+        for pixel in pilot.into_iter().flatten() {
+            let i = (pixel.y * width + pixel.x) as usize;
+            errors[i] = pixel.error;
+            costs[i] = pixel.rays as f64 / 2.0;
         }
-        let (errors, costs): (Vec<f64>, Vec<f64>) = (0..pixels)
-            .map(|i| {
-                let (a, b) = (estimates[0][i], estimates[1][i]);
-                let error = (0..3)
-                    .map(|k| crate::splits::channel_error(a[k], b[k], 0.5 * (a[k] + b[k])))
-                    .sum::<f64>();
-                (error, rays[i] as f64 / 2.0)
-            })
-            .unzip();
         SampleMap::from_errors(
             width,
             height,
@@ -522,19 +487,9 @@ impl<'a> Renderer<'a> {
         self.map.is_some()
     }
 
-    /// Whether this render spreads its samples by a pilot (`RenderSettings::adaptive`): the
-    /// path tracer's, over whole groups of passes from the first, enough of them that the
-    /// pilot's two samples per pixel are small beside them, and without the variance AOV
-    /// (whose two replicates split samples by their index).
+    /// Whether this render may spread its samples by a pilot (`crate::plan::estimators`).
     pub(crate) fn samples_adaptively(&self) -> bool {
-        let s = &self.settings;
-        let group = crate::adaptive::GROUP;
-        s.adaptive
-            && matches!(s.tracing, Tracing::Paths)
-            && !s.aovs.has(crate::Aov::Variance)
-            && s.samples.start == 0
-            && s.samples.end >= crate::adaptive::MIN_SAMPLES
-            && s.samples.end.is_multiple_of(group)
+        self.resolution.adaptive
     }
 
     /// Passes that make one group of adaptive sampling (1 without it): a render stopped
@@ -643,27 +598,6 @@ impl Rows {
     #[inline]
     pub(crate) fn stream(&self, seed: u64, pixel: u64, s: u64) -> SobolStream {
         self.replicas.stream(seed, pixel, s)
-    }
-}
-
-/// The splits and the tile of path reuse of a render by the batch tracer, which traces
-/// unsplit paths without reuse (1, 1): an error where the settings ask for more.
-fn lanes_modes(settings: &RenderSettings) -> Result<(u32, u32), RenderError> {
-    let refuse = |why: &str| {
-        Err(RenderError::Setting(format!(
-            "the batch tracer cannot render this: {why}"
-        )))
-    };
-    if settings.is_polarized() {
-        return refuse("it does not carry polarization");
-    }
-    if settings.wavelengths < 4 {
-        return refuse("it carries 4, 8 or 16 wavelengths per path");
-    }
-    match (settings.splits, settings.reuse) {
-        (Splits::Fixed(k), _) if k > 1 => refuse("it traces unsplit paths (splits 1)"),
-        (_, Reuse::Fixed(t)) if t > 1 => refuse("it does not reuse paths (reuse 1)"),
-        _ => Ok((1, 1)),
     }
 }
 
@@ -812,25 +746,32 @@ fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     (rays, rejected)
 }
 
-/// Adaptive sampling's pilot of row `y`: each pixel's first sample of `rows` (its colour,
-/// 0 where rejected) and the rays it traced.
+/// Adaptive sampling's pilot of row `y`: each pixel's first sample of both `seeds`, its
+/// weighted error by `measure` and the rays both traced.
 fn pilot_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     tracer: &Tracer,
     filter: &FilterSampler,
-    rows: &Rows,
+    seeds: &[Rows; 2],
+    measure: &PilotMeasure,
     y: u32,
 ) -> Vec<PilotPixel> {
     let mut value = SampleValue::default();
-    (0..rows.width)
+    let mut channels = [Vec::new(), Vec::new()];
+    (0..seeds[0].width)
         .map(|x| {
-            let s = rows.samples.start;
-            let result =
-                trace_sample::<N, FLUORESCENCE, T>(tracer, filter, rows, x, y, s, &mut value);
+            let mut rays = 0;
+            for (rows, out) in seeds.iter().zip(&mut channels) {
+                let s = rows.samples.start;
+                let result =
+                    trace_sample::<N, FLUORESCENCE, T>(tracer, filter, rows, x, y, s, &mut value);
+                measure.channels(&value, pilot_scale(&result, &value, rows), out);
+                rays += result.rays;
+            }
             PilotPixel {
                 x,
                 y,
-                xyz: pilot_colour(&result, &value, rows),
-                rays: result.rays,
+                error: measure.error(&channels[0], &channels[1]),
+                rays,
             }
         })
         .collect()
@@ -841,42 +782,67 @@ fn pilot_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
 fn pilot_band<const N: usize>(
     tracer: &Tracer,
     filter: &FilterSampler,
-    rows: &Rows,
+    seeds: &[Rows; 2],
+    measure: &PilotMeasure,
     size: u32,
     y0: u32,
 ) -> Vec<PilotPixel> {
     let mut out = Vec::new();
-    let ys = y0..(y0 + size).min(rows.height);
+    let (width, height) = (seeds[0].width, seeds[0].height);
+    let ys = y0..(y0 + size).min(height);
     let mut tile = crate::reuse::Tile::new();
-    for x0 in (0..rows.width).step_by(size as usize) {
-        let xs = x0..(x0 + size).min(rows.width);
-        let s = rows.samples.start;
-        crate::reuse::trace_tile_at::<N>(tracer, filter, rows, xs, ys.clone(), s, &mut tile);
-        out.extend(tile.pixels().iter().map(|pixel| PilotPixel {
-            x: pixel.x,
-            y: pixel.y,
-            xyz: pilot_colour(&pixel.result, &pixel.value, rows),
-            rays: pixel.result.rays,
-        }));
+    let mut first: Vec<(Vec<f64>, u64)> = Vec::new();
+    let mut channels = Vec::new();
+    for x0 in (0..width).step_by(size as usize) {
+        let xs = x0..(x0 + size).min(width);
+        for (k, rows) in seeds.iter().enumerate() {
+            let s = rows.samples.start;
+            crate::reuse::trace_tile_at::<N>(
+                tracer,
+                filter,
+                rows,
+                xs.clone(),
+                ys.clone(),
+                s,
+                &mut tile,
+            );
+            first.resize_with(tile.pixels().len(), Default::default);
+            for (pixel, kept) in tile.pixels().iter().zip(&mut first) {
+                let scale = pilot_scale(&pixel.result, &pixel.value, rows);
+                if k == 0 {
+                    measure.channels(&pixel.value, scale, &mut kept.0);
+                    kept.1 = pixel.result.rays;
+                } else {
+                    measure.channels(&pixel.value, scale, &mut channels);
+                    out.push(PilotPixel {
+                        x: pixel.x,
+                        y: pixel.y,
+                        error: measure.error(&kept.0, &channels),
+                        rays: kept.1 + pixel.result.rays,
+                    });
+                }
+            }
+        }
     }
     out
 }
 
-/// One pixel of adaptive sampling's pilot: its sample's colour and the rays it traced.
+/// One pixel of adaptive sampling's pilot: its weighted error and the rays its two
+/// samples traced.
 struct PilotPixel {
     x: u32,
     y: u32,
-    xyz: [f64; 3],
+    error: f64,
     rays: u64,
 }
 
-/// A pilot sample's colour as the film would add it (0 where it would be rejected).
-fn pilot_colour(result: &PathResult, value: &SampleValue, rows: &Rows) -> [f64; 3] {
+/// The factor a pilot sample is added with, as the film would add it: its clamp's, or 0
+/// where it would be rejected.
+fn pilot_scale(result: &PathResult, value: &SampleValue, rows: &Rows) -> f64 {
     if result.valid && value.finite() {
-        let scale = value.clamp_scale(rows.clamp);
-        value.xyz.map(|v| v * scale)
+        value.clamp_scale(rows.clamp)
     } else {
-        [0.0; 3]
+        0.0
     }
 }
 

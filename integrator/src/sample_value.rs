@@ -9,7 +9,7 @@ use crate::path::Tracer;
 use crate::throughput::Radiance;
 
 /// Photons per joule at 1 nm: a photon of wavelength l nm carries hc / (l 1e-9) J.
-const PHOTONS_PER_JOULE_NM: f64 =
+pub(crate) const PHOTONS_PER_JOULE_NM: f64 =
     1e-9 / (prism_spectrum::constants::PLANCK * prism_spectrum::constants::SPEED_OF_LIGHT);
 
 /// The film's outputs besides colour.

@@ -134,6 +134,10 @@ pub struct RenderSettings {
     /// sample 0 to a multiple of 4 samples, at least 16, without the variance AOV; others
     /// sample uniformly.
     pub adaptive: bool,
+    /// Whether this render is one piece of a larger one (a farm's sample range, merged
+    /// later with the others): its samples are then the uniform render's, so that the
+    /// pieces' sample indices neither overlap nor leave gaps.
+    pub piece: bool,
     /// A transparent background: camera rays that leave the scene add nothing (the
     /// environment still lights it), so the image is premultiplied by its alpha.
     pub transparent: bool,
@@ -185,6 +189,7 @@ impl Default for RenderSettings {
             energy: false,
             light_paths: true,
             adaptive: false,
+            piece: false,
             transparent: false,
             polarized: false,
             camera_polarizer: None,
@@ -217,6 +222,7 @@ setters!(RenderSettings {
     energy: bool,
     light_paths: bool,
     adaptive: bool,
+    piece: bool,
     transparent: bool,
     polarized: bool,
     camera_polarizer: Option<f32>,

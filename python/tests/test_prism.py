@@ -183,6 +183,10 @@ def test_render_arrays_and_stats():
     total = image.stats["total_seconds"]
     time.sleep(0.05)
     assert image.stats["total_seconds"] == total  # taken when the render ended
+    # The estimators the render used, each with why: 2 spp is too few for adaptive sampling.
+    estimators = image.stats["estimators"]
+    assert estimators["tracer"] == "paths" and estimators["adaptive"] is False
+    assert "16" in estimators["adaptive_why"] and estimators["reuse"] == image.stats["reuse"]
     assert np.isfinite(image.rgb).all() and image.rgb.mean() > 0
     np.testing.assert_allclose(prism.xyz_to_rgb(image.xyz), image.rgb, rtol=1e-4, atol=1e-6)
     again = prism.render(scene, spp=2, width=12, height=10, seed=3, threads=1)

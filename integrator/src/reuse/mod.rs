@@ -40,7 +40,7 @@ use glam::Vec3;
 use prism_sampling::stream::SampleStream;
 use prism_scene::bsdf::BsdfSample;
 use prism_scene::geometry::Ray;
-use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, Scene};
+use prism_scene::world::{Bsdf, EmissionCache, Hit, Material};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 mod gather;
@@ -158,14 +158,6 @@ impl<'s, const N: usize, R: Clone> Record<'s, N, R> {
             reflected: black,
         }
     }
-}
-
-/// Whether `tracer`'s paths can share their second vertices: spectra, not Stokes vectors;
-/// wavelengths that no vertex changes (fluorescence, dispersion); no instant (a lane's
-/// time can change at a phosphor); no surface a ray passes through by chance.
-pub(crate) fn supported(scene: &Scene, polarized: bool, timed: bool) -> bool {
-    let features = scene.features();
-    !polarized && !timed && !features.fluorescence && !features.dispersion && !scene.has_cutouts()
 }
 
 /// One pixel of a tile: its position, and what its path left.

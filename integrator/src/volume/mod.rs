@@ -36,30 +36,10 @@ pub(crate) use stack::MediumStack;
 use crate::path::{DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk};
 use crate::path::{absorb, roulette_capped, wavelengths};
 use crate::reuse::{First, Record};
-use crate::settings::{Splits, Tracing};
 use crate::throughput::{Throughput, Vertex};
-use crate::{RenderError, RenderSettings};
 use light::Scatterer;
 use ratios::{Ratios, spectral_weight};
 use segment::{Flight, fly};
-
-/// Checks that `settings` ask for nothing the volumetric path tracer does not do: one
-/// clear error for each (light paths for caustics are left off quietly: camera paths find
-/// the same light, so the image is the same, with more noise).
-pub(crate) fn check_settings(settings: &RenderSettings) -> Result<(), RenderError> {
-    let refuse = |why: &str| {
-        Err(RenderError::Setting(format!(
-            "scenes with participating media cannot be rendered {why}"
-        )))
-    };
-    if let Tracing::Lanes(_) = settings.tracing {
-        return refuse("by the batch tracer (use --tracer paths)");
-    }
-    match settings.splits {
-        Splits::Fixed(k) if k > 1 => refuse("with splitting (use --splits 1 or auto)"),
-        _ => Ok(()),
-    }
-}
 
 /// The Sobol dimension of bounce 0's first-collision numbers (bounce k's are this + 2k and
 /// the next): far above any bounce's block, so that drawing them moves no other number.

@@ -371,3 +371,4 @@ pub fn second_moment(film: &Film) -> f64 {
     }
     m / sum
 }
+pub mod matrix;

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use prism_integrator::{
-    DisplaySettings, ExrMetadata, Film, RenderSettings, RenderStats, encode_exr, encode_png,
-    encode_png_rgb, encode_polarization_png, replace_rgb_exr,
+    DisplaySettings, Estimators, ExrMetadata, Film, RenderSettings, RenderStats, encode_exr,
+    encode_png, encode_png_rgb, encode_polarization_png, replace_rgb_exr,
 };
 use prism_spectrum::color::{Mat3, RgbSpaceId, ToneMap};
 
@@ -133,6 +133,7 @@ pub fn stats_json(
         "splits": stats.splits,
         "reuse": stats.reuse,
         "adaptive": stats.adaptive,
+        "estimators": estimators_json(&stats.estimators),
         "focus_distance": stats.focus_distance.map(|d| {
             if d.is_finite() { serde_json::json!(d) } else { serde_json::json!("infinity") }
         }),
@@ -144,6 +145,21 @@ pub fn stats_json(
         "shutter": settings.shutter,
         "aovs": settings.aovs.iter().map(|a| a.name()).collect::<Vec<_>>(),
         "denoised": args.denoise,
+    })
+}
+
+/// Which estimators the render used, each with why (`prism_integrator::Estimators`).
+fn estimators_json(e: &Estimators) -> serde_json::Value {
+    serde_json::json!({
+        "tracer": e.tracer.to_string(),
+        "splits": e.splits,
+        "splits_why": e.splits_why,
+        "reuse": e.reuse,
+        "reuse_why": e.reuse_why,
+        "light_paths": e.light_paths,
+        "light_paths_why": e.light_paths_why,
+        "adaptive": e.adaptive,
+        "adaptive_why": e.adaptive_why,
     })
 }
 

@@ -28,6 +28,8 @@
 
 use std::ops::Range;
 
+pub(crate) mod error;
+
 /// The pilot's two seeds (each combined with the render's), apart from the render's and
 /// from the splits pilot's.
 pub(crate) const PILOT_SEEDS: [u64; 2] = [0xada7_5a3b_1e00_0001, 0xada7_5a3b_1e00_0002];

@@ -1,0 +1,138 @@
+//! `prism render` resolves its settings into estimators in one place, and says which it
+//! used and why: `--stats` carries them, a setting that does not apply warns with the
+//! reason, and a refused combination is one line naming both settings.
+
+mod common;
+
+use common::{assert_one_line_errors, prism, prism_ok, temp_dir};
+
+fn scene(file: &str) -> String {
+    format!("{}/../scenes/{file}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn stats(out: &std::process::Output) -> serde_json::Value {
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+#[test]
+fn stats_say_which_estimators_and_why() {
+    let dir = temp_dir("estimators");
+    let exr = dir.join("f.exr");
+    let furnace = scene("assets/medium-furnace.gltf");
+    let common: &[&str] = &[
+        "render",
+        &furnace,
+        "--environment",
+        "0.5",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-o",
+        exr.to_str().unwrap(),
+        "--stats",
+        "-q",
+    ];
+    // The defaults: the volumetric tracer, adaptive sampling on, the pilot's modes.
+    let s = stats(&prism_ok(&[common, &["--spp", "16"]]));
+    let e = &s["estimators"];
+    assert_eq!(e["tracer"], "volume", "{s}");
+    assert_eq!(e["adaptive"], true, "{s}");
+    assert_eq!(e["light_paths"], false, "{s}");
+    assert!(
+        e["light_paths_why"]
+            .as_str()
+            .unwrap()
+            .contains("volumetric"),
+        "{s}"
+    );
+    assert!(e["reuse_why"].as_str().unwrap().contains("pilot"), "{s}");
+    assert_eq!(e["reuse"], s["reuse"]);
+    // A farm's piece samples uniformly, and says so.
+    let s = stats(&prism_ok(&[common, &["--sample-range", "0..16"]]));
+    assert_eq!(s["estimators"]["adaptive"], false, "{s}");
+    assert!(
+        s["estimators"]["adaptive_why"]
+            .as_str()
+            .unwrap()
+            .contains("piece"),
+        "{s}"
+    );
+    // Too few samples for the pilot's groups.
+    let s = stats(&prism_ok(&[common, &["--spp", "6"]]));
+    assert!(
+        s["estimators"]["adaptive_why"]
+            .as_str()
+            .unwrap()
+            .contains("16"),
+        "{s}"
+    );
+}
+
+#[test]
+fn a_reuse_the_render_cannot_use_warns_with_its_reason() {
+    let dir = temp_dir("reuse-warning");
+    let exr = dir.join("b.exr");
+    let out = prism(&[
+        "render",
+        &scene("cornell-box.gltf"),
+        "--spp",
+        "1",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--reuse",
+        "4",
+        "--polarized",
+        "-q",
+        "-o",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--reuse 4") && stderr.contains("polarized"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn refused_combinations_are_one_line_naming_both() {
+    let cornell = scene("cornell-box.gltf");
+    let furnace = scene("assets/medium-furnace.gltf");
+    let base = |scene: &str, extra: &[&'static str]| -> Vec<String> {
+        let mut args: Vec<String> = [
+            "render", scene, "--spp", "1", "--width", "4", "--height", "4",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        args.extend(extra.iter().map(|s| s.to_string()));
+        args
+    };
+    let cases = [
+        (
+            base(&cornell, &["--tracer", "lanes", "--polarized"]),
+            "polarized",
+        ),
+        (
+            base(&cornell, &["--tracer", "lanes", "--wavelengths", "2"]),
+            "wavelengths",
+        ),
+        (
+            base(&furnace, &["--environment", "0.5", "--tracer", "lanes"]),
+            "media",
+        ),
+        (
+            base(&furnace, &["--environment", "0.5", "--splits", "2"]),
+            "media",
+        ),
+    ];
+    let owned: Vec<(Vec<&str>, &str)> = cases
+        .iter()
+        .map(|(args, needle)| (args.iter().map(String::as_str).collect(), *needle))
+        .collect();
+    let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
+    assert_one_line_errors(&borrowed);
+}
