@@ -12,7 +12,7 @@ use prism_scene::world::{EmissionCache, Light, Scene, SceneSpectrum};
 use prism_spectrum::Spectrum;
 use rayon::prelude::*;
 
-use crate::adaptive::error::PilotMeasure;
+use crate::adaptive::error::{PilotMeasure, PixelError};
 use crate::adaptive::{SampleMap, samples_of};
 use crate::aov::features_pass;
 use crate::batch::{RowTracer, row_tracer};
@@ -468,10 +468,18 @@ impl<'a> Renderer<'a> {
             }
         });
         let (mut errors, mut costs) = (vec![0.0; pixels], vec![0.0; pixels]);
+        let mut bands = vec![[0.0; 2]; pixels];
         for pixel in pilot.into_iter().flatten() {
             let i = (pixel.y * width + pixel.x) as usize;
-            errors[i] = pixel.error;
+            errors[i] = pixel.error.error;
+            bands[i] = pixel.error.bands;
             costs[i] = pixel.rays as f64 / 2.0;
+        }
+        let smooth = |values: &[f64]| crate::adaptive::smoothed(values, width, height);
+        if let Some(band_errors) = measure.band_error(&bands, smooth) {
+            for (e, b) in errors.iter_mut().zip(band_errors) {
+                *e += b;
+            }
         }
         SampleMap::from_errors(
             width,
@@ -832,7 +840,7 @@ fn pilot_band<const N: usize>(
 struct PilotPixel {
     x: u32,
     y: u32,
-    error: f64,
+    error: PixelError,
     rays: u64,
 }
 

@@ -85,17 +85,22 @@ impl PilotMeasure {
     }
 
     /// The weighted error of a pixel whose two pilot samples' channels are `a` and `b`:
-    /// colour's three channels as the relative MSE weighs them, and every other output
-    /// the same way in its own units, averaged over its channels, times three.
-    pub(crate) fn error(&self, a: &[f64], b: &[f64]) -> f64 {
+    /// colour's three channels as the relative MSE weighs them, the energy and Stokes
+    /// channels the same way in their own units, averaged over theirs, times three. The
+    /// bands are left to [`Self::band_error`]: each is hit by a sample's few wavelengths
+    /// or missed, so one pixel's two samples say nothing of a band's level, and weighed by
+    /// their own mean every pixel's bands look alike noisy.
+    pub(crate) fn error(&self, a: &[f64], b: &[f64]) -> PixelError {
         let weighted = |k: usize, unit: f64| {
             crate::splits::channel_error(a[k] / unit, b[k] / unit, 0.5 * (a[k] + b[k]) / unit)
         };
         let mut error = (0..3).map(|k| weighted(k, 1.0)).sum::<f64>();
         let spectral = self.outputs.spectral_width();
-        if spectral > 0 {
-            let sum: f64 = (3..3 + spectral).map(|k| weighted(k, self.band_unit)).sum();
-            error += 3.0 * sum / spectral as f64;
+        let mut bands = [0.0; 2];
+        for k in 3..3 + spectral {
+            let (x, y) = (a[k] / self.band_unit, b[k] / self.band_unit);
+            bands[0] += 0.5 * (x - y).powi(2);
+            bands[1] += (0.5 * (x + y)).powi(2);
         }
         let mut at = 3 + spectral;
         if self.outputs.energy {
@@ -107,8 +112,43 @@ impl PilotMeasure {
             let sum: f64 = (at..at + 9).map(|k| weighted(k, 1.0)).sum();
             error += sum / 3.0;
         }
-        error
+        PixelError { error, bands }
     }
+
+    /// The bands' weighted error per pixel, from the pixels' squared differences and
+    /// squared means summed over the bands (`PixelError::bands`), each averaged over the
+    /// neighbourhood `smooth` averages over first: the relative MSE's weight from the
+    /// region's level, not the pixel's two samples'. Three times the bands' mean relative
+    /// error, as colour's three channels weigh; None without bands.
+    pub(crate) fn band_error(
+        &self,
+        bands: &[[f64; 2]],
+        smooth: impl Fn(&[f64]) -> Vec<f64>,
+    ) -> Option<Vec<f64>> {
+        let count = self.outputs.spectral_width();
+        if count == 0 {
+            return None;
+        }
+        let variance = smooth(&bands.iter().map(|b| b[0]).collect::<Vec<_>>());
+        let level = smooth(&bands.iter().map(|b| b[1]).collect::<Vec<_>>());
+        let floor = 0.01 * count as f64;
+        Some(
+            variance
+                .iter()
+                .zip(&level)
+                .map(|(v, l)| 3.0 * v / (l + floor))
+                .collect(),
+        )
+    }
+}
+
+/// A pixel's pilot error: colour's and every other output's but the bands', and the bands'
+/// sums of squared differences and squared means (in colour's units), which are weighed
+/// over a neighbourhood ([`PilotMeasure::band_error`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct PixelError {
+    pub error: f64,
+    pub bands: [f64; 2],
 }
 
 #[cfg(test)]
@@ -135,12 +175,14 @@ mod tests {
         let before: f64 = (0..3)
             .map(|k| crate::splits::channel_error(a[k], b[k], 0.5 * (a[k] + b[k])))
             .sum();
-        assert_eq!(measure.error(&a, &b).to_bits(), before.to_bits());
+        assert_eq!(measure.error(&a, &b).error.to_bits(), before.to_bits());
+        assert_eq!(measure.error(&a, &b).bands, [0.0; 2]);
     }
 
-    /// A pixel whose colour is the same in both samples but whose bands differ (the sky
+    /// A region whose colour is the same in both samples but whose bands differ (the sky
     /// seen directly, its bands hit by different wavelengths) has an error in a spectral
-    /// render, of the size a colour as noisy would have.
+    /// render, weighed by the region's level: a band hit by one sample and missed by the
+    /// other is a relative error of the size a colour as noisy would have.
     #[test]
     fn bands_that_differ_count_where_colour_does_not() {
         let bands = SpectralBands::new(400.0, 700.0, 2).unwrap();
@@ -150,18 +192,21 @@ mod tests {
             Observer::Cie1931,
         );
         let y = 1.0 / measure.band_unit;
-        // A flat spectrum of 1: colour about (y, y, y) in both; the bands 2 and 0, then 0 and 2.
+        // A flat spectrum of 1 in both bands on average: 2 and 0, then 0 and 2.
         let a = [y, y, y, 2.0, 0.0];
         let b = [y, y, y, 0.0, 2.0];
-        let error = measure.error(&a, &b);
-        assert!(error > 0.0);
-        // Each band's relative error is 2^2 / 2 / (1 + 0.01); a colour channel as noisy
-        // (y(1 +- 1)) weighs the same.
-        let colour = crate::splits::channel_error(2.0 * y, 0.0, y);
+        let pixel = measure.error(&a, &b);
+        assert_eq!(pixel.error, 0.0);
+        // Averaged over many such pixels, each band's mean is 1 and its variance 2.
+        let region = [pixel.bands, [pixel.bands[0], 4.0 * 2.0 * y * y]];
+        let smooth = |v: &[f64]| vec![v.iter().sum::<f64>() / v.len() as f64; v.len()];
+        let error = measure.band_error(&region, smooth).unwrap();
+        assert!(error[0] > 0.0 && error[0] == error[1]);
         assert!(
-            (error - 3.0 * colour).abs() < 1e-9 * error,
-            "{error} vs {}",
-            3.0 * colour
+            measure
+                .band_error(&[[0.0, 1.0]], |v: &[f64]| v.to_vec())
+                .unwrap()[0]
+                == 0.0
         );
     }
 
@@ -189,7 +234,8 @@ mod tests {
         assert_eq!(out[23..25], [8.0, 10.0]);
         assert_eq!(out[33], 12.0);
         let same = measure.error(&out, &out);
-        assert_eq!(same, 0.0);
-        assert!(measure.error(&out, &vec![0.0; out.len()]).is_finite());
+        assert_eq!((same.error, same.bands[0]), (0.0, 0.0));
+        let apart = measure.error(&out, &vec![0.0; out.len()]);
+        assert!(apart.error.is_finite() && apart.bands.iter().all(|v| v.is_finite()));
     }
 }

@@ -195,6 +195,12 @@ pub(crate) fn samples_of(map: Option<&SampleMap>, x: u32, y: u32, s: u64) -> (Ra
     }
 }
 
+/// `values` (`width` x `height`, row-major) averaged over the box the pilot's errors are
+/// averaged over.
+pub(crate) fn smoothed(values: &[f64], width: u32, height: u32) -> Vec<f64> {
+    box_mean(values, width as usize, height as usize, SMOOTHING as usize)
+}
+
 /// The mean of `values` (`w` x `h`, row-major) over a `side` x `side` box around each
 /// pixel, the box cut at the image's edges.
 fn box_mean(values: &[f64], w: usize, h: usize, side: usize) -> Vec<f64> {
