@@ -14,9 +14,12 @@ noise). For changes that alter images on purpose (sampling, estimators), where
         --width 128 --height 128 --spp 64
 
 A build may carry flags of its own ("target/release/prism --adaptive off" against
-"target/release/prism": one build, two settings), and --reference names a converged
-image to measure against instead (a peer's, such as Mitsuba's references of the scene
-kinds).
+"target/release/prism": one build, two settings; more than two builds may be given),
+and --reference names a converged image to measure against instead (a peer's, such as
+Mitsuba's references of the scene kinds). --channels bands measures the spectral bands
+(S0.*, with --spectral-bands) and --channels stokes the Stokes components S1 and S2 (with
+--polarized) instead of RGB; their floor in the dark is relative, 0.01 times the
+reference's mean squared, since their units are not the display's.
 """
 import argparse, hashlib, json, os, shlex, subprocess, sys
 
@@ -24,14 +27,23 @@ import numpy as np
 import OpenEXR
 
 
-def read(path):
+def read(path, kind="rgb"):
     channels = OpenEXR.File(path, separate_channels=True).channels()
-    return np.stack([np.asarray(channels[c].pixels, dtype=np.float64) for c in "RGB"], -1)
+    names = {
+        "rgb": list("RGB"),
+        "bands": sorted(c for c in channels if c.startswith("S0.") and c.endswith("nm")),
+        "stokes": [f"S{k}.{c}" for k in (1, 2) for c in "RGB"],
+    }[kind]
+    if not names:
+        sys.exit(f"ab_error: {path} has no {kind} channels")
+    return np.stack([np.asarray(channels[c].pixels, dtype=np.float64) for c in names], -1)
 
 
-def relmse(img, ref):
-    """prism compare's relative MSE: noise relative to the reference, floored in the dark."""
-    return float(np.mean((img - ref) ** 2 / (ref ** 2 + 0.01)))
+def relmse(img, ref, kind="rgb"):
+    """prism compare's relative MSE: noise relative to the reference, floored in the dark
+    (for bands and Stokes components, relative to the reference's mean)."""
+    floor = 0.01 if kind == "rgb" else 0.01 * float(np.mean(np.abs(ref))) ** 2
+    return float(np.mean((img - ref) ** 2 / (ref ** 2 + floor)))
 
 
 def main(argv):
@@ -39,7 +51,8 @@ def main(argv):
         sys.exit("ab_error: give the scene and render arguments after --")
     split = argv.index("--")
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("builds", nargs=2)
+    ap.add_argument("builds", nargs="+")
+    ap.add_argument("--channels", choices=["rgb", "bands", "stokes"], default="rgb")
     ap.add_argument("--seeds", type=int, default=6)
     ap.add_argument("--out", default="ab-error")
     ap.add_argument("--reference", help="a converged image (EXR) to measure against")
@@ -62,14 +75,16 @@ def main(argv):
             del flags[flags.index("--spp"):flags.index("--spp") + 2]
         subprocess.run([*shlex.split(args.builds[0])[:1], "render", scene, "-o", reference, "-q", *flags,
                         "--spp", "8192", "--seed", "999"], check=True)
-    ref = read(reference)
+    if len(args.builds) < 2:
+        sys.exit("ab_error: give at least two builds")
+    ref = read(reference, args.channels)
     work = os.path.join(args.out, "render.exr")
     errors = {b: [] for b in args.builds}
     seconds = {b: [] for b in args.builds}
     for seed in range(args.seeds):
         for build in args.builds:
             stats = render(build, work, "--seed", str(seed))
-            errors[build].append(relmse(read(work), ref))
+            errors[build].append(relmse(read(work, args.channels), ref, args.channels))
             seconds[build].append(stats["seconds"])
     base = None
     for build in args.builds:

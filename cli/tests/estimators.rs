@@ -136,3 +136,43 @@ fn refused_combinations_are_one_line_naming_both() {
     let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
     assert_one_line_errors(&borrowed);
 }
+
+/// A time budget stops an adaptive render between whole groups of its passes, its image
+/// written and finite; a piece of a farm (`--sample-range`) renders uniformly, so that the
+/// pieces merge into the whole's samples.
+#[test]
+fn a_time_budget_stops_between_groups_and_pieces_merge() {
+    let dir = temp_dir("estimators-budget");
+    let exr = dir.join("t.exr");
+    let cornell = scene("cornell-box.gltf");
+    let small: &[&str] = &[
+        "render", &cornell, "--width", "12", "--height", "8", "-q", "--stats",
+    ];
+    let s = stats(&prism_ok(&[
+        small,
+        &["--spp", "400000", "--time", "0.3", "-o", exr.to_str().unwrap()],
+    ]));
+    assert_eq!(s["estimators"]["adaptive"], true, "{s}");
+    assert_eq!(s["ending"], "TimeBudget", "{s}");
+    let spp = s["spp"].as_u64().unwrap();
+    assert!(spp.is_multiple_of(4) && spp < 400_000, "{s}");
+    assert!(std::fs::metadata(&exr).unwrap().len() > 0);
+    let pieces = ["0..8", "8..16"].map(|range| {
+        let path = dir.join(format!("piece-{range}.exr"));
+        let s = stats(&prism_ok(&[
+            small,
+            &["--sample-range", range, "-o", path.to_str().unwrap()],
+        ]));
+        assert_eq!(s["estimators"]["adaptive"], false, "{s}");
+        path
+    });
+    let merged = dir.join("merged.exr");
+    prism_ok(&[&[
+        "merge",
+        pieces[0].to_str().unwrap(),
+        pieces[1].to_str().unwrap(),
+        "-o",
+        merged.to_str().unwrap(),
+    ]]);
+    assert!(std::fs::metadata(&merged).unwrap().len() > 0);
+}

@@ -46,7 +46,12 @@
 //! EXR/PNG encoding (and the polarization PNG) and lossless accumulation files of every
 //! film channel: XYZ or raw, bands, energy, Stokes components (bytes only).
 //!
-//! Key types: `RenderSettings`, `Splits`, `Reuse`, `Tracing`, `Renderer`, `render`,
+//! Which of these a render uses is decided in one place (`plan/estimators.rs`): the
+//! settings and the scene resolved into [`Estimators`] (tracer, splits, reuse, light paths,
+//! adaptive sampling, each with why), before the pilots choose what is left to them;
+//! adaptive sampling's map and what its pilot measures in each output are `adaptive/`.
+//!
+//! Key types: `RenderSettings`, `Splits`, `Reuse`, `Tracing`, `Renderer`, `Estimators`, `render`,
 //! `render_into`, `Film`, `Filter`, `encode_exr`, `encode_png`, `encode_polarization_png`,
 //! `encode_accumulation`, `decode_accumulation`, `merge_accumulations`.
 //!
