@@ -150,7 +150,14 @@ fn a_time_budget_stops_between_groups_and_pieces_merge() {
     ];
     let s = stats(&prism_ok(&[
         small,
-        &["--spp", "400000", "--time", "0.3", "-o", exr.to_str().unwrap()],
+        &[
+            "--spp",
+            "400000",
+            "--time",
+            "0.3",
+            "-o",
+            exr.to_str().unwrap(),
+        ],
     ]));
     assert_eq!(s["estimators"]["adaptive"], true, "{s}");
     assert_eq!(s["ending"], "TimeBudget", "{s}");

@@ -22,10 +22,9 @@ use crate::light_path::light_seed;
 use crate::light_throughput::{LightThroughput, PolarizedLight};
 use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
-use crate::plan::estimators::{Estimators, Modes, Resolution, resolve};
+use crate::plan::estimators::{Estimators, Modes, Resolution, TracerKind, resolve};
 use crate::reuse::Record;
 use crate::sample_value::{Outputs, SampleValue};
-use crate::settings::Tracing;
 use crate::splits::{mode_pilot, pilot};
 use crate::throughput::{CameraFrame, Polarized, Throughput};
 use crate::volume::FlightNumbers;
@@ -344,15 +343,15 @@ impl<'a> Renderer<'a> {
             }
             None => Film::for_settings(settings),
         };
-        let trace = match settings.tracing {
-            Tracing::Lanes(width) => match settings.wavelengths {
-                // `lanes_modes` refuses 1 and 2 (their instances took LLVM's optimizer
+        let trace = match self.resolution.tracer {
+            TracerKind::Lanes(width) => match settings.wavelengths {
+                // The resolution refuses 1 and 2 (their instances took LLVM's optimizer
                 // tens of minutes, under fat LTO, in rustc 1.95).
                 4 => row_tracer::<4>(width),
                 8 => row_tracer::<8>(width),
                 _ => row_tracer::<16>(width),
             },
-            Tracing::Paths => specialized!(self, trace_row),
+            TracerKind::Paths | TracerKind::Volume => specialized!(self, trace_row),
         };
         let rows = self.rows(settings.seed, samples.clone());
         self.trace_camera(

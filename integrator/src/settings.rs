@@ -138,6 +138,9 @@ pub struct RenderSettings {
     /// later with the others): its samples are then the uniform render's, so that the
     /// pieces' sample indices neither overlap nor leave gaps.
     pub piece: bool,
+    /// Whether the image will be denoised: a denoiser keeps path reuse's blocks of shared
+    /// noise as detail, so `Reuse::Auto` then means no reuse.
+    pub denoised: bool,
     /// A transparent background: camera rays that leave the scene add nothing (the
     /// environment still lights it), so the image is premultiplied by its alpha.
     pub transparent: bool,
@@ -190,6 +193,7 @@ impl Default for RenderSettings {
             light_paths: true,
             adaptive: false,
             piece: false,
+            denoised: false,
             transparent: false,
             polarized: false,
             camera_polarizer: None,
@@ -223,6 +227,7 @@ setters!(RenderSettings {
     light_paths: bool,
     adaptive: bool,
     piece: bool,
+    denoised: bool,
     transparent: bool,
     polarized: bool,
     camera_polarizer: Option<f32>,

@@ -474,4 +474,8 @@ fn the_estimators_say_why() {
         .unwrap()
         .estimators();
     assert!(!e.adaptive && e.adaptive_why.contains("piece"), "{e}");
+    let e = prism_integrator::Renderer::new(&box_, &small.clone().denoised(true))
+        .unwrap()
+        .estimators();
+    assert!(e.reuse == 1 && e.reuse_why.contains("denoised"), "{e}");
 }

@@ -22,7 +22,7 @@
 //! instruction set.
 //!
 //! It serves unpolarized renders of 4, 8 or 16 wavelengths per path, unsplit and without
-//! path reuse (`render::lanes_modes` refuses the rest).
+//! path reuse (`plan::estimators` refuses the rest).
 
 mod lambertian;
 mod lane;

@@ -89,6 +89,7 @@ pub(super) fn render_settings(
         .light_paths(!args.no_light_paths)
         .adaptive(args.adaptive == "on")
         .piece(args.sample_range.is_some())
+        .denoised(args.denoise)
         .transparent(args.transparent)
         .range(range)
         .aovs(aovs(args)?)
@@ -100,22 +101,19 @@ pub(super) fn render_settings(
     Ok(settings)
 }
 
-/// Path reuse: `--reuse`, except that a denoised render's `auto` is none. Reuse's noise
-/// comes in blocks of pixels that share their light, which Open Image Denoise keeps as
-/// detail: on the Cornell box at 16 spp denoising cut the relative MSE 5.8x without reuse
-/// and 1.07x with tiles of 2 (docs/trade-offs.md, "Denoising").
+/// Path reuse: `--reuse` (a denoised render's `auto` is none: the resolution step's
+/// choice), with a warning where a denoised render asks for it.
 fn reuse(args: &RenderArgs) -> Result<Reuse, String> {
     let reuse = args.reuse.parse::<Reuse>()?;
-    Ok(match reuse {
-        Reuse::Auto if args.denoise => Reuse::Fixed(1),
-        Reuse::Fixed(t) if t > 1 && args.denoise => {
-            eprintln!(
-                "prism: warning: --reuse {t} leaves noise in blocks that the denoiser keeps as detail"
-            );
-            reuse
-        }
-        _ => reuse,
-    })
+    if let Reuse::Fixed(t) = reuse
+        && t > 1
+        && args.denoise
+    {
+        eprintln!(
+            "prism: warning: --reuse {t} leaves noise in blocks that the denoiser keeps as detail"
+        );
+    }
+    Ok(reuse)
 }
 
 /// The AOVs the film records: `--aov`'s, and the albedo and normal `--denoise` reads.
