@@ -937,7 +937,7 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
     value.clear();
     let aspect = w as f32 / h as f32;
     let mut sink = |radiance: &T::Radiance, lambdas: &_| {
-        value.add(tracer, settings.outputs, radiance, lambdas)
+        value.add(tracer.sensor(), settings.outputs, radiance, lambdas)
     };
     if tracer.scene.features().media {
         let pixel = u64::from(y) * u64::from(w) + u64::from(x);
@@ -1023,7 +1023,7 @@ fn light_row<const N: usize, L: LightThroughput<N>>(
             out.rays +=
                 tracer.trace_light::<N, L>(&mut stream, aspect, &mut |film, radiance, lambdas| {
                     let mut value = SampleValue::default();
-                    value.add(tracer, settings.outputs, radiance, lambdas);
+                    value.add(tracer.sensor(), settings.outputs, radiance, lambdas);
                     if value.finite() {
                         out.splats.push(Splat {
                             film,

@@ -5,8 +5,16 @@
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::SpectralBands;
-use crate::path::Tracer;
+use crate::camera_response::CameraResponse;
 use crate::throughput::Radiance;
+
+/// What turns a sample's spectrum into the film's colour: the CIE observer, or a camera's
+/// response curves (raw channels) where the render has one.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Sensor<'a> {
+    pub observer: prism_spectrum::colorimetry::Observer,
+    pub camera: Option<&'a CameraResponse>,
+}
 
 /// Photons per joule at 1 nm: a photon of wavelength l nm carries hc / (l 1e-9) J.
 pub(crate) const PHOTONS_PER_JOULE_NM: f64 =
@@ -54,14 +62,14 @@ impl SampleValue {
     /// whose intensity is the spectrum every other output reads).
     pub(crate) fn add<const N: usize>(
         &mut self,
-        tracer: &Tracer,
+        sensor: Sensor,
         outputs: Outputs,
         radiance: &impl Radiance<N>,
         lambdas: &SampledWavelengths<N>,
     ) {
-        let colour = |spectrum: &SampledSpectrum<N>| match tracer.camera {
+        let colour = |spectrum: &SampledSpectrum<N>| match sensor.camera {
             Some(camera) => camera.channels(spectrum, lambdas),
-            None => spectrum.to_xyz(lambdas, tracer.observer).to_array(),
+            None => spectrum.to_xyz(lambdas, sensor.observer).to_array(),
         };
         let polarization = radiance.polarization();
         if let Some(polarization) = polarization {

@@ -20,6 +20,7 @@
 //! scene's pilot saw only the camera paths' part of the error and split where one
 //! continuation reached an error sooner.
 
+use crate::adaptive::error::channel_error;
 use crate::path::Tracer;
 use crate::render::{Renderer, Rows, trace_sample};
 use crate::reuse::Tile;
@@ -517,13 +518,6 @@ fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
     (0..3)
         .map(|k| channel_error(means[0][k], means[1][k], 0.5 * (means[0][k] + means[1][k])))
         .sum()
-}
-
-/// Half the squared difference of two estimates `a` and `b` of a channel whose value is
-/// about `mean`, weighted as the relative MSE weighs errors.
-pub(crate) fn channel_error(a: f64, b: f64, mean: f64) -> f64 {
-    let weight = 1.0 / (mean * mean + 0.01);
-    0.5 * (a - b).powi(2) * weight
 }
 
 /// Per mode (unsplit, split in two) and seed, the mean colour of pixel (`x`, `y`)'s

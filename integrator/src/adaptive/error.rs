@@ -9,12 +9,19 @@
 //! alone gave such pixels the fewest samples and left their bands four times as noisy as
 //! a uniform render's. So each output the film keeps enters the pilot's error with the
 //! same weight as colour: its channels' errors, each weighted as the relative MSE weighs
-//! it (`crate::splits::channel_error`), in that output's units, averaged over its
+//! it (`channel_error`), in that output's units, averaged over its
 //! channels and scaled to colour's three.
 
 use prism_spectrum::colorimetry::Observer;
 
 use crate::sample_value::{Outputs, PHOTONS_PER_JOULE_NM, SampleValue};
+
+/// Half the squared difference of two estimates `a` and `b` of a channel whose value is
+/// about `mean`, weighted as the relative MSE weighs errors.
+pub(crate) fn channel_error(a: f64, b: f64, mean: f64) -> f64 {
+    let weight = 1.0 / (mean * mean + 0.01);
+    0.5 * (a - b).powi(2) * weight
+}
 
 /// The error measure of one render's pilot: the outputs it writes and the scale of each.
 #[derive(Debug, Clone)]
@@ -92,7 +99,7 @@ impl PilotMeasure {
     /// their own mean every pixel's bands look alike noisy.
     pub(crate) fn error(&self, a: &[f64], b: &[f64]) -> PixelError {
         let weighted = |k: usize, unit: f64| {
-            crate::splits::channel_error(a[k] / unit, b[k] / unit, 0.5 * (a[k] + b[k]) / unit)
+            channel_error(a[k] / unit, b[k] / unit, 0.5 * (a[k] + b[k]) / unit)
         };
         let mut error = (0..3).map(|k| weighted(k, 1.0)).sum::<f64>();
         let spectral = self.outputs.spectral_width();
@@ -173,7 +180,7 @@ mod tests {
         );
         let (a, b) = ([3.0, 40.0, 0.2], [1.0, 80.0, 0.3]);
         let before: f64 = (0..3)
-            .map(|k| crate::splits::channel_error(a[k], b[k], 0.5 * (a[k] + b[k])))
+            .map(|k| channel_error(a[k], b[k], 0.5 * (a[k] + b[k])))
             .sum();
         assert_eq!(measure.error(&a, &b).error.to_bits(), before.to_bits());
         assert_eq!(measure.error(&a, &b).bands, [0.0; 2]);

@@ -34,7 +34,7 @@ pub(super) fn trace_batch<'s, const N: usize, const W: usize>(
             .flatten();
     }
     let mut sink_into = |value: &mut SampleValue, radiance: &SampledSpectrum<N>, lambdas: &_| {
-        value.add(tracer, rows.outputs, radiance, lambdas);
+        value.add(tracer.sensor(), rows.outputs, radiance, lambdas);
     };
     loop {
         let mut taken = [false; W];

@@ -137,6 +137,15 @@ pub(crate) fn wavelengths<const N: usize>(
 }
 
 impl<'a> Tracer<'a> {
+    /// What turns this render's spectra into the film's colour.
+    #[inline(always)]
+    pub(crate) fn sensor(&self) -> crate::sample_value::Sensor<'a> {
+        crate::sample_value::Sensor {
+            observer: self.observer,
+            camera: self.camera,
+        }
+    }
+
     /// The camera ray of the sample `stream` belongs to (at any dimension) through film
     /// point `film`, for the hero wavelength `lambda` (nm), and its weight: through the
     /// pinhole (weight 1), from the thin lens's point the sample's lens dimensions choose

@@ -238,7 +238,7 @@ impl<'a> Tracer<'a> {
                 let value = &mut here.value;
                 let mut sink = |radiance: &SampledSpectrum<N>, l: &SampledWavelengths<N>| {
                     lambdas = Some(*l);
-                    value.add(self, rows.outputs, radiance, l);
+                    value.add(self.sensor(), rows.outputs, radiance, l);
                 };
                 here.result = if self.scene.features().media {
                     let pixel = u64::from(y) * u64::from(w) + u64::from(x);
@@ -272,7 +272,9 @@ impl<'a> Tracer<'a> {
             let gathered = tile.gathering.gather(self.scene, pixels);
             for (pixel, light) in pixels.iter_mut().zip(gathered) {
                 if !light.is_black() {
-                    pixel.value.add(self, rows.outputs, light, &lambdas);
+                    pixel
+                        .value
+                        .add(self.sensor(), rows.outputs, light, &lambdas);
                 }
             }
         }
