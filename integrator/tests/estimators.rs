@@ -479,3 +479,80 @@ fn the_estimators_say_why() {
         .estimators();
     assert!(e.reuse == 1 && e.reuse_why.contains("denoised"), "{e}");
 }
+
+/// The variance buffer estimates the variance of each combination's own pixel means (its
+/// expectation differs between estimators, so it is checked against the spread over
+/// seeds, not against the reference mode): over the Cornell box, the buffer's image mean
+/// and the pixels' variance over 8 seeds agree within 25% for every combination the
+/// variance AOV allows (it samples uniformly: adaptive sampling resolves off).
+#[test]
+fn the_variance_buffer_estimates_each_combinations_own_variance() {
+    let case = case("Cornell box", "cornell-box.gltf", None, 24, 64);
+    let base = reference(&case).aovs("variance".parse::<prism_integrator::Aovs>().unwrap());
+    assert_variance_buffer(&case, &base, |base| {
+        vec![
+            ("reference mode", base.clone()),
+            ("reuse 2", base.clone().reuse(Reuse::Fixed(2))),
+            ("adaptive asked", base.clone().adaptive(true)),
+            (
+                "lanes",
+                base.clone().tracing(prism_integrator::Tracing::Lanes(None)),
+            ),
+        ]
+    });
+}
+
+/// Known wrong: with splitting, the variance buffer says 0.71x the variance the seeds
+/// show (the Cornell box, splits 2: 6.4e-4 against 9.1e-4): the two replicates whose
+/// spread it is are not independent there. Not yet fixed or refused.
+#[test]
+#[ignore = "the variance buffer underestimates a split render's variance (0.71x)"]
+fn the_variance_buffer_of_a_split_render() {
+    let case = case("Cornell box", "cornell-box.gltf", None, 24, 64);
+    let base = reference(&case).aovs("variance".parse::<prism_integrator::Aovs>().unwrap());
+    assert_variance_buffer(&case, &base, |base| {
+        vec![("splits 2", base.clone().splits(Splits::Fixed(2)))]
+    });
+}
+
+/// Asserts, for each of `combinations(base)`, that the variance buffer's image mean and
+/// the pixels' variance over 8 seeds agree within 25%.
+fn assert_variance_buffer(
+    case: &Case,
+    base: &RenderSettings,
+    combinations: impl Fn(&RenderSettings) -> Vec<(&'static str, RenderSettings)>,
+) {
+    for (what, settings) in combinations(base) {
+        let space = prism_spectrum::color::RgbSpaceId::Srgb.space();
+        let films: Vec<_> = (0..8u64)
+            .map(|seed| render(&case.scene, &settings.clone().seed(seed)).unwrap().0)
+            .collect();
+        let channel = |film: &prism_integrator::Film, name: &str| -> Vec<f64> {
+            let images = film.aov_images(space);
+            let (_, values) = images.iter().find(|(n, _)| n == name).unwrap();
+            values.iter().map(|&v| f64::from(v)).collect()
+        };
+        let red: Vec<Vec<f64>> = films
+            .iter()
+            .map(|f| f.to_rgb(space).iter().map(|p| f64::from(p[0])).collect())
+            .collect();
+        let pixels = red[0].len();
+        let observed = (0..pixels)
+            .map(|i| {
+                let mean = red.iter().map(|r| r[i]).sum::<f64>() / 8.0;
+                red.iter().map(|r| (r[i] - mean).powi(2)).sum::<f64>() / 7.0
+            })
+            .sum::<f64>()
+            / pixels as f64;
+        let estimated = films
+            .iter()
+            .map(|f| channel(f, "variance.R").iter().sum::<f64>() / pixels as f64)
+            .sum::<f64>()
+            / 8.0;
+        let ratio = estimated / observed;
+        assert!(
+            (0.75..1.33).contains(&ratio),
+            "{what}: the variance buffer says {estimated:.3e}, the seeds {observed:.3e}"
+        );
+    }
+}
