@@ -483,15 +483,23 @@ fn the_estimators_say_why() {
 /// The variance buffer estimates the variance of each combination's own pixel means (its
 /// expectation differs between estimators, so it is checked against the spread over
 /// seeds, not against the reference mode): over the Cornell box, the buffer's image mean
-/// and the pixels' variance over 8 seeds agree within 25% for every combination the
+/// and the pixels' variance over 32 seeds agree within 15% for every combination the
 /// variance AOV allows (it samples uniformly: adaptive sampling resolves off).
+///
+/// The renders clamp samples at Y = 2, so that the test knows its noise: both figures are
+/// unbiased for the clamped estimator, but the box's rare bright paths make either one
+/// swing by 0.86-1.27x between sets of 32 seeds unclamped, and by at most 3.5% clamped.
+/// A buffer whose two replicates were correlated by a third would say about 0.7x.
 #[test]
 fn the_variance_buffer_estimates_each_combinations_own_variance() {
     let case = case("Cornell box", "cornell-box.gltf", None, 24, 64);
-    let base = reference(&case).aovs("variance".parse::<prism_integrator::Aovs>().unwrap());
+    let base = reference(&case)
+        .aovs("variance".parse::<prism_integrator::Aovs>().unwrap())
+        .clamp(Some(2.0));
     assert_variance_buffer(&case, &base, |base| {
         vec![
             ("reference mode", base.clone()),
+            ("splits 2", base.clone().splits(Splits::Fixed(2))),
             ("reuse 2", base.clone().reuse(Reuse::Fixed(2))),
             ("adaptive asked", base.clone().adaptive(true)),
             (
@@ -502,21 +510,8 @@ fn the_variance_buffer_estimates_each_combinations_own_variance() {
     });
 }
 
-/// Known wrong: with splitting, the variance buffer says 0.71x the variance the seeds
-/// show (the Cornell box, splits 2: 6.4e-4 against 9.1e-4): the two replicates whose
-/// spread it is are not independent there. Not yet fixed or refused.
-#[test]
-#[ignore = "the variance buffer underestimates a split render's variance (0.71x)"]
-fn the_variance_buffer_of_a_split_render() {
-    let case = case("Cornell box", "cornell-box.gltf", None, 24, 64);
-    let base = reference(&case).aovs("variance".parse::<prism_integrator::Aovs>().unwrap());
-    assert_variance_buffer(&case, &base, |base| {
-        vec![("splits 2", base.clone().splits(Splits::Fixed(2)))]
-    });
-}
-
 /// Asserts, for each of `combinations(base)`, that the variance buffer's image mean and
-/// the pixels' variance over 8 seeds agree within 25%.
+/// the pixels' variance over 32 seeds agree within 15%.
 fn assert_variance_buffer(
     case: &Case,
     base: &RenderSettings,
@@ -524,7 +519,8 @@ fn assert_variance_buffer(
 ) {
     for (what, settings) in combinations(base) {
         let space = prism_spectrum::color::RgbSpaceId::Srgb.space();
-        let films: Vec<_> = (0..8u64)
+        let seeds = 32u64;
+        let films: Vec<_> = (0..seeds)
             .map(|seed| render(&case.scene, &settings.clone().seed(seed)).unwrap().0)
             .collect();
         let channel = |film: &prism_integrator::Film, name: &str| -> Vec<f64> {
@@ -539,8 +535,8 @@ fn assert_variance_buffer(
         let pixels = red[0].len();
         let observed = (0..pixels)
             .map(|i| {
-                let mean = red.iter().map(|r| r[i]).sum::<f64>() / 8.0;
-                red.iter().map(|r| (r[i] - mean).powi(2)).sum::<f64>() / 7.0
+                let mean = red.iter().map(|r| r[i]).sum::<f64>() / seeds as f64;
+                red.iter().map(|r| (r[i] - mean).powi(2)).sum::<f64>() / (seeds - 1) as f64
             })
             .sum::<f64>()
             / pixels as f64;
@@ -548,10 +544,10 @@ fn assert_variance_buffer(
             .iter()
             .map(|f| channel(f, "variance.R").iter().sum::<f64>() / pixels as f64)
             .sum::<f64>()
-            / 8.0;
+            / seeds as f64;
         let ratio = estimated / observed;
         assert!(
-            (0.75..1.33).contains(&ratio),
+            (0.85..1.18).contains(&ratio),
             "{what}: the variance buffer says {estimated:.3e}, the seeds {observed:.3e}"
         );
     }
