@@ -1,14 +1,18 @@
 #!/usr/bin/env python3
 """Circles of imports inside a crate: which files (and which top-level folders) of a
-crate's src/ reach each other through `crate::` paths.
+crate's src/ reach each other through `crate::`, `super::` and `self::` paths.
 
-A file imports the module a `crate::a::b::c` path names: the deepest of `a/b/c`, `a/b`,
-`a` that is a file or folder of the crate (a folder is its mod.rs). `super::` paths and
-re-exports through lib.rs count as imports of the module they name. Circles are the
-strongly connected components of that graph with more than one member (Tarjan).
+Every `use` tree is expanded into paths, and so is every `crate::` path in code. A path
+names the deepest module it reaches (a folder is its mod.rs); a name that module
+re-exports (`pub use`) is followed to the module that defines it, so an import through
+lib.rs or a folder's mod.rs counts as an import of the defining file, and a re-export
+alone is not an import. Circles are the
+strongly connected components of that graph with more than one member (Tarjan). Tests
+inside a file (`#[cfg(test)]` and below) are not its layer.
 
-Usage: python3 .ci/circles.py CRATE_SRC [--folders] [--check]
+Usage: python3 .ci/circles.py CRATE_SRC [--folders] [--edges] [--check]
   --folders  group files by their top-level folder of src/ (a file at the top is its own)
+  --edges    print each circle's edges (who imports whom)
   --check    exit 1 if there is any circle
 """
 
@@ -16,8 +20,8 @@ import os
 import re
 import sys
 
-PATH = re.compile(r"\bcrate((?:::[A-Za-z_][A-Za-z0-9_]*)+)")
-USE_GROUP = re.compile(r"use\s+crate::\{([^;]*)\};", re.S)
+CRATE_PATH = re.compile(r"(?<![:\w])crate((?:::[A-Za-z_][A-Za-z0-9_]*)+)")
+USE = re.compile(r"(?:^|\n)\s*(pub(?:\([^)]*\))?\s+)?use\s+([^;]+);", re.S)
 
 
 def modules(src):
@@ -31,35 +35,99 @@ def modules(src):
             parts = rel[:-3].split(os.sep)
             if parts[-1] == "mod":
                 parts = parts[:-1]
-            if parts == ["lib"] or parts == ["main"]:
+            if parts in (["lib"], ["main"]):
                 parts = []
             out[tuple(parts)] = rel
     return out
 
 
-def targets(path, mods):
-    """The module a crate path names: its longest prefix that is a module."""
-    for k in range(len(path), 0, -1):
-        if tuple(path[:k]) in mods:
-            return tuple(path[:k])
+def expand(tree):
+    """The paths of a use tree: `a::{b, c::{d, e as f}}` -> [a::b, a::c::d, a::c::e]."""
+    tree = re.sub(r"\s+", "", tree)
+    out = []
+
+    def walk(prefix, text):
+        depth, start, items = 0, 0, []
+        for i, ch in enumerate(text):
+            if ch == "{":
+                depth += 1
+            elif ch == "}":
+                depth -= 1
+            elif ch == "," and depth == 0:
+                items.append(text[start:i])
+                start = i + 1
+        items.append(text[start:])
+        for item in items:
+            if not item:
+                continue
+            if "{" in item:
+                head, rest = item.split("{", 1)
+                walk(prefix + [p for p in head.split("::") if p], rest[:-1])
+            else:
+                name = item.split("as")[0] if "as" in item.split("::")[-1] else item
+                out.append(prefix + [p for p in name.split("::") if p])
+
+    walk([], tree)
+    return out
+
+
+def absolute(path, module):
+    """A path as seen from `module`, from the crate root (None: another crate)."""
+    if not path:
+        return None
+    if path[0] == "crate":
+        return path[1:]
+    if path[0] in ("super", "self"):
+        base = list(module)
+        while path and path[0] in ("super", "self"):
+            if path[0] == "super":
+                base = base[:-1]
+            path = path[1:]
+        return base + path
     return None
 
 
 def graph(src):
     mods = modules(src)
-    edges = {m: set() for m in mods}
+    texts = {}
+    uses = {}
+    reexports = {m: {} for m in mods}
     for module, rel in mods.items():
-        text = open(os.path.join(src, rel), encoding="utf-8").read()
-        # Tests inside a file are not its layer.
-        text = text.split("#[cfg(test)]")[0]
-        paths = [m.group(1).split("::")[1:] for m in PATH.finditer(text)]
-        for group in USE_GROUP.finditer(text):
-            for item in re.split(r",(?![^{]*\})", group.group(1)):
-                item = item.strip()
-                if item:
-                    paths.append(re.split(r"::|\s", item.replace("{", " "))[:1] + [])
+        text = open(os.path.join(src, rel), encoding="utf-8").read().split("#[cfg(test)]")[0]
+        texts[module] = text
+        paths = []
+        for m in USE.finditer(text):
+            public = m.group(1) is not None
+            for path in expand(m.group(2)):
+                if path and path[-1] == "*":
+                    continue
+                full = absolute(path, module)
+                if full is None and path[0] in {p[-1] for p in mods if len(p) == len(module) + 1 and p[:-1] == module}:
+                    full = list(module) + path  # `use child::X` in a mod.rs
+                if full is None:
+                    continue
+                if public:
+                    # A folder's interface, not a use of what it names.
+                    reexports[module][path[-1]] = full
+                else:
+                    paths.append(full)
+        paths += [m.group(1).split("::")[1:] for m in CRATE_PATH.finditer(text)]
+        uses[module] = paths
+
+    def resolve(path, seen=0):
+        """The module defining what `path` names."""
+        for k in range(len(path), -1, -1):
+            if tuple(path[:k]) in mods:
+                module, rest = tuple(path[:k]), path[k:]
+                if rest and rest[0] in reexports[module] and seen < 16:
+                    return resolve(reexports[module][rest[0]] + rest[1:], seen + 1)
+                return module
+        return None
+
+    edges = {m: set() for m in mods}
+    for module, paths in uses.items():
         for path in paths:
-            target = targets(path, mods)
+            target = resolve(path)
             if target is not None and target != module and target != ():
                 edges[module].add(target)
     return mods, edges
@@ -110,13 +178,18 @@ def main(argv):
             for t in ts:
                 if m and top(m) != top(t):
                     grouped[top(m)].add(top(t))
-        edges, names = grouped, lambda c: sorted("/".join(m) for m in c)
+        edges = grouped
+        name = lambda m: "/".join(m)
     else:
         nodes = sorted(m for m in mods if m)
-        names = lambda c: sorted(mods[m] for m in c)
+        name = lambda m: mods[m]
     circles = strongly_connected(nodes, edges)
     for c in circles:
-        print(f"circle of {len(c)}: " + ", ".join(names(c)))
+        print(f"circle of {len(c)}: " + ", ".join(sorted(name(m) for m in c)))
+        if "--edges" in argv:
+            for m in sorted(c, key=name):
+                inside = sorted(name(t) for t in edges[m] if t in c)
+                print(f"  {name(m)} -> {', '.join(inside)}")
     if not circles:
         print(f"{src}: no circles")
     if check and circles:
