@@ -88,6 +88,12 @@ pub fn run(
             stats.estimators.reuse_why
         );
     }
+    if let prism_integrator::Tracing::Lanes(_) = settings.tracing {
+        eprintln!(
+            "prism: warning: --tracer {}: {}",
+            settings.tracing, stats.estimators.tracer_why
+        );
+    }
     let mut ending = Ending::Complete;
     for s in first..range.end {
         if cancel.load(Ordering::Relaxed) {

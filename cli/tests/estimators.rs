@@ -112,18 +112,7 @@ fn refused_combinations_are_one_line_naming_both() {
         args
     };
     let cases = [
-        (
-            base(&cornell, &["--tracer", "lanes", "--polarized"]),
-            "polarized",
-        ),
-        (
-            base(&cornell, &["--tracer", "lanes", "--wavelengths", "2"]),
-            "wavelengths",
-        ),
-        (
-            base(&furnace, &["--environment", "0.5", "--tracer", "lanes"]),
-            "media",
-        ),
+        (base(&cornell, &["--splits", "2", "--reuse", "2"]), "splits"),
         (
             base(&furnace, &["--environment", "0.5", "--splits", "2"]),
             "media",
@@ -135,6 +124,44 @@ fn refused_combinations_are_one_line_naming_both() {
         .collect();
     let borrowed: Vec<(&[&str], &str)> = owned.iter().map(|(a, n)| (a.as_slice(), *n)).collect();
     assert_one_line_errors(&borrowed);
+}
+
+/// `--tracer lanes` asks for the batch tracer, which is not kept: the render warns in one
+/// line, says why in `--stats`, and writes the path tracer's image to the byte.
+#[test]
+fn the_batch_tracer_renders_as_the_path_tracer_and_says_so() {
+    let dir = temp_dir("lanes");
+    let cornell = scene("cornell-box.gltf");
+    let render = |tracer: &str| {
+        let exr = dir.join(format!("{tracer}.exr"));
+        let out = prism_ok(&[&[
+            "render",
+            &cornell,
+            "--spp",
+            "4",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "--tracer",
+            tracer,
+            "--stats",
+            "-q",
+            "-o",
+            exr.to_str().unwrap(),
+        ]]);
+        (out, std::fs::read(&exr).unwrap())
+    };
+    let (paths, paths_image) = render("paths");
+    let (lanes, lanes_image) = render("lanes:8");
+    assert!(String::from_utf8_lossy(&paths.stderr).is_empty());
+    let warning = String::from_utf8_lossy(&lanes.stderr);
+    assert_eq!(warning.lines().count(), 1, "{warning}");
+    assert!(warning.contains("not kept"), "{warning}");
+    let e = &stats(&lanes)["estimators"];
+    assert_eq!(e["tracer"], "paths");
+    assert!(e["tracer_why"].as_str().unwrap().contains("not kept"));
+    assert!(lanes_image == paths_image, "lanes changed the image");
 }
 
 /// A time budget stops an adaptive render between whole groups of its passes, its image

@@ -64,8 +64,7 @@ fn unsupported_settings_for_media_are_one_line_errors() {
             .collect()
     };
     let splits = with(&["--splits", "2"]);
-    let lanes = with(&["--tracer", "lanes"]);
-    assert_one_line_errors(&[(&splits, "splitting"), (&lanes, "batch tracer")]);
+    assert_one_line_errors(&[(&splits, "splitting")]);
     // Polarized renders of media work (Rayleigh particles polarize).
     prism_ok(&[&with(&["--polarized"])]);
 }

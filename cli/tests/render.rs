@@ -133,14 +133,6 @@ fn bad_input_is_one_clear_line() {
         (&["render", "--spp", "0", "-o", out], "sample range"),
         (&["render", "--wavelengths", "3", "-o", out], "wavelengths"),
         (&["render", "--tracer", "lanes:5", "-o", out], "lanes:16"),
-        (
-            &["render", "--tracer", "lanes", "--polarized", "-o", out],
-            "polarization",
-        ),
-        (
-            &["render", "--tracer", "lanes", "--splits", "2", "-o", out],
-            "unsplit",
-        ),
         (&["render", "--width", "0", "-o", out], "empty"),
         (
             &["render", "--width", "40000", "--height", "40000", "-o", out],

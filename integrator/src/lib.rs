@@ -96,7 +96,6 @@ mod accumulation;
 mod adaptive;
 mod aov;
 mod bands;
-mod batch;
 mod camera_response;
 mod compare;
 #[cfg(feature = "exr")]

@@ -15,14 +15,13 @@ use rayon::prelude::*;
 use crate::adaptive::error::{PilotMeasure, PixelError};
 use crate::adaptive::{SampleMap, samples_of};
 use crate::aov::features_pass;
-use crate::batch::{RowTracer, row_tracer};
 use crate::film::FilmSums;
 use crate::filter::{FilterSampler, Splatter};
 use crate::light_path::light_seed;
 use crate::light_throughput::{LightThroughput, PolarizedLight};
 use crate::path::Footprint;
 use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
-use crate::plan::estimators::{Estimators, Modes, Resolution, TracerKind, resolve};
+use crate::plan::estimators::{Estimators, Modes, Resolution, resolve};
 use crate::reuse::Record;
 use crate::sample_value::{Outputs, SampleValue};
 use crate::splits::{mode_pilot, pilot};
@@ -343,16 +342,7 @@ impl<'a> Renderer<'a> {
             }
             None => Film::for_settings(settings),
         };
-        let trace = match self.resolution.tracer {
-            TracerKind::Lanes(width) => match settings.wavelengths {
-                // The resolution refuses 1 and 2 (their instances took LLVM's optimizer
-                // tens of minutes, under fat LTO, in rustc 1.95).
-                4 => row_tracer::<4>(width),
-                8 => row_tracer::<8>(width),
-                _ => row_tracer::<16>(width),
-            },
-            TracerKind::Paths | TracerKind::Volume => specialized!(self, trace_row),
-        };
+        let trace = specialized!(self, trace_row);
         let rows = self.rows(settings.seed, samples.clone());
         self.trace_camera(
             trace,
@@ -726,6 +716,10 @@ impl RowOutput<'_> {
         false
     }
 }
+
+/// A row tracer: traces every sample of every pixel of row `y`; returns rays traced and
+/// samples rejected.
+type RowTracer = fn(&Tracer, &FilterSampler, &Rows, u32, &mut RowOutput) -> (u64, u64);
 
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
 fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(

@@ -161,8 +161,7 @@ pub struct RenderSettings {
     /// (seconds), and each path sees the scene at a time drawn uniformly between them, so
     /// the image is the mean over the exposure.
     pub shutter: Option<(f64, f64)>,
-    /// Which tracer runs the camera paths: one path at a time (the default), or the
-    /// batch tracer's lanes of paths (issue 30; the same images where it serves a scene).
+    /// Which tracer runs the camera paths: the path tracer (`Tracing`).
     pub tracing: Tracing,
     /// The feature buffers the film records besides radiance (`crate::Aovs`; none by
     /// default, which costs nothing).
@@ -309,11 +308,11 @@ pub enum Tracing {
     /// The path tracer: each camera path traced alone, every feature served.
     #[default]
     Paths,
-    /// The batch tracer: the paths of neighbouring pixels in lanes, bounce by bounce, so
-    /// many lanes wide (4, 8 or 16; None: the CPU's vector width, 16 with AVX-512, 8 with
-    /// AVX2, else 4). Images are the path tracer's, byte for byte, at any width. It serves
-    /// every scene, unpolarized, with 4, 8 or 16 wavelengths per path, unsplit, without
-    /// path reuse (slower than the path tracer on the measured scenes: docs/trade-offs.md).
+    /// The batch tracer, which traced neighbouring pixels' paths in SIMD lanes (4, 8 or
+    /// 16 wide; None: the CPU's). It rendered the path tracer's images byte for byte and
+    /// was never faster at equal error, so it is not kept: a render that asks for it
+    /// runs the path tracer, the same image, and says why in its `Estimators`
+    /// (docs/trade-offs.md, "Tried and not kept").
     Lanes(Option<usize>),
 }
 
@@ -446,7 +445,7 @@ impl RenderSettings {
         if let Tracing::Lanes(Some(w)) = self.tracing
             && ![4, 8, 16].contains(&w)
         {
-            return bad(format!("the batch tracer runs 4, 8 or 16 lanes, not {w}"));
+            return bad(format!("tracer lanes:{w}: lanes were 4, 8 or 16 wide"));
         }
         if self.width == 0 || self.height == 0 {
             return bad(format!(

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{assert_blocks_agree, block_statistics, cornell, repository_scene};
-use prism_integrator::{Aov, Aovs, RenderSettings, Reuse, Splits, Tracing, render};
+use prism_integrator::{Aov, Aovs, RenderSettings, Reuse, Splits, render};
 
 fn settings(size: u32, spp: u64, reuse: u32, adaptive: bool) -> RenderSettings {
     RenderSettings::default()
@@ -74,7 +74,7 @@ fn adaptive_renders_are_deterministic() {
 
 /// Renders whose samples cannot be spread stay uniform, image for image: fewer than 16
 /// samples, a count that is not whole groups of 4, a range that does not start at 0 (a
-/// farm's piece), the variance AOV and the batch tracer.
+/// farm's piece) and the variance AOV.
 #[test]
 fn renders_that_cannot_be_spread_stay_uniform() {
     let scene = cornell();
@@ -83,7 +83,6 @@ fn renders_that_cannot_be_spread_stay_uniform() {
         settings(8, 18, 1, true),
         settings(8, 16, 1, true).samples(4..20),
         settings(8, 16, 1, true).aovs(Aovs::NONE.with(Aov::Variance)),
-        settings(8, 16, 1, true).tracing(Tracing::Lanes(None)),
     ];
     for (i, s) in cases.into_iter().enumerate() {
         let (a, stats) = render(&scene, &s).unwrap();

@@ -374,34 +374,37 @@ fn the_matrix_test_passes_equal_expectations_and_fails_a_bias() {
     }
 }
 
+/// The batch tracer is not kept: asking for it (at any width) resolves to the path
+/// tracer, says why, and renders the path tracer's film.
+#[test]
+fn the_batch_tracer_resolves_to_the_path_tracer() {
+    let scene = common::cornell();
+    let paths = RenderSettings::default().width(8).height(8).samples(0..4);
+    let (reference, _) = render(&scene, &paths).unwrap();
+    for width in [None, Some(4), Some(8), Some(16)] {
+        let lanes = paths
+            .clone()
+            .tracing(prism_integrator::Tracing::Lanes(width));
+        let (film, stats) = render(&scene, &lanes).unwrap();
+        assert_eq!(stats.estimators.tracer, prism_integrator::TracerKind::Paths);
+        assert!(
+            stats.estimators.tracer_why.contains("not kept"),
+            "{}",
+            stats.estimators
+        );
+        assert!(
+            film == reference,
+            "{width:?}: the film differs from the path tracer's"
+        );
+    }
+}
+
 /// Combinations the resolution step refuses are refused in one line naming both settings.
 #[test]
 fn refused_combinations_name_both_settings() {
     let box_ = common::cornell();
     let medium = medium_furnace();
-    let lanes = RenderSettings::default()
-        .width(8)
-        .height(8)
-        .samples(0..1)
-        .tracing(prism_integrator::Tracing::Lanes(None));
     for (scene, settings, words) in [
-        (&box_, lanes.clone().polarized(true), ["lanes", "polarized"]),
-        (
-            &box_,
-            lanes.clone().wavelengths(2),
-            ["lanes", "wavelengths"],
-        ),
-        (
-            &box_,
-            lanes.clone().splits(Splits::Fixed(2)),
-            ["lanes", "splits"],
-        ),
-        (
-            &box_,
-            lanes.clone().reuse(Reuse::Fixed(2)),
-            ["lanes", "reuse"],
-        ),
-        (&medium, lanes.clone(), ["lanes", "media"]),
         (
             &medium,
             RenderSettings::default().splits(Splits::Fixed(2)),
@@ -502,10 +505,6 @@ fn the_variance_buffer_estimates_each_combinations_own_variance() {
             ("splits 2", base.clone().splits(Splits::Fixed(2))),
             ("reuse 2", base.clone().reuse(Reuse::Fixed(2))),
             ("adaptive asked", base.clone().adaptive(true)),
-            (
-                "lanes",
-                base.clone().tracing(prism_integrator::Tracing::Lanes(None)),
-            ),
         ]
     });
 }

@@ -20,7 +20,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 pub(crate) use clock::Clock;
 pub(crate) use footprint::Footprint;
 pub(crate) use walk::Walk;
-pub(crate) use walk::{roulette, roulette_capped};
+pub(crate) use walk::roulette_capped;
 
 use crate::reuse::{First, Record};
 use crate::throughput::{Carried, Throughput, Vertex};

@@ -11,6 +11,12 @@ use prism_scene::world::Scene;
 use crate::settings::{Reuse, Splits, Tracing};
 use crate::{RenderError, RenderSettings};
 
+/// Why `--tracer lanes` renders with the path tracer: the batch tracer traced the same
+/// paths to the bit and was never faster at equal error, so it is not kept
+/// (docs/trade-offs.md, "Tried and not kept").
+const LANES_NOT_KEPT: &str =
+    "the batch tracer (lanes) is not kept: the path tracer renders the same image, faster";
+
 /// Which tracer traces a render's camera paths.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TracerKind {
@@ -19,8 +25,6 @@ pub enum TracerKind {
     Paths,
     /// The volumetric path tracer (the scene has media or interfaces).
     Volume,
-    /// The batch tracer, paths in lanes of this width (None: the CPU's).
-    Lanes(Option<usize>),
 }
 
 impl std::fmt::Display for TracerKind {
@@ -28,8 +32,6 @@ impl std::fmt::Display for TracerKind {
         match self {
             TracerKind::Paths => f.write_str("paths"),
             TracerKind::Volume => f.write_str("volume"),
-            TracerKind::Lanes(None) => f.write_str("lanes"),
-            TracerKind::Lanes(Some(w)) => write!(f, "lanes {w}"),
         }
     }
 }
@@ -39,6 +41,8 @@ impl std::fmt::Display for TracerKind {
 pub struct Estimators {
     /// The tracer of camera paths.
     pub tracer: TracerKind,
+    /// Why `tracer` is what it is.
+    pub tracer_why: &'static str,
     /// Continuations per camera sample.
     pub splits: u32,
     /// Why `splits` is what it is.
@@ -62,8 +66,9 @@ impl std::fmt::Display for Estimators {
         let on = |b: bool| if b { "on" } else { "off" };
         write!(
             f,
-            "tracer {}; splits {} ({}); reuse {} ({}); light paths {} ({}); adaptive {} ({})",
+            "tracer {} ({}); splits {} ({}); reuse {} ({}); light paths {} ({}); adaptive {} ({})",
             self.tracer,
+            self.tracer_why,
             self.splits,
             self.splits_why,
             self.reuse,
@@ -91,6 +96,7 @@ pub(crate) enum Modes {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Resolution {
     pub tracer: TracerKind,
+    pub tracer_why: &'static str,
     pub modes: Modes,
     /// Why the modes are fixed or left to a pilot.
     pub splits_why: &'static str,
@@ -113,6 +119,7 @@ impl Resolution {
         };
         Estimators {
             tracer: self.tracer,
+            tracer_why: self.tracer_why,
             splits,
             splits_why,
             reuse,
@@ -139,45 +146,8 @@ pub(crate) fn resolve(
     settings.validate()?;
     let features = scene.features();
     let refuse = |m: &str| Err(RenderError::Setting(m.to_string()));
-    let tracer = match settings.tracing {
-        Tracing::Lanes(width) => {
-            if features.media {
-                return refuse(
-                    "tracer lanes with a scene of participating media: the batch tracer does not trace media (use --tracer paths)",
-                );
-            }
-            if lens_system {
-                return refuse(
-                    "tracer lanes with a lens-system camera: the batch tracer does not trace camera rays through lens systems (use --tracer paths)",
-                );
-            }
-            if settings.is_polarized() {
-                return refuse(
-                    "tracer lanes with polarized: the batch tracer does not carry polarization",
-                );
-            }
-            if settings.wavelengths < 4 {
-                return refuse(
-                    "tracer lanes with wavelengths 1 or 2: the batch tracer carries 4, 8 or 16 wavelengths per path",
-                );
-            }
-            if let Splits::Fixed(k) = settings.splits
-                && k > 1
-            {
-                return refuse(
-                    "tracer lanes with splits above 1: the batch tracer traces unsplit paths",
-                );
-            }
-            if let Reuse::Fixed(t) = settings.reuse
-                && t > 1
-            {
-                return refuse(
-                    "tracer lanes with reuse above 1: the batch tracer does not reuse paths",
-                );
-            }
-            TracerKind::Lanes(width)
-        }
-        Tracing::Paths if features.media => {
+    let (tracer, tracer_why) = match settings.tracing {
+        _ if features.media => {
             if let Splits::Fixed(k) = settings.splits
                 && k > 1
             {
@@ -185,9 +155,13 @@ pub(crate) fn resolve(
                     "splits above 1 with a scene of participating media: the volumetric tracer does no splitting (use --splits 1 or auto)",
                 );
             }
-            TracerKind::Volume
+            (
+                TracerKind::Volume,
+                "the scene has participating media or interfaces",
+            )
         }
-        Tracing::Paths => TracerKind::Paths,
+        Tracing::Paths => (TracerKind::Paths, "the path tracer serves every setting"),
+        Tracing::Lanes(_) => (TracerKind::Paths, LANES_NOT_KEPT),
     };
     let no_reuse = why_not_reuse(scene, settings, lens_system);
     // A denoiser keeps reuse's blocks of shared noise as detail: on the Cornell box at 16
@@ -200,11 +174,6 @@ pub(crate) fn resolve(
         settings.reuse
     };
     let (modes, splits_why, mut reuse_why) = match (tracer, settings.splits, reuse) {
-        (TracerKind::Lanes(_), ..) => (
-            Modes::Fixed(1, 1),
-            "the batch tracer traces unsplit paths",
-            "the batch tracer does not reuse paths",
-        ),
         (_, splits, Reuse::Fixed(t)) if t > 1 => match no_reuse {
             None => (Modes::Fixed(1, t), "reuse excludes splitting", "as asked"),
             Some(why) => (
@@ -252,9 +221,10 @@ pub(crate) fn resolve(
         reuse_why = "a denoised render does not reuse (the denoiser keeps its blocks of noise)";
     }
     let (light_paths, light_paths_why) = light_paths(scene, settings, lens_system);
-    let (adaptive, adaptive_why) = adaptive(settings, tracer);
+    let (adaptive, adaptive_why) = adaptive(settings);
     Ok(Resolution {
         tracer,
+        tracer_why,
         modes,
         splits_why,
         reuse_why,
@@ -332,7 +302,7 @@ fn light_paths(
 /// tracers', over whole groups of passes from the first, enough of them that the pilot's
 /// two samples per pixel are small beside them, and without the variance AOV (whose two
 /// replicates split samples by their index).
-fn adaptive(settings: &RenderSettings, tracer: TracerKind) -> (bool, &'static str) {
+fn adaptive(settings: &RenderSettings) -> (bool, &'static str) {
     let group = crate::adaptive::GROUP;
     let why_not = if !settings.adaptive {
         Some("as asked")
@@ -340,8 +310,6 @@ fn adaptive(settings: &RenderSettings, tracer: TracerKind) -> (bool, &'static st
         Some(
             "a piece of a larger render (a sample range) samples uniformly, so that the pieces merge",
         )
-    } else if matches!(tracer, TracerKind::Lanes(_)) {
-        Some("the batch tracer samples uniformly")
     } else if settings.aovs.has(crate::Aov::Variance) {
         Some("the variance AOV splits samples by their index")
     } else if settings.samples.start != 0 {

@@ -79,24 +79,17 @@ pub fn combinations(case: &Case, wavelengths: &[usize]) -> Vec<Combination> {
     for &n in wavelengths {
         for adaptive in [false, true] {
             for (mode, splits, reuse) in modes {
-                for tracing in [Tracing::Paths, Tracing::Lanes(None)] {
-                    for light_paths in [true, false] {
-                        let name = format!(
-                            "{n} wavelengths, adaptive {adaptive}, {mode}, {}, light paths {light_paths}",
-                            match tracing {
-                                Tracing::Paths => "paths",
-                                Tracing::Lanes(_) => "lanes",
-                            }
-                        );
-                        let settings = base(case)
-                            .wavelengths(n)
-                            .adaptive(adaptive)
-                            .splits(splits)
-                            .reuse(reuse)
-                            .tracing(tracing)
-                            .light_paths(light_paths);
-                        out.push(Combination { name, settings });
-                    }
+                for light_paths in [true, false] {
+                    let name = format!(
+                        "{n} wavelengths, adaptive {adaptive}, {mode}, light paths {light_paths}"
+                    );
+                    let settings = base(case)
+                        .wavelengths(n)
+                        .adaptive(adaptive)
+                        .splits(splits)
+                        .reuse(reuse)
+                        .light_paths(light_paths);
+                    out.push(Combination { name, settings });
                 }
             }
         }

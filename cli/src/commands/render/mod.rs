@@ -140,11 +140,9 @@ pub struct RenderArgs {
     /// The glTF scene to render, by index (default: the file's default scene).
     #[arg(long, visible_alias = "scene", value_name = "N")]
     pub scene_index: Option<usize>,
-    /// The camera paths' tracer: paths (one at a time; every setting) or lanes (the batch
-    /// tracer: neighbouring pixels' paths in SIMD lanes, bounce by bounce, as wide as the
-    /// CPU's vectors; the same image to the byte; unpolarized, 4 to 16 wavelengths,
-    /// unsplit, without path reuse; slower so far). lanes:4, lanes:8 or lanes:16 fix the
-    /// width.
+    /// The camera paths' tracer: paths. lanes (and lanes:4, lanes:8, lanes:16), the batch
+    /// tracer, is not kept: it rendered the same image, never faster; asking for it
+    /// renders with paths and warns.
     #[arg(long, default_value = "paths", value_name = "TRACER")]
     pub tracer: String,
     /// BVH build effort: medium (default) or slow (a better tree for long renders).

@@ -152,6 +152,7 @@ pub fn stats_json(
 fn estimators_json(e: &Estimators) -> serde_json::Value {
     serde_json::json!({
         "tracer": e.tracer.to_string(),
+        "tracer_why": e.tracer_why,
         "splits": e.splits,
         "splits_why": e.splits_why,
         "reuse": e.reuse,
