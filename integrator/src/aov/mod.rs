@@ -24,7 +24,7 @@
 //!   two means' difference, without bias: n_a n_b / n^2 (A - B)^2. The radiance is then
 //!   the mean of two sequences of n / 2 points rather than one of n, another image of the
 //!   same expectation with more error (1.4x the squared error on the Cornell box:
-//!   docs/trade-offs.md, "Denoising").
+//!   docs/trade-offs.md, "Feature buffers and the variance buffer").
 //!
 //! The features are traced by a pass of their own (`trace`), one camera ray per sample
 //! with the radiance's film point, lens point, time and wavelengths, followed through
