@@ -91,31 +91,15 @@
 //!   its `etaScale` for roulette through glass), §5.4 (film), §4.5.4 (sampled spectra
 //!   to XYZ).
 
-#[cfg(feature = "exr")]
-mod accumulation;
 mod adaptive;
-mod aov;
-mod bands;
-mod camera_response;
-mod compare;
-#[cfg(feature = "exr")]
-mod denoised;
 mod error;
 mod film;
-mod filter;
-mod image;
-mod light_path;
-mod light_throughput;
-mod path;
+mod io;
 mod plan;
-mod png;
 mod render;
 mod reuse;
-mod sample_value;
 mod settings;
-mod splits;
-mod throughput;
-mod volume;
+mod transport;
 
 /// glam, whose types appear in this crate's and prism-scene's public APIs.
 pub use glam;
@@ -123,25 +107,26 @@ pub use glam;
 /// version).
 pub use prism_scene;
 
+pub use error::RenderError;
+pub use film::Film;
+pub use film::aov::{Aov, Aovs};
+pub use film::aov_sums::AovSums;
+pub use film::bands::SpectralBands;
+pub use film::camera_response::{CameraResponse, ResponseCurve};
+pub use film::filter::Filter;
 #[cfg(feature = "exr")]
-pub use accumulation::{
+pub use io::accumulation::{
     Accumulation, decode_accumulation, encode_accumulation, merge_accumulations,
     settings_difference,
 };
-pub use aov::{Aov, AovSums, Aovs};
-pub use bands::SpectralBands;
-pub use camera_response::{CameraResponse, ResponseCurve};
 #[cfg(feature = "exr")]
-pub use compare::decode_exr;
-pub use compare::{ChannelImage, Comparison, compare_images};
+pub use io::compare::decode_exr;
+pub use io::compare::{ChannelImage, Comparison, compare_images};
 #[cfg(feature = "exr")]
-pub use denoised::{NOISY_LAYER, replace_rgb_exr};
-pub use error::RenderError;
-pub use film::Film;
-pub use filter::Filter;
-pub use image::{DisplaySettings, encode_png, encode_png_rgb, encode_polarization_png};
+pub use io::denoised::{NOISY_LAYER, replace_rgb_exr};
+pub use io::image::{DisplaySettings, encode_png, encode_png_rgb, encode_polarization_png};
 #[cfg(feature = "exr")]
-pub use image::{ExrMetadata, encode_exr};
+pub use io::image::{ExrMetadata, encode_exr};
 pub use plan::estimators::{Estimators, TracerKind};
 pub use render::{RenderStats, Renderer, render, render_into};
 pub use settings::{

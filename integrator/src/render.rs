@@ -14,19 +14,19 @@ use rayon::prelude::*;
 
 use crate::adaptive::error::{PilotMeasure, PixelError};
 use crate::adaptive::{SampleMap, samples_of};
-use crate::aov::features_pass;
 use crate::film::FilmSums;
-use crate::filter::{FilterSampler, Splatter};
-use crate::light_path::light_seed;
-use crate::light_throughput::{LightThroughput, PolarizedLight};
-use crate::path::Footprint;
-use crate::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::film::filter::{FilterSampler, Splatter};
+use crate::film::sample_value::{Outputs, SampleValue};
 use crate::plan::estimators::{Estimators, Modes, Resolution, resolve};
+use crate::plan::modes::{mode_pilot, pilot};
 use crate::reuse::Record;
-use crate::sample_value::{Outputs, SampleValue};
-use crate::splits::{mode_pilot, pilot};
-use crate::throughput::{CameraFrame, Polarized, Throughput};
-use crate::volume::FlightNumbers;
+use crate::transport::features::features_pass;
+use crate::transport::light_path::light_seed;
+use crate::transport::light_throughput::{LightThroughput, PolarizedLight};
+use crate::transport::path::Footprint;
+use crate::transport::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::transport::throughput::{CameraFrame, Polarized, Throughput};
+use crate::transport::volume::FlightNumbers;
 use crate::{Film, RenderError, RenderSettings};
 use prism_spectrum::SampledSpectrum;
 
@@ -159,7 +159,7 @@ impl<'a> Renderer<'a> {
             estimators: Estimators::default(),
         };
         if resolution.light_paths {
-            renderer.aim = scene.aim(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA));
+            renderer.aim = scene.aim(|m| m.focuses(crate::transport::light_path::CAUSTIC_ALPHA));
         }
         let aspect = settings.width as f32 / settings.height as f32;
         renderer.focus = scene.camera().focus(aspect, || auto_focus(scene, aspect));
@@ -254,9 +254,9 @@ impl<'a> Renderer<'a> {
                 )
             }),
             camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
-            clock: crate::path::Clock::of(settings),
+            clock: crate::transport::path::Clock::of(settings),
             splits,
-            camera_media: crate::volume::MediumStack::around_camera(self.scene),
+            camera_media: crate::transport::volume::MediumStack::around_camera(self.scene),
             focus: self.focus.clone(),
             system: self.system.clone(),
         }
@@ -582,7 +582,7 @@ pub(crate) struct Rows {
     pub clamp: Option<f64>,
     pub samples: Range<u64>,
     /// How samples are split into independently scrambled groups: two when the film
-    /// records its variance, whose estimate is their spread (`crate::aov`).
+    /// records its variance, whose estimate is their spread (`crate::film::aov`).
     pub replicas: Replicas,
     pub outputs: Outputs,
     /// Where adaptive sampling spreads the samples (None: one per pixel per pass).

@@ -505,7 +505,7 @@ impl RenderSettings {
         }
         WavelengthRange::new(self.range.0, self.range.1)
             .map_err(|e| RenderError::Setting(format!("wavelength range: {e}")))?;
-        crate::filter::FilterSampler::new(self.filter)?;
+        crate::film::filter::FilterSampler::new(self.filter)?;
         if let Some(c) = self.clamp
             && !(c.is_finite() && c > 0.0)
         {

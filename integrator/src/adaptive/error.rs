@@ -14,7 +14,7 @@
 
 use prism_spectrum::colorimetry::Observer;
 
-use crate::sample_value::{Outputs, PHOTONS_PER_JOULE_NM, SampleValue};
+use crate::film::sample_value::{Outputs, PHOTONS_PER_JOULE_NM, SampleValue};
 
 /// Half the squared difference of two estimates `a` and `b` of a channel whose value is
 /// about `mean`, weighted as the relative MSE weighs errors.

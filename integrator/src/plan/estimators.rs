@@ -286,7 +286,7 @@ fn light_paths(
     } else if !scene
         .materials()
         .iter()
-        .any(|m| m.focuses(crate::light_path::CAUSTIC_ALPHA))
+        .any(|m| m.focuses(crate::transport::light_path::CAUSTIC_ALPHA))
     {
         Some("no surface focuses light")
     } else {

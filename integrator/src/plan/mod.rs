@@ -2,3 +2,4 @@
 //! estimators ([`estimators`]).
 
 pub mod estimators;
+pub(crate) mod modes;

@@ -47,11 +47,11 @@ mod gather;
 
 use gather::Gathering;
 
-use crate::filter::FilterSampler;
-use crate::path::{FIRST_BOUNCE_DIMENSION, Frame, PathResult, Tracer};
+use crate::film::filter::FilterSampler;
+use crate::film::sample_value::SampleValue;
 use crate::render::{Rows, camera_sample};
-use crate::sample_value::SampleValue;
-use crate::volume::FlightNumbers;
+use crate::transport::path::{FIRST_BOUNCE_DIMENSION, Frame, PathResult, Tracer};
+use crate::transport::volume::FlightNumbers;
 
 /// A path's first vertex, recorded when it can share ([`shares_first`]): the technique
 /// that can reach other pixels' second vertices.
@@ -100,7 +100,7 @@ impl<'s, const N: usize> First<'s, N> {
 /// its light reflected by the lobe it did not draw would be lost): a smooth coating's
 /// mirror is a delta. Conductors and glass are left out: the glossy box's copper (GGX alpha
 /// 0.15) and aluminium (0.3) lowered its error 3.5% for 1.10x the time, their lobes too
-/// narrow for most pairs; a narrow one ([`crate::light_path::CAUSTIC_ALPHA`]) would also
+/// narrow for most pairs; a narrow one ([`crate::transport::light_path::CAUSTIC_ALPHA`]) would also
 /// mix paths whose caustics light paths carry with paths whose they do not.
 fn shares_first(material: &Material) -> bool {
     match material {

@@ -15,8 +15,8 @@ use prism_scene::medium::{Medium, MediumPoint};
 use prism_spectrum::SampledSpectrum;
 
 use super::ratios::{Ratios, spectral_weight};
-use crate::path::Walk;
-use crate::throughput::Throughput;
+use crate::transport::path::Walk;
+use crate::transport::throughput::Throughput;
 
 /// How a stretch of medium ended.
 #[derive(Debug, Clone, Copy, PartialEq)]

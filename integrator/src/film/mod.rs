@@ -3,10 +3,18 @@
 //! count of the samples rejected as non-finite and each pixel's coverage (the camera rays
 //! that met geometry: the alpha channel).
 
+pub(crate) mod aov;
+pub(crate) mod aov_sums;
+pub(crate) mod bands;
+pub(crate) mod camera_response;
+pub(crate) mod filter;
+pub(crate) mod sample_value;
+
 use prism_spectrum::color::RgbColorSpace;
 
 use crate::SpectralBands;
-use crate::aov::{AovSums, Aovs};
+use crate::film::aov::Aovs;
+use crate::film::aov_sums::AovSums;
 use prism_spectrum::colorimetry::Xyz;
 use prism_spectrum::saturating_f32;
 

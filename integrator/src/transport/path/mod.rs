@@ -23,7 +23,7 @@ pub(crate) use walk::Walk;
 pub(crate) use walk::roulette_capped;
 
 use crate::reuse::{First, Record};
-use crate::throughput::{Carried, Throughput, Vertex};
+use crate::transport::throughput::{Carried, Throughput, Vertex};
 
 /// What every path of a render shares.
 pub(crate) struct Tracer<'a> {
@@ -49,14 +49,14 @@ pub(crate) struct Tracer<'a> {
     /// textures (None: the scene has no texture to filter).
     pub footprint: Option<Footprint>,
     /// The polarized camera frame (read only by polarized renders).
-    pub camera_frame: crate::throughput::CameraFrame,
+    pub camera_frame: crate::transport::throughput::CameraFrame,
     /// The instant or exposure rendered on the scene's clock (None: the steady state,
     /// every source always on).
     pub clock: Option<Clock>,
     /// Continuations per camera sample from its first non-delta vertex (1: none split).
     pub splits: u32,
     /// The media the camera is in (read only by the volumetric path tracer).
-    pub camera_media: crate::volume::MediumStack,
+    pub camera_media: crate::transport::volume::MediumStack,
     /// The camera's thin lens, ready (None: a pinhole).
     pub focus: Option<prism_scene::camera::Focus>,
     /// The camera's lens system, focused (None: a pinhole or a thin lens).
@@ -139,8 +139,8 @@ pub(crate) fn wavelengths<const N: usize>(
 impl<'a> Tracer<'a> {
     /// What turns this render's spectra into the film's colour.
     #[inline(always)]
-    pub(crate) fn sensor(&self) -> crate::sample_value::Sensor<'a> {
-        crate::sample_value::Sensor {
+    pub(crate) fn sensor(&self) -> crate::film::sample_value::Sensor<'a> {
+        crate::film::sample_value::Sensor {
             observer: self.observer,
             camera: self.camera,
         }

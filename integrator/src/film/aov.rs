@@ -31,12 +31,6 @@
 //! delta vertices: it is independent of the tracer (paths, lanes, media), splitting and
 //! path reuse, and a render that asks for no AOV never runs it.
 
-mod sums;
-mod trace;
-
-pub use sums::AovSums;
-pub(crate) use trace::features_pass;
-
 use std::fmt;
 use std::str::FromStr;
 

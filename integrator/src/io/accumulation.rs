@@ -19,7 +19,7 @@ use exr::prelude::{
     WritableImage,
 };
 
-use crate::compare::read_flat;
+use crate::io::compare::read_flat;
 use crate::{AovSums, Aovs, Film, RenderError, SpectralBands};
 
 const XYZ: [&str; 3] = ["X", "Y", "Z"];

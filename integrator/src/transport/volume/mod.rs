@@ -13,7 +13,7 @@
 //! whose extinction varies with wavelength converge.
 //!
 //! Scenes without media never reach this module: the renderer runs the path tracer of
-//! `crate::path`, compiled without any of it.
+//! `crate::transport::path`, compiled without any of it.
 
 mod dye;
 mod light;
@@ -33,10 +33,12 @@ use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightNumbers;
 pub(crate) use stack::MediumStack;
 
-use crate::path::{DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk};
-use crate::path::{absorb, roulette_capped, wavelengths};
 use crate::reuse::{First, Record};
-use crate::throughput::{Throughput, Vertex};
+use crate::transport::path::{
+    DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk,
+};
+use crate::transport::path::{absorb, roulette_capped, wavelengths};
+use crate::transport::throughput::{Throughput, Vertex};
 use light::Scatterer;
 use ratios::{Ratios, spectral_weight};
 use segment::{Flight, fly};

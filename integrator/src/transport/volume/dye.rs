@@ -16,8 +16,8 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::ratios::Ratios;
 use super::segment::{Flight, alive, null_coefficient};
-use crate::path::Walk;
-use crate::throughput::Throughput;
+use crate::transport::path::Walk;
+use crate::transport::throughput::Throughput;
 
 /// Per lane, sigma_maj / S: the hero's density of an event is T_maj sigma_maj times the
 /// event's coefficient over S, that is T_maj times this times the coefficient.

@@ -21,11 +21,11 @@
 //! continuation reached an error sooner.
 
 use crate::adaptive::error::channel_error;
-use crate::path::Tracer;
+use crate::film::sample_value::SampleValue;
 use crate::render::{Renderer, Rows, trace_sample};
 use crate::reuse::Tile;
-use crate::sample_value::SampleValue;
-use crate::throughput::Throughput;
+use crate::transport::path::Tracer;
+use crate::transport::throughput::Throughput;
 
 /// The choices. Against Mitsuba's references (docs/trade-offs.md) four continuations beat
 /// two by 5% on the Cornell box and lost by 4% on the bunny box, a difference the pilot

@@ -295,7 +295,7 @@ pub fn encode_png_rgb(
             }
         }
     }
-    crate::png::encode_8bit(w, h, channels == 4, &raw)
+    crate::io::png::encode_8bit(w, h, channels == 4, &raw)
 }
 
 /// The polarization of a polarized film as an 8-bit RGB PNG: per pixel, the hue is the
@@ -336,7 +336,7 @@ pub fn encode_polarization_png(
             raw.extend_from_slice(&hsv_8bit(angle / std::f64::consts::PI, degree, value));
         }
     }
-    Some(crate::png::encode_8bit(w, h, false, &raw))
+    Some(crate::io::png::encode_8bit(w, h, false, &raw))
 }
 
 /// Degree in [0, 1] and angle in [0, pi) of linear polarization of (s0, s1, s2); (0, 0)

@@ -14,8 +14,8 @@ use prism_spectrum::SampledSpectrum;
 use super::ratios::{Ratios, spectral_weight};
 use super::segment::FlightNumbers;
 use super::stack::MediumStack;
-use crate::path::{Tracer, Walk};
-use crate::throughput::{Arrival, Throughput, Vertex};
+use crate::transport::path::{Tracer, Walk};
+use crate::transport::throughput::{Arrival, Throughput, Vertex};
 
 /// Where a path scatters: on a surface (its hit and BSDF vertex), or at a particle of a
 /// medium (where, its phase function, and the direction the path arrived along).

@@ -10,9 +10,9 @@ use prism_scene::world::Hit;
 use prism_spectrum::SampledWavelengths;
 
 use super::{ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
-use crate::light_path::CAUSTIC_ALPHA;
 use crate::reuse::{Record, Second};
-use crate::throughput::{CameraFrame, Throughput, Vertex};
+use crate::transport::light_path::CAUSTIC_ALPHA;
+use crate::transport::throughput::{CameraFrame, Throughput, Vertex};
 
 /// A path between bounces: `T` is what it carries (a spectrum, or Mueller matrices).
 pub(crate) struct Walk<const N: usize, T: Throughput<N>> {

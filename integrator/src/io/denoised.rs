@@ -8,7 +8,7 @@ use std::io::Cursor;
 use exr::prelude::{AnyChannel, AnyChannels, FlatSamples, SmallVec, WritableImage};
 
 use crate::RenderError;
-use crate::compare::read_flat;
+use crate::io::compare::read_flat;
 
 /// The layer the replaced channels move to.
 pub const NOISY_LAYER: &str = "noisy";

@@ -6,7 +6,7 @@ use prism_spectrum::colorimetry::{WhitePoint, Xyz};
 
 use prism_spectrum::saturating_f32;
 
-use super::{Aov, Aovs};
+use crate::film::aov::{Aov, Aovs};
 
 /// "No sample yet" for a pixel's material: an index above any sample's (finite, so that
 /// accumulation files, which refuse non-finite sums, keep it).

@@ -9,7 +9,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::Tracer;
 use super::walk::Walk;
-use crate::throughput::Throughput;
+use crate::transport::throughput::Throughput;
 
 impl<'a> Tracer<'a> {
     /// The BSDF a camera path meets at `hit`: at a fluorescent surface (in scenes with

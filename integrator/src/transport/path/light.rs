@@ -7,8 +7,8 @@ use prism_scene::world::{EmissionCache, Hit};
 
 use super::Tracer;
 use super::walk::Walk;
-use crate::light_path::CAUSTIC_ALPHA;
-use crate::throughput::{Arrival, Throughput, Vertex};
+use crate::transport::light_path::CAUSTIC_ALPHA;
+use crate::transport::throughput::{Arrival, Throughput, Vertex};
 
 impl Tracer<'_> {
     /// Adds the light of the environment a ray that left the scene arrives from, weighed by

@@ -8,10 +8,12 @@ use prism_spectrum::SampledSpectrum;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::sums::{AovRow, AovSums};
-use crate::filter::FilterSampler;
-use crate::path::{DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Frame, Tracer, wavelengths};
+use crate::film::aov_sums::{AovRow, AovSums};
+use crate::film::filter::FilterSampler;
 use crate::render::{Rows, camera_sample};
+use crate::transport::path::{
+    DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Frame, Tracer, wavelengths,
+};
 
 /// Surfaces (and media boundaries) a feature ray passes at most: delta chains longer than
 /// this (a hall of mirrors) keep the last weight and see nothing.

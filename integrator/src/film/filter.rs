@@ -185,7 +185,7 @@ impl<'a> Splatter<'a> {
     pub(crate) fn add(
         &mut self,
         film: Vec2,
-        value: &crate::sample_value::SampleValue,
+        value: &crate::film::sample_value::SampleValue,
         clamp: Option<f64>,
         second: bool,
     ) {
@@ -226,7 +226,7 @@ impl<'a> Splatter<'a> {
         &mut self,
         x: u32,
         y: u32,
-        value: &crate::sample_value::SampleValue,
+        value: &crate::film::sample_value::SampleValue,
         weight: f64,
         second: bool,
     ) {

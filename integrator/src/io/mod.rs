@@ -1,0 +1,10 @@
+//! The film's files: EXR and PNG images, accumulation files that resume and merge renders,
+//! image comparison, and a denoised image's EXR.
+
+#[cfg(feature = "exr")]
+pub(crate) mod accumulation;
+pub(crate) mod compare;
+#[cfg(feature = "exr")]
+pub(crate) mod denoised;
+pub(crate) mod image;
+pub(crate) mod png;

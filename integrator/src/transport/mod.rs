@@ -1,0 +1,10 @@
+//! Light transport: what a path carries (`throughput`, `light_throughput`), the path
+//! tracer (`path/`), the volumetric path tracer (`volume/`), light paths for caustics
+//! (`light_path`) and the feature buffers' rays (`features`).
+
+pub(crate) mod features;
+pub(crate) mod light_path;
+pub(crate) mod light_throughput;
+pub(crate) mod path;
+pub(crate) mod throughput;
+pub(crate) mod volume;
