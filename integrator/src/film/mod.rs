@@ -9,6 +9,7 @@ pub(crate) mod bands;
 pub(crate) mod camera_response;
 pub(crate) mod filter;
 pub(crate) mod sample_value;
+pub(crate) mod splatter;
 
 use prism_spectrum::color::RgbColorSpace;
 
