@@ -8,7 +8,8 @@ re-exports (`pub use`) is followed to the module that defines it, so an import t
 lib.rs or a folder's mod.rs counts as an import of the defining file, and a re-export
 alone is not an import. Circles are the
 strongly connected components of that graph with more than one member (Tarjan). Tests
-inside a file (`#[cfg(test)]` and below) are not its layer.
+inside a file (`#[cfg(test)]` and below) are not its layer, and comments (doc links
+among them) are not imports.
 
 Usage: python3 .ci/circles.py CRATE_SRC [--folders] [--edges] [--check]
   --folders  group files by their top-level folder of src/ (a file at the top is its own)
@@ -94,8 +95,11 @@ def graph(src):
     reexports = {m: {} for m in mods}
     for module, rel in mods.items():
         text = open(os.path.join(src, rel), encoding="utf-8").read().split("#[cfg(test)]")[0]
+        # Comments (and doc links) are not imports.
+        text = re.sub(r"//[^\n]*", "", text)
         texts[module] = text
         paths = []
+        without_uses = USE.sub("", text)
         for m in USE.finditer(text):
             public = m.group(1) is not None
             for path in expand(m.group(2)):
@@ -107,8 +111,11 @@ def graph(src):
                 if full is None:
                     continue
                 if public:
-                    # A folder's interface, not a use of what it names.
+                    # A folder's interface, not a use of what it names, unless the
+                    # module's own code uses the name too.
                     reexports[module][path[-1]] = full
+                    if re.search(r"\b" + re.escape(path[-1]) + r"\b", without_uses):
+                        paths.append(full)
                 else:
                     paths.append(full)
         paths += [m.group(1).split("::")[1:] for m in CRATE_PATH.finditer(text)]

@@ -20,7 +20,7 @@ use crate::film::splatter::Splatter;
 use crate::film::sample_value::{Outputs, SampleValue};
 use crate::plan::estimators::{Estimators, Modes, Resolution, resolve};
 use crate::plan::modes::{mode_pilot, pilot};
-use crate::reuse::Record;
+use crate::transport::reuse_record::ReuseRecord;
 use crate::transport::features::features_pass;
 use crate::transport::light_path::light_seed;
 use crate::transport::light_throughput::{LightThroughput, PolarizedLight};
@@ -943,7 +943,7 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
             film,
             aspect,
             &mut sink,
-            &mut Record::new(T::black()),
+            &mut ReuseRecord::new(T::black()),
             &mut EmissionCache::new(),
             &mut FlightNumbers::new(settings.seed, pixel, s),
         );
@@ -962,7 +962,7 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
         film,
         aspect,
         &mut sink,
-        &mut Record::new(T::black()),
+        &mut ReuseRecord::new(T::black()),
         &mut EmissionCache::new(),
     )
 }

@@ -18,7 +18,8 @@ use prism_sampling::lanes::real::{Real, Reals, V3};
 use prism_scene::world::{Bsdf, Departure, Scene};
 use prism_spectrum::SampledSpectrum;
 
-use super::{First, Second, TilePixel};
+use super::TilePixel;
+use crate::transport::reuse_record::{FirstVertex, SecondVertex};
 
 /// First vertices per group of lanes.
 const LANES: usize = 8;
@@ -51,7 +52,7 @@ pub(crate) struct FirstVertices<R> {
 
 impl FirstVertices<f32> {
     /// One first vertex.
-    fn of<const N: usize>(first: &First<'_, N>) -> Self {
+    fn of<const N: usize>(first: &FirstVertex<'_, N>) -> Self {
         Self {
             p: first.hit.p.into(),
             frame: [
@@ -90,7 +91,7 @@ fn positive_finite_lanes<R: Real>(x: R) -> R::Mask {
 /// The connections of `firsts` to `second`: for `f32`, the operations of the scalar
 /// formulas (glam's `Vec3` ones, in its order); for lanes, the same per lane.
 #[inline(always)]
-pub(crate) fn connect<R: Real>(firsts: &FirstVertices<R>, second: &Second) -> Connection<R> {
+pub(crate) fn connect<R: Real>(firsts: &FirstVertices<R>, second: &SecondVertex) -> Connection<R> {
     let zero = R::splat(0.0);
     let x2 = splat::<R>(second.p);
     let to = x2 - firsts.p;
@@ -297,7 +298,7 @@ mod tests {
         p: Vec3,
         frame: &Frame,
         wo: Vec3,
-        second: &Second,
+        second: &SecondVertex,
     ) -> Option<(Vec3, f32, Vec3, f32, f32)> {
         let to = second.p - p;
         let distance = to.length();
@@ -354,7 +355,7 @@ mod tests {
             shading_normal in unit(),
             side: bool,
         ) {
-            let second = Second { p: x2, normal, shading_normal, side, distance: 1.0 };
+            let second = SecondVertex { p: x2, normal, shading_normal, side, distance: 1.0 };
             let frames: Vec<Frame> = firsts.iter().map(|(_, n, _)| Frame::from_normal(*n)).collect();
             let group = FirstVertices {
                 p: V3::from_fn(|i| firsts[i].0),

@@ -6,5 +6,6 @@ pub(crate) mod features;
 pub(crate) mod light_path;
 pub(crate) mod light_throughput;
 pub(crate) mod path;
+pub(crate) mod reuse_record;
 pub(crate) mod throughput;
 pub(crate) mod volume;

@@ -22,7 +22,7 @@ pub(crate) use footprint::Footprint;
 pub(crate) use walk::Walk;
 pub(crate) use walk::roulette_capped;
 
-use crate::reuse::{First, Record};
+use crate::transport::reuse_record::{FirstVertex, ReuseRecord};
 use crate::transport::throughput::{Carried, Throughput, Vertex};
 
 /// What every path of a render shares.
@@ -224,7 +224,7 @@ impl<'a> Tracer<'a> {
         film: Vec2,
         aspect: f32,
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
-        record: &mut Record<'a, N, T::Radiance>,
+        record: &mut ReuseRecord<'a, N, T::Radiance>,
         emission: &mut EmissionCache<N>,
     ) -> PathResult {
         let first_package = *first_package;
@@ -362,7 +362,7 @@ impl<'a> Tracer<'a> {
                     break;
                 }
                 if REUSE && walk.depth == 0 {
-                    record.first = First::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
+                    record.first = FirstVertex::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
                 }
                 let caustic_start = self.light_caustics && !material.fluorescent();
                 if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, caustic_start, sink)

@@ -10,7 +10,7 @@ use prism_scene::world::Hit;
 use prism_spectrum::SampledWavelengths;
 
 use super::{ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
-use crate::reuse::{Record, Second};
+use crate::transport::reuse_record::{ReuseRecord, SecondVertex};
 use crate::transport::light_path::CAUSTIC_ALPHA;
 use crate::transport::throughput::{CameraFrame, Throughput, Vertex};
 
@@ -97,11 +97,11 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
         hit: &Hit,
         wo_world: Vec3,
         camera: &CameraFrame,
-        record: &mut Record<'_, N, T::Radiance>,
+        record: &mut ReuseRecord<'_, N, T::Radiance>,
     ) {
         self.eta_scale *= self.beta.max_value();
         self.beta = T::start(self.ray.direction.normalize(), camera);
-        record.second = Some(Second::at(hit, &self.ray, wo_world));
+        record.second = Some(SecondVertex::at(hit, &self.ray, wo_world));
         record.own = std::mem::replace(&mut self.radiance, T::black());
     }
 

@@ -33,7 +33,7 @@ use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightNumbers;
 pub(crate) use stack::MediumStack;
 
-use crate::reuse::{First, Record};
+use crate::transport::reuse_record::{FirstVertex, ReuseRecord};
 use crate::transport::path::{
     DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk,
 };
@@ -80,7 +80,7 @@ impl<'a> Tracer<'a> {
         film: Vec2,
         aspect: f32,
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
-        record: &mut Record<'a, N, T::Radiance>,
+        record: &mut ReuseRecord<'a, N, T::Radiance>,
         emission: &mut EmissionCache<N>,
         numbers: &mut FlightNumbers,
     ) -> PathResult {
@@ -251,7 +251,7 @@ impl<'a> Tracer<'a> {
             }
             if REUSE && walk.depth == 0 && unbounded && media.current().is_none() {
                 let material = self.scene.material(&hit);
-                record.first = First::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
+                record.first = FirstVertex::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
             }
             if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, false, sink) {
                 break;
