@@ -16,16 +16,16 @@ use crate::adaptive::error::{PilotMeasure, PixelError};
 use crate::adaptive::{SampleMap, samples_of};
 use crate::film::FilmSums;
 use crate::film::filter::FilterSampler;
-use crate::film::splatter::Splatter;
 use crate::film::sample_value::{Outputs, SampleValue};
+use crate::film::splatter::Splatter;
 use crate::plan::estimators::{Estimators, Modes, Resolution, resolve};
 use crate::plan::modes::{mode_pilot, pilot};
-use crate::transport::reuse_record::ReuseRecord;
+use crate::transport::context::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
 use crate::transport::features::features_pass;
+use crate::transport::footprint::Footprint;
 use crate::transport::light_path::light_seed;
 use crate::transport::light_throughput::{LightThroughput, PolarizedLight};
-use crate::transport::path::Footprint;
-use crate::transport::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::transport::reuse_record::ReuseRecord;
 use crate::transport::throughput::{CameraFrame, Polarized, Throughput};
 use crate::transport::volume::FlightNumbers;
 use crate::{Film, RenderError, RenderSettings};
@@ -255,7 +255,7 @@ impl<'a> Renderer<'a> {
                 )
             }),
             camera_frame: CameraFrame::new(self.scene.camera(), settings.camera_polarizer),
-            clock: crate::transport::path::Clock::of(settings),
+            clock: crate::transport::clock::Clock::of(settings),
             splits,
             camera_media: crate::transport::volume::MediumStack::around_camera(self.scene),
             focus: self.focus.clone(),

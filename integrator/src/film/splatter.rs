@@ -83,14 +83,7 @@ impl<'a> Splatter<'a> {
         }
     }
 
-    fn add_to_pixel(
-        &mut self,
-        x: u32,
-        y: u32,
-        value: &SampleValue,
-        weight: f64,
-        second: bool,
-    ) {
+    fn add_to_pixel(&mut self, x: u32, y: u32, value: &SampleValue, weight: f64, second: bool) {
         let i = y as usize * self.width as usize + x as usize;
         if let Some(r) = self.replica.get_mut(i).filter(|_| second) {
             for (a, b) in r.iter_mut().zip(value.xyz) {

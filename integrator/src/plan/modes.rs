@@ -24,7 +24,7 @@ use crate::adaptive::error::channel_error;
 use crate::film::sample_value::SampleValue;
 use crate::render::{Renderer, Rows, trace_sample};
 use crate::reuse::Tile;
-use crate::transport::path::Tracer;
+use crate::transport::context::Tracer;
 use crate::transport::throughput::Throughput;
 
 /// The choices. Against Mitsuba's references (docs/trade-offs.md) four continuations beat

@@ -47,7 +47,7 @@ use gather::Gathering;
 use crate::film::filter::FilterSampler;
 use crate::film::sample_value::SampleValue;
 use crate::render::{Rows, camera_sample};
-use crate::transport::path::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::transport::context::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
 use crate::transport::reuse_record::ReuseRecord;
 use crate::transport::volume::FlightNumbers;
 

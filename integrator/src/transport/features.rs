@@ -11,9 +11,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use crate::film::aov_sums::{AovRow, AovSums};
 use crate::film::filter::FilterSampler;
 use crate::render::{Rows, camera_sample};
-use crate::transport::path::{
-    DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Frame, Tracer, wavelengths,
+use crate::transport::context::{
+    DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Tracer, wavelengths,
 };
+use prism_scene::geometry::Frame;
 
 /// Surfaces (and media boundaries) a feature ray passes at most: delta chains longer than
 /// this (a hall of mirrors) keep the last weight and see nothing.

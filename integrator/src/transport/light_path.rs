@@ -32,9 +32,10 @@ use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::bsdf::TransportMode;
 use prism_spectrum::SampledWavelengths;
 
+use crate::transport::context::{Tracer, absorb, wavelengths};
 use crate::transport::light_throughput::LightThroughput;
-use crate::transport::path::{Frame, Tracer, absorb, wavelengths};
 use crate::transport::throughput::Vertex;
+use prism_scene::geometry::Frame;
 
 /// The roughest GGX lobe (alpha, roughness 0.35) whose light counts as focused: light
 /// leaving an emitter through such surfaces (or smooth ones) is carried by light paths,
@@ -72,7 +73,9 @@ impl Tracer<'_> {
             None => camera.project(point, aspect),
             Some(focus) => {
                 let mut lens = stream.clone();
-                lens.set_dimension(crate::transport::path::LENS_DIMENSION + 2 * u64::from(depth));
+                lens.set_dimension(
+                    crate::transport::context::LENS_DIMENSION + 2 * u64::from(depth),
+                );
                 camera.project_through(point, aspect, Some(focus), lens.next_2d())
             }
         }

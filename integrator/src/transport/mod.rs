@@ -2,7 +2,10 @@
 //! tracer (`path/`), the volumetric path tracer (`volume/`), light paths for caustics
 //! (`light_path`) and the feature buffers' rays (`features`).
 
+pub(crate) mod clock;
+pub(crate) mod context;
 pub(crate) mod features;
+pub(crate) mod footprint;
 pub(crate) mod light_path;
 pub(crate) mod light_throughput;
 pub(crate) mod path;

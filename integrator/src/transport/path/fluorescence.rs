@@ -7,8 +7,8 @@ use prism_scene::bsdf::TransportMode;
 use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, SceneSpectrum};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::Tracer;
 use super::walk::Walk;
+use crate::transport::context::Tracer;
 use crate::transport::throughput::Throughput;
 
 impl<'a> Tracer<'a> {

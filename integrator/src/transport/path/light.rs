@@ -5,8 +5,8 @@ use glam::{Vec2, Vec3};
 use prism_sampling::mis::power_heuristic;
 use prism_scene::world::{EmissionCache, Hit};
 
-use super::Tracer;
 use super::walk::Walk;
+use crate::transport::context::Tracer;
 use crate::transport::light_path::CAUSTIC_ALPHA;
 use crate::transport::throughput::{Arrival, Throughput, Vertex};
 

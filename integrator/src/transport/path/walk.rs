@@ -9,9 +9,9 @@ use prism_scene::geometry::Ray;
 use prism_scene::world::Hit;
 use prism_spectrum::SampledWavelengths;
 
-use super::{ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
-use crate::transport::reuse_record::{ReuseRecord, SecondVertex};
+use crate::transport::context::{ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
 use crate::transport::light_path::CAUSTIC_ALPHA;
+use crate::transport::reuse_record::{ReuseRecord, SecondVertex};
 use crate::transport::throughput::{CameraFrame, Throughput, Vertex};
 
 /// A path between bounces: `T` is what it carries (a spectrum, or Mueller matrices).

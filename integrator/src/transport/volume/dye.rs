@@ -16,7 +16,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::ratios::Ratios;
 use super::segment::{Flight, alive, null_coefficient};
-use crate::transport::path::Walk;
+use crate::transport::path::walk::Walk;
 use crate::transport::throughput::Throughput;
 
 /// Per lane, sigma_maj / S: the hero's density of an event is T_maj sigma_maj times the

@@ -14,7 +14,8 @@ use prism_spectrum::SampledSpectrum;
 use super::ratios::{Ratios, spectral_weight};
 use super::segment::FlightNumbers;
 use super::stack::MediumStack;
-use crate::transport::path::{Tracer, Walk};
+use crate::transport::context::Tracer;
+use crate::transport::path::walk::Walk;
 use crate::transport::throughput::{Arrival, Throughput, Vertex};
 
 /// Where a path scatters: on a surface (its hit and BSDF vertex), or at a particle of a

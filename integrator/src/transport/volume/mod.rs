@@ -33,13 +33,14 @@ use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightNumbers;
 pub(crate) use stack::MediumStack;
 
+use crate::transport::context::{DIMENSIONS_PER_BOUNCE, PathResult, ROULETTE_DEPTH, Tracer};
+use crate::transport::context::{absorb, wavelengths};
+use crate::transport::path::walk::Walk;
+use crate::transport::path::walk::roulette_capped;
 use crate::transport::reuse_record::{FirstVertex, ReuseRecord};
-use crate::transport::path::{
-    DIMENSIONS_PER_BOUNCE, Frame, PathResult, ROULETTE_DEPTH, Tracer, Walk,
-};
-use crate::transport::path::{absorb, roulette_capped, wavelengths};
 use crate::transport::throughput::{Throughput, Vertex};
 use light::Scatterer;
+use prism_scene::geometry::Frame;
 use ratios::{Ratios, spectral_weight};
 use segment::{Flight, fly};
 

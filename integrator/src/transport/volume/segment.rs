@@ -15,7 +15,7 @@ use prism_scene::medium::{Medium, MediumPoint};
 use prism_spectrum::SampledSpectrum;
 
 use super::ratios::{Ratios, spectral_weight};
-use crate::transport::path::Walk;
+use crate::transport::path::walk::Walk;
 use crate::transport::throughput::Throughput;
 
 /// How a stretch of medium ended.

@@ -18,7 +18,7 @@ use super::dye::straight_density;
 use super::ratios::Ratios;
 use super::segment::{FlightNumbers, null_coefficient};
 use super::stack::MediumStack;
-use crate::transport::path::Tracer;
+use crate::transport::context::Tracer;
 
 /// Interfaces a shadow ray crosses at most (coplanar or degenerate boundaries end it).
 const MAX_CROSSINGS: u32 = 256;
