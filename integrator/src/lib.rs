@@ -95,6 +95,7 @@ mod adaptive;
 mod error;
 mod film;
 mod io;
+mod pixels;
 mod plan;
 mod render;
 mod reuse;

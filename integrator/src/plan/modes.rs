@@ -22,7 +22,9 @@
 
 use crate::adaptive::error::channel_error;
 use crate::film::sample_value::SampleValue;
-use crate::render::{Renderer, Rows, trace_sample};
+use crate::pixels::sample::trace_sample;
+use crate::pixels::sample_plan::SamplePlan;
+use crate::plan::setup::Setup;
 use crate::reuse::Tile;
 use crate::transport::context::Tracer;
 use crate::transport::throughput::Throughput;
@@ -55,17 +57,17 @@ pub(crate) struct LightPilot {
 }
 
 impl LightPilot {
-    /// Traces one pass of light paths under each pilot seed for `renderer` (None where
+    /// Traces one pass of light paths under each pilot seed for `setup` (None where
     /// its render traces no light paths).
-    pub(crate) fn trace(renderer: &Renderer) -> Option<Self> {
-        if !renderer.light_caustics() {
+    pub(crate) fn trace(setup: &Setup) -> Option<Self> {
+        if !setup.light_caustics() {
             return None;
         }
-        let settings = renderer.settings();
+        let settings = setup.settings();
         let (width, height) = (settings.width, settings.height);
         let mut rays = 0u64;
         let values = PILOT_SEEDS.map(|s| {
-            let (film, r) = renderer.light_pass(settings.seed ^ s);
+            let (film, r) = setup.light_pass(settings.seed ^ s);
             rays += r;
             (0..height)
                 .flat_map(|y| (0..width).map(move |x| (x, y)))
@@ -144,7 +146,7 @@ impl Pilot {
     }
 }
 
-/// Traces the pilot for `renderer`: up to `GRID` x `GRID` pixels spread over the image,
+/// Traces the pilot for `setup`: up to `GRID` x `GRID` pixels spread over the image,
 /// each estimated twice (two seeds, `SAMPLES` samples each) unsplit and twice split in
 /// two with the same streams. The two estimates' difference measures the error of a
 /// pixel's mean as the render's Sobol samples make it (lower than independent samples'
@@ -152,15 +154,15 @@ impl Pilot {
 /// lie in a few well-stratified dimensions); the same streams for both modes make the
 /// difference between the modes mostly the split's.
 pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    renderer: &Renderer,
+    setup: &Setup,
 ) -> Pilot {
     use rayon::prelude::*;
-    let settings = renderer.settings();
+    let settings = setup.settings();
     let (width, height) = (settings.width, settings.height);
     let (columns, rows) = (width.min(GRID), height.min(GRID));
-    let tracers = [renderer.tracer(1), renderer.tracer(2)];
-    let seeds = PILOT_SEEDS.map(|s| renderer.pilot_rows(settings.seed ^ s, 0..SAMPLES));
-    let light = LightPilot::trace(renderer);
+    let tracers = [setup.tracer(1), setup.tracer(2)];
+    let seeds = PILOT_SEEDS.map(|s| setup.pilot_plan(settings.seed ^ s, 0..SAMPLES));
+    let light = LightPilot::trace(setup);
     let per_pixel: Vec<Pilot> = (0..columns * rows)
         .into_par_iter()
         .map(|i| {
@@ -168,7 +170,7 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             let x = ((2 * (i % columns) + 1) * width / (2 * columns)).min(width - 1);
             let y = ((2 * (i / columns) + 1) * height / (2 * rows)).min(height - 1);
             let (means, rays) =
-                pixel_estimates::<N, FLUORESCENCE, T>(renderer, &tracers, &seeds, x, y);
+                pixel_estimates::<N, FLUORESCENCE, T>(setup, &tracers, &seeds, x, y);
             let mut pixel = weighted_errors(&means, rays);
             if let Some(light) = &light {
                 let added = light.variance(x, y, camera_mean(&means));
@@ -339,15 +341,15 @@ const WIDEST_TILES: u32 = REUSE_CHOICES[REUSE_CHOICES.len() - 1];
 /// [`pilot`]. Returns (splits, reuse tile side); a render that samples adaptively chooses
 /// from the first stage alone ([`ModePilot::adaptive_choice`]).
 pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    renderer: &Renderer,
+    setup: &Setup,
 ) -> (u32, u32) {
     use rayon::prelude::*;
-    let settings = renderer.settings();
+    let settings = setup.settings();
     let (width, height) = (settings.width, settings.height);
     let (columns, rows) = (width.min(REUSE_GRID), height.min(REUSE_GRID));
-    let tracers = [renderer.tracer(1), renderer.tracer(2)];
-    let seeds = PILOT_SEEDS.map(|s| renderer.pilot_rows(settings.seed ^ s, 0..SAMPLES));
-    let light = LightPilot::trace(renderer);
+    let tracers = [setup.tracer(1), setup.tracer(2)];
+    let seeds = PILOT_SEEDS.map(|s| setup.pilot_plan(settings.seed ^ s, 0..SAMPLES));
+    let light = LightPilot::trace(setup);
     let corner = |i: u32| {
         (
             (i % columns) * width / columns,
@@ -357,7 +359,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     // The modes 0 and 1: a cell's corner pixel, unsplit and split in two.
     let split = |i: u32, cell: &mut ModePilot| {
         let (x, y) = corner(i);
-        let (means, rays) = pixel_estimates::<N, FLUORESCENCE, T>(renderer, &tracers, &seeds, x, y);
+        let (means, rays) = pixel_estimates::<N, FLUORESCENCE, T>(setup, &tracers, &seeds, x, y);
         for mode in 0..2 {
             cell.variance[mode] = weighted_error(&means[mode]);
             cell.rays[mode] = rays[mode] / (2 * SAMPLES) as f64;
@@ -384,7 +386,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
             for s in 0..SAMPLES {
                 crate::reuse::trace_tile_at::<N>(
                     &tracers[0],
-                    renderer.filter(),
+                    setup.filter(),
                     rows,
                     xs.clone(),
                     ys.clone(),
@@ -415,7 +417,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
                     continue;
                 }
                 let (means, rays) =
-                    unsplit_estimates::<N, FLUORESCENCE, T>(renderer, &tracers[0], &seeds, px, py);
+                    unsplit_estimates::<N, FLUORESCENCE, T>(setup, &tracers[0], &seeds, px, py);
                 unsplit += weighted_error(&means);
                 unsplit_rays += rays;
             }
@@ -435,7 +437,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         })
         .collect();
     let first = summarize_modes(&per_cell, 3);
-    if renderer.samples_adaptively() {
+    if setup.samples_adaptively() {
         return first.adaptive_choice();
     }
     let choice = first.choice();
@@ -523,24 +525,24 @@ fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
 /// Per mode (unsplit, split in two) and seed, the mean colour of pixel (`x`, `y`)'s
 /// `SAMPLES` samples, and per mode the rays they traced.
 fn pixel_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    renderer: &Renderer,
+    setup: &Setup,
     tracers: &[Tracer; 2],
-    seeds: &[Rows; 2],
+    seeds: &[SamplePlan; 2],
     x: u32,
     y: u32,
 ) -> ([[[f64; 3]; 2]; 2], [f64; 2]) {
     let [a, b] = tracers
         .each_ref()
-        .map(|tracer| unsplit_estimates::<N, FLUORESCENCE, T>(renderer, tracer, seeds, x, y));
+        .map(|tracer| unsplit_estimates::<N, FLUORESCENCE, T>(setup, tracer, seeds, x, y));
     ([a.0, b.0], [a.1, b.1])
 }
 
 /// Per seed, the mean colour of pixel (`x`, `y`)'s `SAMPLES` samples by `tracer`, and the
 /// rays they traced.
 fn unsplit_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    renderer: &Renderer,
+    setup: &Setup,
     tracer: &Tracer,
-    seeds: &[Rows; 2],
+    seeds: &[SamplePlan; 2],
     x: u32,
     y: u32,
 ) -> ([[f64; 3]; 2], f64) {
@@ -551,7 +553,7 @@ fn unsplit_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>
         for s in 0..SAMPLES {
             let result = trace_sample::<N, FLUORESCENCE, T>(
                 tracer,
-                renderer.filter(),
+                setup.filter(),
                 rows,
                 x,
                 y,

@@ -18,7 +18,7 @@ use prism_sampling::lanes::real::{Real, Reals, V3};
 use prism_scene::world::{Bsdf, Departure, Scene};
 use prism_spectrum::SampledSpectrum;
 
-use super::TilePixel;
+use super::tile_pixel::TilePixel;
 use crate::transport::reuse_record::{FirstVertex, SecondVertex};
 
 /// First vertices per group of lanes.

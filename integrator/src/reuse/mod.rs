@@ -41,24 +41,19 @@ use prism_scene::world::EmissionCache;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 mod gather;
+pub(crate) mod pass;
+mod tile_pixel;
 
 use gather::Gathering;
+use tile_pixel::TilePixel;
 
 use crate::film::filter::FilterSampler;
 use crate::film::sample_value::SampleValue;
-use crate::render::{Rows, camera_sample};
+use crate::pixels::sample::camera_sample;
+use crate::pixels::sample_plan::SamplePlan;
 use crate::transport::context::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
 use crate::transport::reuse_record::ReuseRecord;
 use crate::transport::volume::FlightNumbers;
-
-/// One pixel of a tile: its position, and what its path left.
-pub(crate) struct TilePixel<'s, const N: usize> {
-    pub x: u32,
-    pub y: u32,
-    pub result: PathResult,
-    pub value: SampleValue,
-    record: ReuseRecord<'s, N, SampledSpectrum<N>>,
-}
 
 /// A tile's pixels and the buffers of its gathering, kept from tile to tile.
 pub(crate) struct Tile<'s, const N: usize> {
@@ -93,7 +88,7 @@ impl<'a> Tracer<'a> {
     pub(crate) fn trace_tile<const N: usize>(
         &self,
         filter: &FilterSampler,
-        rows: &Rows,
+        rows: &SamplePlan,
         xs: std::ops::Range<u32>,
         ys: std::ops::Range<u32>,
         s: u64,
@@ -178,7 +173,7 @@ impl<'a> Tracer<'a> {
 pub(crate) fn trace_tile_at<'a, const N: usize>(
     tracer: &Tracer<'a>,
     filter: &FilterSampler,
-    rows: &Rows,
+    rows: &SamplePlan,
     xs: std::ops::Range<u32>,
     ys: std::ops::Range<u32>,
     s: u64,
@@ -195,7 +190,7 @@ pub(crate) fn trace_tile_at<'a, const N: usize>(
 pub(crate) fn trace_band<const N: usize>(
     tracer: &Tracer,
     filter: &FilterSampler,
-    rows: &Rows,
+    rows: &SamplePlan,
     size: u32,
     ys: std::ops::Range<u32>,
     s: u64,

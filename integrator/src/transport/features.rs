@@ -10,7 +10,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::film::aov_sums::{AovRow, AovSums};
 use crate::film::filter::FilterSampler;
-use crate::render::{Rows, camera_sample};
+use crate::pixels::sample::camera_sample;
+use crate::pixels::sample_plan::SamplePlan;
 use crate::transport::context::{
     DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Tracer, wavelengths,
 };
@@ -40,7 +41,7 @@ impl Tracer<'_> {
     pub(crate) fn features<const N: usize>(
         &self,
         filter: &FilterSampler,
-        rows: &Rows,
+        rows: &SamplePlan,
         x: u32,
         y: u32,
         s: u64,
@@ -127,7 +128,7 @@ fn bounce_numbers(stream: &mut SobolStream, depth: u64) -> (f32, glam::Vec2) {
 pub(crate) fn features_pass<const N: usize>(
     tracer: &Tracer,
     filter: &FilterSampler,
-    rows: &Rows,
+    rows: &SamplePlan,
     sums: &mut AovSums,
     cancel: &AtomicBool,
 ) {
