@@ -156,6 +156,7 @@ pub mod medium;
 pub mod polarization;
 #[cfg(feature = "gltf")]
 pub mod spectral;
+pub mod textures;
 pub mod world;
 
 pub use error::{LoadError, Resolver};

@@ -15,13 +15,13 @@ mod layers;
 mod light;
 mod light_choice;
 mod material;
-mod mipmap;
 mod normal_map;
-mod spectrum;
-mod tex_coords;
-mod texture;
 mod time;
 
+pub use crate::textures::{
+    Encoding, RgbTexture, SceneSpectrum, SpectralTexture, TEX_COORD_SETS, TexCoords, UvTransform,
+    Wrap,
+};
 pub use alpha::{Alpha, AlphaMode};
 pub use builder::SceneBuilder;
 pub use departure::Departure;
@@ -39,9 +39,6 @@ pub use material::{Bsdf, Material};
 pub use normal_map::NormalMap;
 #[cfg(feature = "gltf")]
 pub(crate) use normal_map::triangle_tangent;
-pub use spectrum::SceneSpectrum;
-pub use tex_coords::{TEX_COORD_SETS, TexCoords};
-pub use texture::{Encoding, RgbTexture, SpectralTexture, UvTransform, Wrap};
 pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;
@@ -725,7 +722,7 @@ impl Scene {
         mode: crate::bsdf::TransportMode,
     ) -> Bsdf<'_, N> {
         let tint = self.tint_table(hit).map(|table| {
-            texture::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths)
+            crate::textures::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths)
         });
         let material = self.material(hit);
         if self.oriented_materials && material.oriented() {
