@@ -152,6 +152,7 @@ mod error;
 pub mod geometry;
 #[cfg(feature = "gltf")]
 pub mod load;
+pub mod materials;
 pub mod medium;
 pub mod polarization;
 #[cfg(feature = "gltf")]

@@ -3,7 +3,6 @@
 //! is what the integrator sees: spectra to sample at its wavelengths and BSDFs to
 //! evaluate, never RGB.
 
-mod alpha;
 mod builder;
 mod departure;
 mod emission_cache;
@@ -11,34 +10,29 @@ mod environment;
 #[cfg(feature = "gltf")]
 mod from_gltf;
 mod guide;
-mod layers;
 mod light;
 mod light_choice;
-mod material;
-mod normal_map;
 mod time;
 
+#[cfg(feature = "gltf")]
+pub(crate) use crate::materials::triangle_tangent;
+pub use crate::materials::{
+    Alpha, AlphaMode, AnisotropyDesc, Bsdf, ClearcoatDesc, DiffuseTransmissionDesc,
+    IridescenceDesc, Layers, Material, NormalMap, SheenDesc, SpecularDesc, SurfaceFrame,
+    TransmissionDesc,
+};
 pub use crate::textures::{
     Encoding, RgbTexture, SceneSpectrum, SpectralTexture, TEX_COORD_SETS, TexCoords, UvTransform,
     Wrap,
 };
-pub use alpha::{Alpha, AlphaMode};
 pub use builder::SceneBuilder;
 pub use departure::Departure;
 pub use emission_cache::EmissionCache;
 pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 #[cfg(feature = "gltf")]
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
-pub use layers::{
-    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, Layers, SheenDesc,
-    SpecularDesc, SurfaceFrame, TransmissionDesc,
-};
 pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
 pub use light_choice::MAX_GROUPS;
-pub use material::{Bsdf, Material};
-pub use normal_map::NormalMap;
-#[cfg(feature = "gltf")]
-pub(crate) use normal_map::triangle_tangent;
 pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;
@@ -592,7 +586,11 @@ impl Scene {
             let material = self.triangle_material[hit.triangle as usize] as usize;
             let passes = match self.attributes.alpha.get(material) {
                 Some(Some(alpha)) => {
-                    let u = alpha::blend_number(current.origin, current.direction, hit.triangle);
+                    let u = crate::materials::blend_number(
+                        current.origin,
+                        current.direction,
+                        hit.triangle,
+                    );
                     !alpha.opaque(&hit.tex, hit.color.w, u)
                 }
                 _ => false,

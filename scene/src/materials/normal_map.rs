@@ -5,8 +5,8 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use super::{RgbTexture, TexCoords};
 use crate::geometry::unit_or_zero;
+use crate::textures::{RgbTexture, TexCoords};
 
 /// A normal texture and its scale.
 #[derive(Debug, Clone, PartialEq)]

@@ -6,11 +6,12 @@ use glam::{Vec2, Vec3};
 use prism_sampling::wavelength::ReradiationSampler;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::{Layers, RgbTexture, SceneSpectrum, SurfaceFrame, TexCoords};
+use super::{Layers, SurfaceFrame};
 use crate::bsdf::{
     BsdfSample, CoatingAlbedo, Diffuse, Ggx, Layered, MetallicRoughness, Plastic, PlasticCoating,
     RoughConductor, RoughDielectric, Sheet, SheetElement, Transmissive, TransportMode,
 };
+use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// A surface's material, with spectral parameters not yet sampled.
 #[derive(Debug, Clone)]
