@@ -150,6 +150,7 @@ pub mod bsdf;
 pub mod camera;
 mod error;
 pub mod geometry;
+pub mod lights;
 #[cfg(feature = "gltf")]
 pub mod load;
 pub mod materials;

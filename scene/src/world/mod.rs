@@ -5,15 +5,15 @@
 
 mod builder;
 mod departure;
-mod emission_cache;
-mod environment;
 #[cfg(feature = "gltf")]
 mod from_gltf;
 mod guide;
-mod light;
-mod light_choice;
 mod time;
 
+pub use crate::lights::{
+    Aim, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light, LightSample, Lights,
+    MAX_GROUPS, grey_environment, unit_d65,
+};
 #[cfg(feature = "gltf")]
 pub(crate) use crate::materials::triangle_tangent;
 pub use crate::materials::{
@@ -27,12 +27,8 @@ pub use crate::textures::{
 };
 pub use builder::SceneBuilder;
 pub use departure::Departure;
-pub use emission_cache::EmissionCache;
-pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 #[cfg(feature = "gltf")]
 pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
-pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
-pub use light_choice::MAX_GROUPS;
 pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;
@@ -879,7 +875,7 @@ impl Scene {
         };
         let pmf = self.lights.pmf_at(l, wavelengths, cache);
         let shape = self.lights.shape(l);
-        let pdf = match light::solid_angle_sampled(from, shape) {
+        let pdf = match crate::lights::solid_angle_sampled(from, shape) {
             Some(omega) => pmf / omega,
             None => {
                 let to = hit.p - from;
@@ -1007,8 +1003,8 @@ fn light_extent_of(
     emission: &[SceneSpectrum],
     radius: f32,
 ) -> f64 {
-    light::light_extent(light, triangles, radius)
-        * light::texture_coverage(light, attributes, emission)
+    crate::lights::light_extent(light, triangles, radius)
+        * crate::lights::texture_coverage(light, attributes, emission)
 }
 
 /// The lights, chosen by their power over the visible range widened to every range in
@@ -1033,7 +1029,7 @@ fn choose_lights(
         .iter()
         .zip(&extent)
         .map(|(l, x)| {
-            x * light::light_spectrum(l, emission).mean_over(power_range.0, power_range.1)
+            x * crate::lights::light_spectrum(l, emission).mean_over(power_range.0, power_range.1)
         })
         .collect();
     Lights::new(lights, &power, &extent, emission, triangles, attributes)

@@ -15,10 +15,11 @@ use prism_sampling::warp::{
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::light_choice::SpectralChoice;
-use super::{EmissionCache, EnvironmentMap, SceneSpectrum};
+use super::{EmissionCache, EnvironmentMap};
 use crate::geometry::{
     Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
 };
+use crate::textures::SceneSpectrum;
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -261,7 +262,7 @@ impl Lights {
         extent: &[f64],
         emission: &[SceneSpectrum],
         triangles: &[[Vec3; 3]],
-        attributes: &super::VertexAttributes,
+        attributes: &crate::world::VertexAttributes,
     ) -> Self {
         let mut of_triangle = vec![u32::MAX; triangles.len()];
         let shapes = lights
@@ -726,7 +727,7 @@ pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius:
 /// Chosen by this, the dark parts of a sign or a screen take few light samples.
 pub(crate) fn texture_coverage(
     light: &Light,
-    attributes: &super::VertexAttributes,
+    attributes: &crate::world::VertexAttributes,
     emission: &[SceneSpectrum],
 ) -> f64 {
     let Light::Triangle {

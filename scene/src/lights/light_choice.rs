@@ -46,8 +46,9 @@ use prism_sampling::distribution::AliasTable;
 use prism_sampling::wavelength::WavelengthRange;
 use prism_spectrum::{SampledWavelengths, Spectrum};
 
+use super::EmissionCache;
 use super::light::{Light, light_spectrum, unit_f32};
-use super::{EmissionCache, SceneSpectrum};
+use crate::textures::SceneSpectrum;
 
 /// The most groups (distinct light spectra) chosen among by wavelength.
 pub const MAX_GROUPS: usize = 8;

@@ -11,7 +11,7 @@ use std::sync::{Arc, LazyLock};
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::spectra::DenselySampled;
 
-use super::SceneSpectrum;
+use crate::textures::SceneSpectrum;
 
 /// CIE D65 (the sRGB white's illuminant) normalized to luminance 1 (Y = 1 under the
 /// CIE 1931 observer): what an emissive colour of RGB (1, 1, 1) emits, glTF colours being
