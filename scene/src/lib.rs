@@ -156,9 +156,10 @@ pub mod load;
 pub mod materials;
 pub mod medium;
 pub mod polarization;
-#[cfg(feature = "gltf")]
-pub mod spectral;
 pub mod textures;
 pub mod world;
 
 pub use error::{LoadError, Resolver};
+/// The `PRISM_spectral` extension and TOML overlays ([`load::prism_spectral`]).
+#[cfg(feature = "gltf")]
+pub use load::prism_spectral as spectral;

@@ -5,8 +5,6 @@
 
 mod builder;
 mod departure;
-#[cfg(feature = "gltf")]
-mod from_gltf;
 mod guide;
 mod time;
 
@@ -14,6 +12,8 @@ pub use crate::lights::{
     Aim, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light, LightSample, Lights,
     MAX_GROUPS, grey_environment, unit_d65,
 };
+#[cfg(feature = "gltf")]
+pub use crate::load::{DEFAULT_ENVIRONMENT, SceneOptions};
 #[cfg(feature = "gltf")]
 pub(crate) use crate::materials::triangle_tangent;
 pub use crate::materials::{
@@ -27,8 +27,6 @@ pub use crate::textures::{
 };
 pub use builder::SceneBuilder;
 pub use departure::Departure;
-#[cfg(feature = "gltf")]
-pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
 pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;
@@ -188,7 +186,7 @@ pub struct Scene {
     /// Per material: where its re-radiated light comes from (fluorescent materials only).
     light_wavelengths: Vec<Option<prism_sampling::distribution::PiecewiseConstant1D>>,
     /// Whether the scene is lit by the default environment (see `lit_by_default()`).
-    lit_by_default: bool,
+    pub(crate) lit_by_default: bool,
     /// Whether a material has a base colour or metallic-roughness texture.
     filters_textures: bool,
     /// Whether any material reads the surface's tangent frame (anisotropy, a coat's
