@@ -14,7 +14,7 @@ pub use layers::{
     AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, Layers, SheenDesc,
     SpecularDesc, SurfaceFrame, TransmissionDesc,
 };
-pub use material::{Bsdf, Material};
+pub use material::Material;
 pub use normal_map::NormalMap;
 #[cfg(feature = "gltf")]
 pub(crate) use normal_map::triangle_tangent;

@@ -8,6 +8,7 @@ mod departure;
 mod guide;
 mod time;
 
+pub use crate::bsdf::Bsdf;
 pub use crate::lights::{
     Aim, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light, LightSample, Lights,
     MAX_GROUPS, grey_environment, unit_d65,
@@ -17,9 +18,8 @@ pub use crate::load::{DEFAULT_ENVIRONMENT, SceneOptions};
 #[cfg(feature = "gltf")]
 pub(crate) use crate::materials::triangle_tangent;
 pub use crate::materials::{
-    Alpha, AlphaMode, AnisotropyDesc, Bsdf, ClearcoatDesc, DiffuseTransmissionDesc,
-    IridescenceDesc, Layers, Material, NormalMap, SheenDesc, SpecularDesc, SurfaceFrame,
-    TransmissionDesc,
+    Alpha, AlphaMode, AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc,
+    Layers, Material, NormalMap, SheenDesc, SpecularDesc, SurfaceFrame, TransmissionDesc,
 };
 pub use crate::textures::{
     Encoding, RgbTexture, SceneSpectrum, SpectralTexture, TEX_COORD_SETS, TexCoords, UvTransform,

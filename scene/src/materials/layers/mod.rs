@@ -22,9 +22,8 @@ pub use transmission::TransmissionDesc;
 use glam::{Vec3, Vec4};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::Bsdf;
 use crate::bsdf::{
-    Ggx, Glass, Layered, MetallicRoughness, RoughDielectric, ThinDielectric, Transmissive,
+    Bsdf, Ggx, Glass, Layered, MetallicRoughness, RoughDielectric, ThinDielectric, Transmissive,
     TransportMode,
 };
 use crate::geometry::Frame;
