@@ -256,13 +256,14 @@ pub struct Aim {
 impl Lights {
     /// The lights, chosen in proportion to `power` (which must match `lights`), or to
     /// `extent` times their spectra at a path's wavelengths (see `light_choice`).
-    pub(crate) fn new(
+    /// `uvs_of_set` gives the texture coordinates at the triangles' vertices in a set.
+    pub(crate) fn new<'a>(
         lights: Vec<Light>,
         power: &[f64],
         extent: &[f64],
         emission: &[SceneSpectrum],
         triangles: &[[Vec3; 3]],
-        attributes: &crate::world::VertexAttributes,
+        uvs_of_set: impl Fn(usize) -> &'a [[Vec2; 3]],
     ) -> Self {
         let mut of_triangle = vec![u32::MAX; triangles.len()];
         let shapes = lights
@@ -275,7 +276,7 @@ impl Lights {
                 } => {
                     let t = *triangle as usize;
                     let set = emission[*e as usize].tex_coord_set().unwrap_or(0);
-                    let uvs = attributes.uvs_of_set(set).get(t).copied();
+                    let uvs = uvs_of_set(set).get(t).copied();
                     TriangleShape::new(triangles[t], uvs.unwrap_or_default())
                 }
                 _ => TriangleShape::default(),
@@ -725,9 +726,10 @@ pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius:
 /// the mean is kept for every triangle, so that a triangle whose light the estimate misses
 /// is still chosen sometimes (light choice must never rule out a triangle that emits).
 /// Chosen by this, the dark parts of a sign or a screen take few light samples.
-pub(crate) fn texture_coverage(
+/// `uvs_of_set` gives the texture coordinates at the triangles' vertices in a set.
+pub(crate) fn texture_coverage<'a>(
     light: &Light,
-    attributes: &crate::world::VertexAttributes,
+    uvs_of_set: impl Fn(usize) -> &'a [[Vec2; 3]],
     emission: &[SceneSpectrum],
 ) -> f64 {
     let Light::Triangle {
@@ -741,7 +743,7 @@ pub(crate) fn texture_coverage(
     let SceneSpectrum::Texture(texture) = &emission[*e as usize] else {
         return 1.0;
     };
-    let Some(uv) = attributes.uvs_of_set(texture.set()).get(*triangle as usize) else {
+    let Some(uv) = uvs_of_set(texture.set()).get(*triangle as usize) else {
         return 1.0;
     };
     let whole = texture.luminance(None);

@@ -1002,7 +1002,7 @@ fn light_extent_of(
     radius: f32,
 ) -> f64 {
     crate::lights::light_extent(light, triangles, radius)
-        * crate::lights::texture_coverage(light, attributes, emission)
+        * crate::lights::texture_coverage(light, |set| attributes.uvs_of_set(set), emission)
 }
 
 /// The lights, chosen by their power over the visible range widened to every range in
@@ -1030,7 +1030,9 @@ fn choose_lights(
             x * crate::lights::light_spectrum(l, emission).mean_over(power_range.0, power_range.1)
         })
         .collect();
-    Lights::new(lights, &power, &extent, emission, triangles, attributes)
+    Lights::new(lights, &power, &extent, emission, triangles, |set| {
+        attributes.uvs_of_set(set)
+    })
 }
 
 /// The sphere around the bounding box of `triangles`' finite vertices (its radius at least
