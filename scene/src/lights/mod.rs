@@ -10,7 +10,9 @@ mod light;
 mod light_choice;
 
 pub use emission_cache::EmissionCache;
-pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
+pub use environment::{
+    DEFAULT_ENVIRONMENT, Environment, EnvironmentMap, grey_environment, unit_d65,
+};
 pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
 pub(crate) use light::{light_extent, light_spectrum, solid_angle_sampled, texture_coverage};
 pub use light_choice::MAX_GROUPS;

@@ -5,49 +5,12 @@ use std::sync::Arc;
 use prism_spectrum::optics::Cauchy;
 
 use crate::bsdf::CoatingAlbedo;
-use crate::geometry::BvhQuality;
+use crate::lights::DEFAULT_ENVIRONMENT;
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
 use crate::world::{
-    Alpha, AlphaMode, Environment, Layers, Light, Material, Scene, SceneParts, SceneSpectrum,
+    Alpha, AlphaMode, Layers, Light, Material, Scene, SceneOptions, SceneParts, SceneSpectrum,
     TransmissionDesc,
 };
-
-/// Choices made when turning a loaded file into a scene: start from the default and set
-/// what you need (`#[non_exhaustive]`: options can be added without breaking callers).
-#[derive(Debug, Clone, Default)]
-#[non_exhaustive]
-pub struct SceneOptions {
-    /// The camera by name (default: the first, else one framing the scene).
-    pub camera: Option<String>,
-    /// An environment replacing the file's own (`PRISM_spectral` on the root), if any.
-    pub environment: Option<Environment>,
-    /// BVH build effort.
-    pub quality: BvhQuality,
-}
-
-impl SceneOptions {
-    /// With [`SceneOptions::camera`] set.
-    pub fn camera(mut self, camera: Option<String>) -> Self {
-        self.camera = camera;
-        self
-    }
-
-    /// With [`SceneOptions::environment`] set.
-    pub fn environment(mut self, environment: Option<Environment>) -> Self {
-        self.environment = environment;
-        self
-    }
-
-    /// With [`SceneOptions::quality`] set.
-    pub fn quality(mut self, quality: BvhQuality) -> Self {
-        self.quality = quality;
-        self
-    }
-}
-
-/// The emissive-colour value of the environment that lights a scene without lights: a
-/// white Lambertian surface under it renders as RGB 1.
-pub const DEFAULT_ENVIRONMENT: f64 = 1.0;
 
 /// The material a glTF description becomes.
 ///

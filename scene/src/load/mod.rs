@@ -25,7 +25,6 @@ pub use crate::error::{LoadError, Resolver};
 pub(crate) use base64::uri_bytes;
 pub use environment::{EnvironmentImage, HdrImage, decode_hdr_image, environment_map};
 pub use geometry::{LoadOptions, LoadedGeometry, MeshInstance, load_geometry, load_scene};
-pub use gltf_scene::{DEFAULT_ENVIRONMENT, SceneOptions};
 pub use images::{DecodedImage, decode_image};
 pub use lights::LightDesc;
 pub(crate) use materials::Upsampler;

@@ -6,15 +6,15 @@
 mod builder;
 mod departure;
 mod guide;
+#[cfg(feature = "gltf")]
+mod options;
 mod time;
 
 pub use crate::bsdf::Bsdf;
 pub use crate::lights::{
-    Aim, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light, LightSample, Lights,
-    MAX_GROUPS, grey_environment, unit_d65,
+    Aim, DEFAULT_ENVIRONMENT, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light,
+    LightSample, Lights, MAX_GROUPS, grey_environment, unit_d65,
 };
-#[cfg(feature = "gltf")]
-pub use crate::load::{DEFAULT_ENVIRONMENT, SceneOptions};
 #[cfg(feature = "gltf")]
 pub(crate) use crate::materials::triangle_tangent;
 pub use crate::materials::{
@@ -27,6 +27,8 @@ pub use crate::textures::{
 };
 pub use builder::SceneBuilder;
 pub use departure::Departure;
+#[cfg(feature = "gltf")]
+pub use options::SceneOptions;
 pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;

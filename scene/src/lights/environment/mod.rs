@@ -31,6 +31,10 @@ pub fn grey_environment(value: f64) -> SceneSpectrum {
     SceneSpectrum::Scaled(Arc::new(SceneSpectrum::Dense(unit_d65())), value)
 }
 
+/// The emissive-colour value of the environment that lights a scene without lights: a
+/// white Lambertian surface under it renders as RGB 1.
+pub const DEFAULT_ENVIRONMENT: f64 = 1.0;
+
 /// What lights a scene from infinity.
 #[derive(Debug, Clone)]
 #[non_exhaustive]
