@@ -368,7 +368,8 @@ mod tests {
         DEFENSIVE, MAX_GROUPS, SPECTRAL_VARIATION, SpectralChoice, TABLE_LEN, TABLE_MIN,
         lane_sum_variation, proxy_table,
     };
-    use crate::world::{EmissionCache, Light, SceneSpectrum};
+    use crate::lights::{EmissionCache, Light};
+    use crate::textures::SceneSpectrum;
 
     fn band(centre: f64, fwhm: f64) -> SceneSpectrum {
         SceneSpectrum::Gaussian(Gaussian::new(centre, fwhm, 1.0).unwrap())

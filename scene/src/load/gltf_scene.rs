@@ -5,12 +5,11 @@ use std::sync::Arc;
 use prism_spectrum::optics::Cauchy;
 
 use crate::bsdf::CoatingAlbedo;
-use crate::lights::DEFAULT_ENVIRONMENT;
+use crate::lights::{DEFAULT_ENVIRONMENT, Light};
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
-use crate::world::{
-    Alpha, AlphaMode, Layers, Light, Material, Scene, SceneOptions, SceneParts, SceneSpectrum,
-    TransmissionDesc,
-};
+use crate::materials::{Alpha, AlphaMode, Layers, Material, TransmissionDesc};
+use crate::textures::SceneSpectrum;
+use crate::world::{Scene, SceneOptions, SceneParts};
 
 /// The material a glTF description becomes.
 ///
@@ -160,7 +159,7 @@ impl Scene {
         let lit_by_default = lit_by_default(&loaded, &lights, &triangle_material);
         if lit_by_default {
             lights.push(Light::Environment {
-                radiance: crate::world::grey_environment(DEFAULT_ENVIRONMENT),
+                radiance: crate::lights::grey_environment(DEFAULT_ENVIRONMENT),
             });
         }
         let normal_maps = normal_maps(&loaded, materials.len());
@@ -364,7 +363,7 @@ fn lit_by_default(loaded: &LoadedGeometry, lights: &[Light], triangle_material: 
 fn normal_maps(
     loaded: &LoadedGeometry,
     materials: usize,
-) -> Vec<Option<Arc<crate::world::NormalMap>>> {
+) -> Vec<Option<Arc<crate::materials::NormalMap>>> {
     // Normal maps per material, the default material's none; no list when no
     // material has one (hits then never look).
     if loaded.materials.iter().any(|m| m.normal_texture.is_some()) {

@@ -88,7 +88,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::world::{Encoding, UvTransform, Wrap};
+    use crate::textures::{Encoding, UvTransform, Wrap};
 
     fn map(texel: [u8; 3], scale: f32) -> NormalMap {
         let texture = RgbTexture::new(

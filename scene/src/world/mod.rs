@@ -15,8 +15,6 @@ pub use crate::lights::{
     Aim, DEFAULT_ENVIRONMENT, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light,
     LightSample, Lights, MAX_GROUPS, grey_environment, unit_d65,
 };
-#[cfg(feature = "gltf")]
-pub(crate) use crate::materials::triangle_tangent;
 pub use crate::materials::{
     Alpha, AlphaMode, AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc,
     Layers, Material, NormalMap, SheenDesc, SpecularDesc, SurfaceFrame, TransmissionDesc,
