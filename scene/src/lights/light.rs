@@ -106,7 +106,7 @@ pub struct LightSample<const N: usize> {
     pub pdf: f32,
     /// Whether the light is a delta in direction (BSDF sampling can never hit it).
     pub delta: bool,
-    /// Which of the scene's lights it is ([`super::Scene::light_polarization`]).
+    /// Which of the scene's lights it is (`world::Scene::light_polarization`).
     pub light: u32,
 }
 
@@ -119,7 +119,7 @@ pub struct EmissionSample<const N: usize> {
     /// the density of the ray (position and direction) and of choosing the light: the
     /// light path's initial throughput.
     pub beta: SampledSpectrum<N>,
-    /// Which of the scene's lights it left ([`super::Scene::light_polarization`]).
+    /// Which of the scene's lights it left (`world::Scene::light_polarization`).
     pub light: u32,
 }
 
@@ -245,7 +245,7 @@ pub struct Lights {
 
 /// Where light paths aim: light from infinity leaves a disk over `sphere` (centre,
 /// radius) only, and light paths choose lights by the power that reaches it (see
-/// [`Scene::aim`](super::Scene::aim)).
+/// `world::Scene::aim`).
 #[derive(Debug, Clone)]
 pub struct Aim {
     pub(crate) sphere: (Vec3, f32),

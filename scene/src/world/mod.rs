@@ -2,6 +2,12 @@
 //! distribution that chooses among them, a camera, and the features the scene uses. This
 //! is what the integrator sees: spectra to sample at its wavelengths and BSDFs to
 //! evaluate, never RGB.
+//!
+//! What the scene is made of has folders of its own below this one: textures and spectra
+//! ([`crate::textures`]), materials ([`crate::materials`]), lights ([`crate::lights`]) and
+//! the BSDF at a hit ([`crate::bsdf::Bsdf`]); their types are re-exported here, so that
+//! `world::{Material, Light, SceneSpectrum, ...}` name them too. A scene from a loaded
+//! glTF file is made in `load` (`Scene::from_loaded`).
 
 mod builder;
 mod departure;
