@@ -10,6 +10,7 @@ mod coating_albedo;
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod dispatch;
 mod fluorescent;
 mod layered;
 mod metallic_roughness;
@@ -29,6 +30,7 @@ pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor, fresnel_conductor_lanes};
 pub use dielectric::{SmoothDielectric, TransportMode, fresnel_dielectric, refract};
 pub use diffuse::{Diffuse, lambertian_pdf, lambertian_sample};
+pub use dispatch::Bsdf;
 pub use fluorescent::{
     FluorescentDiffuse, FluorescentSample, fluorescence_matrix, reradiation_matrix,
 };

@@ -7,7 +7,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Arc;
 
 use super::{LoadError, Upsampler, Upsampling};
-use crate::world::EnvironmentMap;
+use crate::lights::EnvironmentMap;
 
 /// A decoded HDR image: linear RGB, rows from the top.
 #[derive(Debug, Clone, PartialEq)]

@@ -24,7 +24,7 @@ pub(crate) const READ: &[&str] = &[
     "KHR_texture_transform",
     "EXT_texture_webp",
     "EXT_meshopt_compression",
-    crate::spectral::EXTENSION,
+    super::prism_spectral::EXTENSION,
 ];
 
 /// What a used but unread extension loses, where there is more to say than its name.

@@ -6,8 +6,8 @@ use super::lights::{LightDesc, punctual};
 use super::materials::{MaterialDesc, Upsampler, material};
 use crate::camera::{Camera, Projection};
 
+use super::prism_spectral::{self, Overlay, SpectralScene};
 use super::{LoadError, base64};
-use crate::spectral::{self, Overlay, SpectralScene};
 
 /// The triangles of one mesh primitive placed by one node.
 #[derive(Debug, Clone, PartialEq)]
@@ -37,7 +37,7 @@ pub struct LoadedGeometry {
     /// `TEXCOORD_0` in most files.
     pub uvs: Vec<[Vec2; 3]>,
     /// The second set, where a material's textures read two (a texture reads the set it
-    /// names: see [`crate::world::TexCoords`]); otherwise the first set's, and empty when
+    /// names: see [`crate::textures::TexCoords`]); otherwise the first set's, and empty when
     /// no material reads two.
     pub uvs1: Vec<[Vec2; 3]>,
     /// `COLOR_0` (linear RGBA, factors of the base colour and its alpha) at each triangle's
@@ -223,13 +223,13 @@ pub fn load_scene(
     };
     // Fitting needs a context; scenes without colours never build one.
     let has_lights = gltf.lights().is_some_and(|mut l| l.next().is_some());
-    let root_spectral = gltf.extension_value(spectral::EXTENSION);
+    let root_spectral = gltf.extension_value(prism_spectral::EXTENSION);
     let upsampler = (gltf.materials().len() > 0 || has_lights || root_spectral.is_some())
         .then(|| Upsampler::new(options.upsampling, options.table.clone()))
         .transpose()?;
     let light_spectral = punctual_spectral(&gltf);
     if let Some(upsampler) = &upsampler {
-        let cx = spectral::Context { resolve, upsampler };
+        let cx = prism_spectral::Context { resolve, upsampler };
         let textures = super::textures::TextureLoader::new(&gltf, &buffers, resolve, upsampler);
         out.materials = gltf
             .materials()
@@ -237,7 +237,7 @@ pub fn load_scene(
             .collect::<Result<_, _>>()?;
         warn_unrendered_layers(&out.materials, &mut out.warnings);
         if let Some(v) = root_spectral {
-            out.spectral = spectral::scene(v, &cx).map_err(LoadError::Spectral)?;
+            out.spectral = prism_spectral::scene(v, &cx).map_err(LoadError::Spectral)?;
         }
     }
     let mut punctual_lights = Vec::new();
@@ -262,8 +262,8 @@ pub fn load_scene(
                 .get(light.index())
                 .and_then(Option::as_ref)
                 .map(|v| {
-                    let cx = spectral::Context { resolve, upsampler };
-                    spectral::light(v, &cx).map_err(|e| {
+                    let cx = prism_spectral::Context { resolve, upsampler };
+                    prism_spectral::light(v, &cx).map_err(|e| {
                         LoadError::Spectral(format!(
                             "light {}: {e}",
                             light.name().unwrap_or("(unnamed)")
@@ -416,7 +416,7 @@ fn punctual_spectral(gltf: &gltf::Gltf) -> Vec<Option<serde_json::Value>> {
                     let raw = light.extensions.as_ref()?;
                     let mut map: serde_json::Map<String, serde_json::Value> =
                         serde_json::from_str(raw.get()).ok()?;
-                    map.remove(spectral::EXTENSION)
+                    map.remove(prism_spectral::EXTENSION)
                 })
                 .collect()
         })
@@ -593,19 +593,16 @@ fn make_camera(
             )
         }
     };
-    let optics = match camera.extension_value(crate::spectral::EXTENSION) {
-        None => crate::spectral::Optics::Pinhole,
-        Some(description) => crate::spectral::optics(description, resolve).map_err(|e| {
-            LoadError::Geometry(format!(
-                "camera {name}: {}: {e}",
-                crate::spectral::EXTENSION
-            ))
+    let optics = match camera.extension_value(prism_spectral::EXTENSION) {
+        None => prism_spectral::Optics::Pinhole,
+        Some(description) => prism_spectral::optics(description, resolve).map_err(|e| {
+            LoadError::Geometry(format!("camera {name}: {}: {e}", prism_spectral::EXTENSION))
         })?,
     };
     let (lens, system) = match optics {
-        crate::spectral::Optics::Pinhole => (None, None),
-        crate::spectral::Optics::Thin(lens) => (Some(lens), None),
-        crate::spectral::Optics::System(system) => (None, Some(system)),
+        prism_spectral::Optics::Pinhole => (None, None),
+        prism_spectral::Optics::Thin(lens) => (Some(lens), None),
+        prism_spectral::Optics::System(system) => (None, Some(system)),
     };
     if (lens.is_some() || system.is_some()) && matches!(projection, Projection::Orthographic { .. })
     {

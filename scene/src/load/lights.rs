@@ -7,8 +7,8 @@ use glam::{Mat4, Vec3};
 use prism_spectrum::optics::radiant_scale_for_luminance;
 use std::sync::Arc;
 
-use crate::spectral::SpectralLight;
-use crate::world::SceneSpectrum;
+use super::prism_spectral::SpectralLight;
+use crate::textures::SceneSpectrum;
 
 use super::LoadError;
 

@@ -10,10 +10,11 @@ use prism_upsample::RgbKind;
 use super::Upsampler;
 use super::tex_coord_sets::TexCoordSets;
 use super::textures::TextureLoader;
-use crate::world::{
-    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, Layers, NormalMap, SceneSpectrum,
-    SheenDesc, SpecularDesc,
+use crate::materials::{
+    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, Layers, NormalMap, SheenDesc,
+    SpecularDesc,
 };
+use crate::textures::SceneSpectrum;
 
 /// One extension's JSON object and what reading it needs.
 struct Extension<'a> {
@@ -63,7 +64,7 @@ impl Extension<'_> {
         &self,
         key: &str,
         factor: [f32; 3],
-    ) -> Result<Option<Arc<crate::world::RgbTexture>>, String> {
+    ) -> Result<Option<Arc<crate::textures::RgbTexture>>, String> {
         self.json
             .get(key)
             .map(|r| {
@@ -81,7 +82,7 @@ impl Extension<'_> {
         &self,
         key: &str,
         factor: f32,
-    ) -> Result<Option<Arc<crate::world::RgbTexture>>, String> {
+    ) -> Result<Option<Arc<crate::textures::RgbTexture>>, String> {
         Ok(self
             .json
             .get(key)

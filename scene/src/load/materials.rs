@@ -8,10 +8,9 @@ use prism_spectrum::spectra::DenselySampled;
 use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum, normalized_illuminant};
 
 use super::LoadError;
-use crate::spectral::{self, SpectralMaterial};
-use crate::world::{
-    Alpha, AlphaMode, IridescenceDesc, Layers, NormalMap, RgbTexture, SceneSpectrum,
-};
+use super::prism_spectral::{self, SpectralMaterial};
+use crate::materials::{Alpha, AlphaMode, IridescenceDesc, Layers, NormalMap};
+use crate::textures::{RgbTexture, SceneSpectrum};
 
 use super::tex_coord_sets::TexCoordSets;
 use super::textures::TextureLoader;
@@ -51,7 +50,7 @@ pub struct MaterialDesc {
     /// `base_color` where present).
     pub base_color_texture: Option<SceneSpectrum>,
     /// The metallic-roughness texture with the two factors folded in (see
-    /// [`crate::world::Material::MetallicRoughness`]); it replaces `metallic` and
+    /// [`crate::materials::Material::MetallicRoughness`]); it replaces `metallic` and
     /// `roughness` where present, except for transmissive materials (glass keeps the
     /// roughness factor).
     pub metallic_roughness_texture: Option<Arc<RgbTexture>>,
@@ -339,7 +338,7 @@ fn finite(name: &str, what: &str, values: &[f32]) -> Result<(), LoadError> {
 /// The spectral description of `material`.
 pub(crate) fn material(
     material: &gltf::Material,
-    cx: &spectral::Context,
+    cx: &prism_spectral::Context,
     textures: &TextureLoader,
 ) -> Result<MaterialDesc, LoadError> {
     let upsampler = cx.upsampler;
@@ -396,8 +395,8 @@ pub(crate) fn material(
     let unit = |v: f32| v.clamp(0.0, 1.0);
     let dispersion = dispersion(material, &name)?;
     let spectral = material
-        .extension_value(spectral::EXTENSION)
-        .map(|v| spectral::material(v, cx))
+        .extension_value(prism_spectral::EXTENSION)
+        .map(|v| prism_spectral::material(v, cx))
         .transpose()
         .map_err(|e| LoadError::Spectral(format!("material {name}: {e}")))?;
     // With KHR_materials_volume_scatter the volume's attenuation is a scattering medium's
@@ -523,11 +522,13 @@ fn spectral_layers(
         sheen.color = color.clone();
     }
     if let Some(color) = &spectral.specular_color {
-        let specular = layers.specular.get_or_insert(crate::world::SpecularDesc {
-            factor: 1.0,
-            texture: None,
-            color: SceneSpectrum::Constant(1.0),
-        });
+        let specular = layers
+            .specular
+            .get_or_insert(crate::materials::SpecularDesc {
+                factor: 1.0,
+                texture: None,
+                color: SceneSpectrum::Constant(1.0),
+            });
         specular.color = color.clone();
     }
     if let Some(ior) = &spectral.film_ior {

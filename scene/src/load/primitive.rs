@@ -10,7 +10,7 @@ use super::geometry::{LoadedGeometry, MeshInstance, node_name, note, warn_once};
 use super::tex_coord_sets::TexCoordSets;
 use super::{LoadError, accessor};
 use crate::geometry::triangle_normal;
-use crate::world::triangle_tangent;
+use crate::materials::triangle_tangent;
 
 /// A primitive's vertex attributes as read: morphed to the default weights, every list as
 /// long as `positions` and every index within it.

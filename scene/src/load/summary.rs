@@ -2,7 +2,8 @@
 //! the integrator specializes on.
 
 use super::{LightDesc, LoadedGeometry};
-use crate::world::{Material, SceneSpectrum};
+use crate::materials::Material;
+use crate::textures::SceneSpectrum;
 
 /// A summary of a loaded scene.
 #[derive(Debug, Clone, PartialEq)]

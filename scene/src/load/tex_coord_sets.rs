@@ -3,7 +3,7 @@
 //! keeps each: the scene holds [`TEX_COORD_SETS`] sets per triangle, the base colour's set
 //! first.
 
-use crate::world::TEX_COORD_SETS;
+use crate::textures::TEX_COORD_SETS;
 
 /// The distinct texture coordinate sets a material's textures read, in the order the
 /// scene keeps them.

@@ -11,9 +11,8 @@ use gltf::texture::WrappingMode;
 
 use super::base64;
 use super::tex_coord_sets::{TexCoordSets, info_set, normal_set, normal_transform};
-use crate::world::{
-    Encoding, NormalMap, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap,
-};
+use crate::materials::NormalMap;
+use crate::textures::{Encoding, RgbTexture, SceneSpectrum, SpectralTexture, UvTransform, Wrap};
 
 /// A decoded image shared by the textures that use it: width, height, texels, and its
 /// alpha channel (repeated in three channels, so that it is an [`RgbTexture`] too).

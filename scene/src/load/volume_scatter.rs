@@ -20,7 +20,7 @@ use serde_json::Value;
 
 use super::materials::Upsampler;
 use crate::medium::{MAX_ABS_G, Medium, Phase};
-use crate::world::SceneSpectrum;
+use crate::textures::SceneSpectrum;
 
 /// The single-scatter albedo for multi-scatter albedo `ms` (the draft's formula).
 pub(crate) fn single_scatter_albedo(ms: f64) -> f64 {

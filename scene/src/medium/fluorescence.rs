@@ -16,7 +16,7 @@ use prism_sampling::distribution::PiecewiseConstant1D;
 use prism_sampling::wavelength::{ReradiationSampler, WavelengthRange};
 use prism_spectrum::Spectrum;
 
-use crate::world::SceneSpectrum;
+use crate::textures::SceneSpectrum;
 
 /// The dye of a fluorescent medium.
 #[derive(Debug, Clone)]

@@ -34,7 +34,7 @@ use std::sync::Arc;
 use prism_spectrum::spectra::planck_radiance;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 
-use crate::world::SceneSpectrum;
+use crate::textures::SceneSpectrum;
 
 /// A participating medium: homogeneous, or its coefficients scaled by a density grid.
 #[derive(Debug, Clone)]

@@ -29,11 +29,11 @@ use num_complex::Complex64;
 use prism_spectrum::SampledSpectrum;
 
 use super::{FresnelAmplitudes, Interaction, Mueller, fresnel_amplitudes, s_axis};
+use crate::bsdf::Bsdf;
 use crate::bsdf::{
     CLEARCOAT_IOR, Glass, Layered, MetallicRoughness, Plastic, RoughConductor, RoughDielectric,
     Sheet, SheetElement, conductor_index_from_reflectance,
 };
-use crate::world::Bsdf;
 
 /// Per lane, the interaction of light arriving from `wi` and leaving towards `wo` (local
 /// frame, z the shading normal) at `bsdf`, each matrix scaled so that `[0][0]` is the

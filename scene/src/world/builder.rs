@@ -4,9 +4,12 @@
 
 use glam::Vec3;
 
-use super::{Light, Material, Scene, SceneParts, SceneSpectrum, VertexAttributes};
+use super::{Scene, SceneParts, VertexAttributes};
 use crate::camera::Camera;
 use crate::geometry::BvhQuality;
+use crate::lights::Light;
+use crate::materials::Material;
+use crate::textures::SceneSpectrum;
 
 /// Builds a [`Scene`] from triangles, materials and lights.
 ///

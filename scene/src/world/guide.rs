@@ -3,8 +3,9 @@
 use prism_sampling::distribution::PiecewiseConstant1D;
 use prism_spectrum::Spectrum;
 
-use super::light::light_spectrum;
-use super::{Light, Material, SceneSpectrum};
+use crate::lights::{Light, light_spectrum};
+use crate::materials::Material;
+use crate::textures::SceneSpectrum;
 
 /// Per material, for the fluorescent ones: the density, at 1 nm over the material's
 /// range, of the product of what the material re-radiates from each incident wavelength

@@ -2,46 +2,37 @@
 //! distribution that chooses among them, a camera, and the features the scene uses. This
 //! is what the integrator sees: spectra to sample at its wavelengths and BSDFs to
 //! evaluate, never RGB.
+//!
+//! What the scene is made of has folders of its own below this one: textures and spectra
+//! ([`crate::textures`]), materials ([`crate::materials`]), lights ([`crate::lights`]) and
+//! the BSDF at a hit ([`crate::bsdf::Bsdf`]); their types are re-exported here, so that
+//! `world::{Material, Light, SceneSpectrum, ...}` name them too. A scene from a loaded
+//! glTF file is made in `load` (`Scene::from_loaded`).
 
-mod alpha;
 mod builder;
 mod departure;
-mod emission_cache;
-mod environment;
-#[cfg(feature = "gltf")]
-mod from_gltf;
 mod guide;
-mod layers;
-mod light;
-mod light_choice;
-mod material;
-mod mipmap;
-mod normal_map;
-mod spectrum;
-mod tex_coords;
-mod texture;
+#[cfg(feature = "gltf")]
+mod options;
 mod time;
 
-pub use alpha::{Alpha, AlphaMode};
+pub use crate::bsdf::Bsdf;
+pub use crate::lights::{
+    Aim, DEFAULT_ENVIRONMENT, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light,
+    LightSample, Lights, MAX_GROUPS, grey_environment, unit_d65,
+};
+pub use crate::materials::{
+    Alpha, AlphaMode, AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc,
+    Layers, Material, NormalMap, SheenDesc, SpecularDesc, SurfaceFrame, TransmissionDesc,
+};
+pub use crate::textures::{
+    Encoding, RgbTexture, SceneSpectrum, SpectralTexture, TEX_COORD_SETS, TexCoords, UvTransform,
+    Wrap,
+};
 pub use builder::SceneBuilder;
 pub use departure::Departure;
-pub use emission_cache::EmissionCache;
-pub use environment::{Environment, EnvironmentMap, grey_environment, unit_d65};
 #[cfg(feature = "gltf")]
-pub use from_gltf::{DEFAULT_ENVIRONMENT, SceneOptions};
-pub use layers::{
-    AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc, Layers, SheenDesc,
-    SpecularDesc, SurfaceFrame, TransmissionDesc,
-};
-pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
-pub use light_choice::MAX_GROUPS;
-pub use material::{Bsdf, Material};
-pub use normal_map::NormalMap;
-#[cfg(feature = "gltf")]
-pub(crate) use normal_map::triangle_tangent;
-pub use spectrum::SceneSpectrum;
-pub use tex_coords::{TEX_COORD_SETS, TexCoords};
-pub use texture::{Encoding, RgbTexture, SpectralTexture, UvTransform, Wrap};
+pub use options::SceneOptions;
 pub use time::{Schedule, Timeline};
 
 use std::sync::Arc;
@@ -201,7 +192,7 @@ pub struct Scene {
     /// Per material: where its re-radiated light comes from (fluorescent materials only).
     light_wavelengths: Vec<Option<prism_sampling::distribution::PiecewiseConstant1D>>,
     /// Whether the scene is lit by the default environment (see `lit_by_default()`).
-    lit_by_default: bool,
+    pub(crate) lit_by_default: bool,
     /// Whether a material has a base colour or metallic-roughness texture.
     filters_textures: bool,
     /// Whether any material reads the surface's tangent frame (anisotropy, a coat's
@@ -595,7 +586,11 @@ impl Scene {
             let material = self.triangle_material[hit.triangle as usize] as usize;
             let passes = match self.attributes.alpha.get(material) {
                 Some(Some(alpha)) => {
-                    let u = alpha::blend_number(current.origin, current.direction, hit.triangle);
+                    let u = crate::materials::blend_number(
+                        current.origin,
+                        current.direction,
+                        hit.triangle,
+                    );
                     !alpha.opaque(&hit.tex, hit.color.w, u)
                 }
                 _ => false,
@@ -725,7 +720,7 @@ impl Scene {
         mode: crate::bsdf::TransportMode,
     ) -> Bsdf<'_, N> {
         let tint = self.tint_table(hit).map(|table| {
-            texture::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths)
+            crate::textures::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths)
         });
         let material = self.material(hit);
         if self.oriented_materials && material.oriented() {
@@ -884,7 +879,7 @@ impl Scene {
         };
         let pmf = self.lights.pmf_at(l, wavelengths, cache);
         let shape = self.lights.shape(l);
-        let pdf = match light::solid_angle_sampled(from, shape) {
+        let pdf = match crate::lights::solid_angle_sampled(from, shape) {
             Some(omega) => pmf / omega,
             None => {
                 let to = hit.p - from;
@@ -1012,8 +1007,8 @@ fn light_extent_of(
     emission: &[SceneSpectrum],
     radius: f32,
 ) -> f64 {
-    light::light_extent(light, triangles, radius)
-        * light::texture_coverage(light, attributes, emission)
+    crate::lights::light_extent(light, triangles, radius)
+        * crate::lights::texture_coverage(light, |set| attributes.uvs_of_set(set), emission)
 }
 
 /// The lights, chosen by their power over the visible range widened to every range in
@@ -1038,10 +1033,12 @@ fn choose_lights(
         .iter()
         .zip(&extent)
         .map(|(l, x)| {
-            x * light::light_spectrum(l, emission).mean_over(power_range.0, power_range.1)
+            x * crate::lights::light_spectrum(l, emission).mean_over(power_range.0, power_range.1)
         })
         .collect();
-    Lights::new(lights, &power, &extent, emission, triangles, attributes)
+    Lights::new(lights, &power, &extent, emission, triangles, |set| {
+        attributes.uvs_of_set(set)
+    })
 }
 
 /// The sphere around the bounding box of `triangles`' finite vertices (its radius at least

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use crate::world::{RgbTexture, TexCoords};
+use crate::textures::{RgbTexture, TexCoords};
 
 use super::SurfaceFrame;
 

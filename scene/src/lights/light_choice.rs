@@ -46,8 +46,9 @@ use prism_sampling::distribution::AliasTable;
 use prism_sampling::wavelength::WavelengthRange;
 use prism_spectrum::{SampledWavelengths, Spectrum};
 
+use super::EmissionCache;
 use super::light::{Light, light_spectrum, unit_f32};
-use super::{EmissionCache, SceneSpectrum};
+use crate::textures::SceneSpectrum;
 
 /// The most groups (distinct light spectra) chosen among by wavelength.
 pub const MAX_GROUPS: usize = 8;
@@ -367,7 +368,8 @@ mod tests {
         DEFENSIVE, MAX_GROUPS, SPECTRAL_VARIATION, SpectralChoice, TABLE_LEN, TABLE_MIN,
         lane_sum_variation, proxy_table,
     };
-    use crate::world::{EmissionCache, Light, SceneSpectrum};
+    use crate::lights::{EmissionCache, Light};
+    use crate::textures::SceneSpectrum;
 
     fn band(centre: f64, fwhm: f64) -> SceneSpectrum {
         SceneSpectrum::Gaussian(Gaussian::new(centre, fwhm, 1.0).unwrap())

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use prism_spectrum::SampledWavelengths;
 
 use crate::bsdf::Specular;
-use crate::world::{RgbTexture, SceneSpectrum, TexCoords};
+use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// The strength and colour of the dielectric base's reflection.
 #[derive(Debug, Clone)]

@@ -77,7 +77,7 @@ pub(crate) fn optics(value: &Value, resolve: &crate::load::Resolver) -> Result<O
 /// as transmission, times its alpha where it has one.
 fn aperture_image(bytes: &[u8]) -> Result<ApertureImage, String> {
     let image = crate::load::images::decode(bytes)?;
-    let table = crate::world::Encoding::Srgb.table();
+    let table = crate::textures::Encoding::Srgb.table();
     let transmission: Vec<f32> = image
         .rgb
         .iter()

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
-use super::{RgbTexture, TexCoords};
+use crate::textures::{RgbTexture, TexCoords};
 
 /// How alpha decides whether a ray meets the surface.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use prism_spectrum::SampledWavelengths;
 
 use crate::bsdf::DiffuseTransmission;
-use crate::world::{RgbTexture, SceneSpectrum, TexCoords};
+use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// The share of the diffuse base transmitted, and its colour.
 #[derive(Debug, Clone)]
@@ -19,7 +19,7 @@ pub struct DiffuseTransmissionDesc {
     /// spectrum.
     pub color: SceneSpectrum,
     /// The volume's absorption coefficient with `KHR_materials_volume`, as
-    /// [`crate::world::Material::Dielectric`]'s.
+    /// [`crate::materials::Material::Dielectric`]'s.
     pub absorption: Option<SceneSpectrum>,
 }
 

@@ -4,50 +4,12 @@ use std::sync::Arc;
 
 use prism_spectrum::optics::Cauchy;
 
-use super::{
-    Alpha, AlphaMode, Environment, Layers, Light, Material, Scene, SceneParts, SceneSpectrum,
-    TransmissionDesc,
-};
 use crate::bsdf::CoatingAlbedo;
-use crate::geometry::BvhQuality;
+use crate::lights::{DEFAULT_ENVIRONMENT, Light};
 use crate::load::{LightDesc, LoadError, LoadedGeometry, MaterialDesc};
-
-/// Choices made when turning a loaded file into a scene: start from the default and set
-/// what you need (`#[non_exhaustive]`: options can be added without breaking callers).
-#[derive(Debug, Clone, Default)]
-#[non_exhaustive]
-pub struct SceneOptions {
-    /// The camera by name (default: the first, else one framing the scene).
-    pub camera: Option<String>,
-    /// An environment replacing the file's own (`PRISM_spectral` on the root), if any.
-    pub environment: Option<Environment>,
-    /// BVH build effort.
-    pub quality: BvhQuality,
-}
-
-impl SceneOptions {
-    /// With [`SceneOptions::camera`] set.
-    pub fn camera(mut self, camera: Option<String>) -> Self {
-        self.camera = camera;
-        self
-    }
-
-    /// With [`SceneOptions::environment`] set.
-    pub fn environment(mut self, environment: Option<Environment>) -> Self {
-        self.environment = environment;
-        self
-    }
-
-    /// With [`SceneOptions::quality`] set.
-    pub fn quality(mut self, quality: BvhQuality) -> Self {
-        self.quality = quality;
-        self
-    }
-}
-
-/// The emissive-colour value of the environment that lights a scene without lights: a
-/// white Lambertian surface under it renders as RGB 1.
-pub const DEFAULT_ENVIRONMENT: f64 = 1.0;
+use crate::materials::{Alpha, AlphaMode, Layers, Material, TransmissionDesc};
+use crate::textures::SceneSpectrum;
+use crate::world::{Scene, SceneOptions, SceneParts};
 
 /// The material a glTF description becomes.
 ///
@@ -197,7 +159,7 @@ impl Scene {
         let lit_by_default = lit_by_default(&loaded, &lights, &triangle_material);
         if lit_by_default {
             lights.push(Light::Environment {
-                radiance: super::grey_environment(DEFAULT_ENVIRONMENT),
+                radiance: crate::lights::grey_environment(DEFAULT_ENVIRONMENT),
             });
         }
         let normal_maps = normal_maps(&loaded, materials.len());
@@ -206,7 +168,7 @@ impl Scene {
         let media = media_of(&loaded, &materials)?;
         Scene::new(SceneParts {
             triangles: loaded.triangles,
-            attributes: super::VertexAttributes {
+            attributes: crate::world::VertexAttributes {
                 normals: loaded.normals,
                 uvs: loaded.uvs,
                 uvs1: loaded.uvs1,
@@ -228,7 +190,8 @@ impl Scene {
             for (index, polarization) in polarized {
                 scene.polarize_light(index, polarization)?;
             }
-            let timeline = super::Timeline::new(scene.lights().all().len(), schedules, decays);
+            let timeline =
+                crate::world::Timeline::new(scene.lights().all().len(), schedules, decays);
             if timeline.is_timed() {
                 scene.set_timeline(timeline)?;
             }
@@ -286,7 +249,7 @@ struct SceneLights {
     emission: Vec<SceneSpectrum>,
     lights: Vec<Light>,
     polarized: Vec<(usize, crate::polarization::LinearPolarization)>,
-    schedules: Vec<(usize, Arc<super::Schedule>)>,
+    schedules: Vec<(usize, Arc<crate::world::Schedule>)>,
 }
 
 impl SceneLights {
@@ -397,7 +360,10 @@ fn lit_by_default(loaded: &LoadedGeometry, lights: &[Light], triangle_material: 
 }
 
 /// The normal map of each of `materials` materials (the default material's none).
-fn normal_maps(loaded: &LoadedGeometry, materials: usize) -> Vec<Option<Arc<super::NormalMap>>> {
+fn normal_maps(
+    loaded: &LoadedGeometry,
+    materials: usize,
+) -> Vec<Option<Arc<crate::materials::NormalMap>>> {
     // Normal maps per material, the default material's none; no list when no
     // material has one (hits then never look).
     if loaded.materials.iter().any(|m| m.normal_texture.is_some()) {

@@ -1,8 +1,9 @@
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
+use super::EnvironmentMap;
 use super::light_choice::Weights;
-use super::{EnvironmentMap, SceneSpectrum, TexCoords};
 use crate::medium::{Medium, MediumPoint};
+use crate::textures::{SceneSpectrum, TexCoords};
 
 /// How many of a scene's emission spectra a cache holds (the first ones; the rest are
 /// evaluated every time). Scenes have a handful of emitting materials.

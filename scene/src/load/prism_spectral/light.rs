@@ -3,7 +3,8 @@
 use serde_json::Value;
 
 use super::value::{Context, Role, only_keys, schedule, spectrum};
-use crate::world::{Environment, SceneSpectrum};
+use crate::lights::Environment;
+use crate::textures::SceneSpectrum;
 
 /// A punctual light's spectrum.
 #[derive(Debug, Clone)]

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use prism_spectrum::SampledWavelengths;
 
 use crate::bsdf::{Iridescence, ThinFilm};
-use crate::world::{RgbTexture, SceneSpectrum, TexCoords};
+use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// A material's thin film.
 #[derive(Debug, Clone)]

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use crate::world::{RgbTexture, SceneSpectrum, TexCoords};
+use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// The glass share of a glTF material.
 #[derive(Debug, Clone)]
@@ -19,7 +19,7 @@ pub struct TransmissionDesc {
     /// surface without bending.
     pub thin: bool,
     /// The volume's absorption coefficient (thick only), as
-    /// [`crate::world::Material::Dielectric`]'s.
+    /// [`crate::materials::Material::Dielectric`]'s.
     pub absorption: Option<SceneSpectrum>,
 }
 

@@ -14,7 +14,7 @@ use prism_upsample::RgbKind;
 use serde_json::Value;
 
 use crate::load::Upsampler;
-use crate::world::SceneSpectrum;
+use crate::textures::SceneSpectrum;
 
 /// The forms a spectrum may take, for error messages and the format's documentation.
 pub const SPECTRUM_FORMS: &str = "a number (constant), a name (blackbody:T, illuminant:NAME, \

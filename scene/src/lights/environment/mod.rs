@@ -11,7 +11,7 @@ use std::sync::{Arc, LazyLock};
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::spectra::DenselySampled;
 
-use super::SceneSpectrum;
+use crate::textures::SceneSpectrum;
 
 /// CIE D65 (the sRGB white's illuminant) normalized to luminance 1 (Y = 1 under the
 /// CIE 1931 observer): what an emissive colour of RGB (1, 1, 1) emits, glTF colours being
@@ -30,6 +30,10 @@ pub fn unit_d65() -> Arc<DenselySampled> {
 pub fn grey_environment(value: f64) -> SceneSpectrum {
     SceneSpectrum::Scaled(Arc::new(SceneSpectrum::Dense(unit_d65())), value)
 }
+
+/// The emissive-colour value of the environment that lights a scene without lights: a
+/// white Lambertian surface under it renders as RGB 1.
+pub const DEFAULT_ENVIRONMENT: f64 = 1.0;
 
 /// What lights a scene from infinity.
 #[derive(Debug, Clone)]

@@ -22,12 +22,12 @@ pub use transmission::TransmissionDesc;
 use glam::{Vec3, Vec4};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
-use super::{Bsdf, TexCoords};
 use crate::bsdf::{
-    Ggx, Glass, Layered, MetallicRoughness, RoughDielectric, ThinDielectric, Transmissive,
+    Bsdf, Ggx, Glass, Layered, MetallicRoughness, RoughDielectric, ThinDielectric, Transmissive,
     TransportMode,
 };
 use crate::geometry::Frame;
+use crate::textures::TexCoords;
 
 /// The extensions a metallic-roughness material has beyond the thin film (each None
 /// when absent or without effect).

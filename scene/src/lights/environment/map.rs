@@ -22,8 +22,7 @@ use prism_spectrum::spectra::DenselySampled;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum};
 
-use crate::world::SceneSpectrum;
-use crate::world::texture::illuminant_spectrum;
+use crate::textures::{SceneSpectrum, illuminant_spectrum};
 
 /// Rec. 709 luminance weights of linear sRGB.
 const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];

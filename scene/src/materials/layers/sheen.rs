@@ -5,7 +5,7 @@ use std::sync::Arc;
 use prism_spectrum::SampledWavelengths;
 
 use crate::bsdf::Sheen;
-use crate::world::{RgbTexture, SceneSpectrum, TexCoords};
+use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
 /// A sheen: its colour and roughness.
 #[derive(Debug, Clone)]

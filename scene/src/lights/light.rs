@@ -15,10 +15,11 @@ use prism_sampling::warp::{
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::light_choice::SpectralChoice;
-use super::{EmissionCache, EnvironmentMap, SceneSpectrum};
+use super::{EmissionCache, EnvironmentMap};
 use crate::geometry::{
     Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
 };
+use crate::textures::SceneSpectrum;
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -105,7 +106,7 @@ pub struct LightSample<const N: usize> {
     pub pdf: f32,
     /// Whether the light is a delta in direction (BSDF sampling can never hit it).
     pub delta: bool,
-    /// Which of the scene's lights it is ([`super::Scene::light_polarization`]).
+    /// Which of the scene's lights it is (`world::Scene::light_polarization`).
     pub light: u32,
 }
 
@@ -118,7 +119,7 @@ pub struct EmissionSample<const N: usize> {
     /// the density of the ray (position and direction) and of choosing the light: the
     /// light path's initial throughput.
     pub beta: SampledSpectrum<N>,
-    /// Which of the scene's lights it left ([`super::Scene::light_polarization`]).
+    /// Which of the scene's lights it left (`world::Scene::light_polarization`).
     pub light: u32,
 }
 
@@ -244,7 +245,7 @@ pub struct Lights {
 
 /// Where light paths aim: light from infinity leaves a disk over `sphere` (centre,
 /// radius) only, and light paths choose lights by the power that reaches it (see
-/// [`Scene::aim`](super::Scene::aim)).
+/// `world::Scene::aim`).
 #[derive(Debug, Clone)]
 pub struct Aim {
     pub(crate) sphere: (Vec3, f32),
@@ -255,13 +256,14 @@ pub struct Aim {
 impl Lights {
     /// The lights, chosen in proportion to `power` (which must match `lights`), or to
     /// `extent` times their spectra at a path's wavelengths (see `light_choice`).
-    pub(crate) fn new(
+    /// `uvs_of_set` gives the texture coordinates at the triangles' vertices in a set.
+    pub(crate) fn new<'a>(
         lights: Vec<Light>,
         power: &[f64],
         extent: &[f64],
         emission: &[SceneSpectrum],
         triangles: &[[Vec3; 3]],
-        attributes: &super::VertexAttributes,
+        uvs_of_set: impl Fn(usize) -> &'a [[Vec2; 3]],
     ) -> Self {
         let mut of_triangle = vec![u32::MAX; triangles.len()];
         let shapes = lights
@@ -274,7 +276,7 @@ impl Lights {
                 } => {
                     let t = *triangle as usize;
                     let set = emission[*e as usize].tex_coord_set().unwrap_or(0);
-                    let uvs = attributes.uvs_of_set(set).get(t).copied();
+                    let uvs = uvs_of_set(set).get(t).copied();
                     TriangleShape::new(triangles[t], uvs.unwrap_or_default())
                 }
                 _ => TriangleShape::default(),
@@ -724,9 +726,10 @@ pub(crate) fn light_extent(light: &Light, triangles: &[[Vec3; 3]], scene_radius:
 /// the mean is kept for every triangle, so that a triangle whose light the estimate misses
 /// is still chosen sometimes (light choice must never rule out a triangle that emits).
 /// Chosen by this, the dark parts of a sign or a screen take few light samples.
-pub(crate) fn texture_coverage(
+/// `uvs_of_set` gives the texture coordinates at the triangles' vertices in a set.
+pub(crate) fn texture_coverage<'a>(
     light: &Light,
-    attributes: &super::VertexAttributes,
+    uvs_of_set: impl Fn(usize) -> &'a [[Vec2; 3]],
     emission: &[SceneSpectrum],
 ) -> f64 {
     let Light::Triangle {
@@ -740,7 +743,7 @@ pub(crate) fn texture_coverage(
     let SceneSpectrum::Texture(texture) = &emission[*e as usize] else {
         return 1.0;
     };
-    let Some(uv) = attributes.uvs_of_set(texture.set()).get(*triangle as usize) else {
+    let Some(uv) = uvs_of_set(texture.set()).get(*triangle as usize) else {
         return 1.0;
     };
     let whole = texture.luminance(None);

@@ -3,7 +3,8 @@
 use std::sync::Arc;
 
 use crate::bsdf::Clearcoat;
-use crate::world::{NormalMap, RgbTexture, TexCoords};
+use crate::materials::NormalMap;
+use crate::textures::{RgbTexture, TexCoords};
 
 use super::SurfaceFrame;
 

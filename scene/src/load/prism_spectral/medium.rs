@@ -29,7 +29,7 @@ pub(crate) fn medium(value: &Value, cx: &Context) -> Result<Medium, String> {
         .ok_or("a medium must be an object {\"sigma_a\": .., \"sigma_s\": .., \"g\": ..}")?;
     only_keys(map, KEYS)?;
     let coefficient = |key: &str| match map.get(key) {
-        None => Ok(crate::world::SceneSpectrum::Constant(0.0)),
+        None => Ok(crate::textures::SceneSpectrum::Constant(0.0)),
         Some(v) => spectrum(v, Role::Plain, cx).map_err(|e| format!("{key}: {e}")),
     };
     let sigma_a = coefficient("sigma_a")?;

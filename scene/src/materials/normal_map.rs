@@ -5,8 +5,8 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use super::{RgbTexture, TexCoords};
 use crate::geometry::unit_or_zero;
+use crate::textures::{RgbTexture, TexCoords};
 
 /// A normal texture and its scale.
 #[derive(Debug, Clone, PartialEq)]
@@ -88,7 +88,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::world::{Encoding, UvTransform, Wrap};
+    use crate::textures::{Encoding, UvTransform, Wrap};
 
     fn map(texel: [u8; 3], scale: f32) -> NormalMap {
         let texture = RgbTexture::new(

@@ -8,7 +8,8 @@ use serde_json::{Map, Value};
 
 use super::value::{Context, Role, ior, metal, number, only_keys, schedule, spectrum};
 use crate::bsdf::fluorescence_matrix;
-use crate::world::{Material, SceneSpectrum};
+use crate::materials::Material;
+use crate::textures::SceneSpectrum;
 
 /// The material types a description may give.
 pub const MATERIAL_TYPES: &str =

@@ -1,0 +1,18 @@
+//! Lights of a render-ready scene (`light`: emissive triangles, punctual lights and the
+//! environment, [`Lights`] choosing among them by power), the choice by power at a path's
+//! wavelengths when their spectra differ (`light_choice`), light from infinity
+//! (`environment/`) and a path's cache of emission spectra at its wavelengths
+//! (`emission_cache`).
+
+mod emission_cache;
+mod environment;
+mod light;
+mod light_choice;
+
+pub use emission_cache::EmissionCache;
+pub use environment::{
+    DEFAULT_ENVIRONMENT, Environment, EnvironmentMap, grey_environment, unit_d65,
+};
+pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
+pub(crate) use light::{light_extent, light_spectrum, solid_angle_sampled, texture_coverage};
+pub use light_choice::MAX_GROUPS;
