@@ -19,7 +19,7 @@ use crate::plan::estimators::{Estimators, Modes};
 use crate::plan::modes::{mode_pilot, pilot};
 use crate::plan::setup::{Setup, specialized, specialized_by_width};
 use crate::reuse::pass::reuse_pass;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::features::features_pass;
 use crate::{RenderError, RenderSettings};
 
@@ -188,7 +188,7 @@ impl<'a> Renderer<'a> {
                 settings.height
             )));
         }
-        let tracer = setup.tracer(self.splits);
+        let integrator = setup.integrator(self.splits);
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         let kept = self.scratch.lock().ok().and_then(|mut s| s.take());
         let mut pass = match kept {
@@ -202,7 +202,7 @@ impl<'a> Renderer<'a> {
         let plan = setup.plan(settings.seed, samples.clone(), self.map.clone());
         self.trace_camera(
             trace,
-            &tracer,
+            &integrator,
             &plan,
             &mut pass,
             cancel,
@@ -217,13 +217,13 @@ impl<'a> Renderer<'a> {
                 _ => features_pass::<16>,
             };
             setup.pool.install(|| {
-                features(&tracer, setup.filter(), &plan, pass.aovs_mut(), cancel);
+                features(&integrator, setup.filter(), &plan, pass.aovs_mut(), cancel);
             });
         }
         if self.light_caustics() {
             add_light_paths(
                 &setup.pool,
-                &tracer,
+                &integrator,
                 setup.filter(),
                 &plan,
                 settings,
@@ -259,7 +259,7 @@ impl<'a> Renderer<'a> {
     fn trace_camera(
         &self,
         trace: RowTracer,
-        tracer: &Tracer,
+        integrator: &Integrator,
         plan: &SamplePlan,
         pass: &mut Film,
         cancel: &AtomicBool,
@@ -276,7 +276,7 @@ impl<'a> Renderer<'a> {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    let (r, n) = band(tracer, setup.filter(), plan, self.reuse, &mut outs, s);
+                    let (r, n) = band(integrator, setup.filter(), plan, self.reuse, &mut outs, s);
                     rays.fetch_add(r, Ordering::Relaxed);
                     nonfinite.fetch_add(n, Ordering::Relaxed);
                 }
@@ -286,7 +286,7 @@ impl<'a> Renderer<'a> {
                 if cancel.load(Ordering::Relaxed) {
                     return;
                 }
-                let (r, n) = trace(tracer, setup.filter(), plan, y as u32, out);
+                let (r, n) = trace(integrator, setup.filter(), plan, y as u32, out);
                 rays.fetch_add(r, Ordering::Relaxed);
                 nonfinite.fetch_add(n, Ordering::Relaxed);
             });

@@ -73,7 +73,7 @@ fn is_mirror(m: &Material) -> bool {
 /// ray's distance from `centre` at its closest and its origin's from the scene's centre.
 fn sky_paths(
     scene: &Scene,
-    aim: Option<&prism_scene::world::Aim>,
+    aim: Option<&prism_scene::world::CausticTarget>,
     n: u32,
 ) -> (f64, Vec<(f32, f32)>) {
     let lambdas = SampledWavelengths::<4>::new([450.0, 500.0, 550.0, 600.0], [1.0; 4]).unwrap();

@@ -8,7 +8,7 @@ use crate::film::sample_value::SampleValue;
 use crate::film::{Film, FilmSums};
 use crate::pixels::sample::trace_sample;
 use crate::pixels::sample_plan::SamplePlan;
-use crate::transport::context::{PathResult, Tracer};
+use crate::transport::context::{Integrator, PathResult};
 use crate::transport::throughput::Throughput;
 
 /// `pass`'s sums cut into rows of a `width` x `height` image; a film without spectral,
@@ -112,11 +112,11 @@ impl RowOutput<'_> {
 /// A row tracer: traces every sample of every pixel of row `y`; returns rays traced and
 /// samples rejected.
 pub(crate) type RowTracer =
-    fn(&Tracer, &FilterSampler, &SamplePlan, u32, &mut RowOutput) -> (u64, u64);
+    fn(&Integrator, &FilterSampler, &SamplePlan, u32, &mut RowOutput) -> (u64, u64);
 
 /// Traces every sample of every pixel of row `y`; returns rays traced and samples rejected.
 pub(crate) fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     settings: &SamplePlan,
     y: u32,
@@ -130,7 +130,7 @@ pub(crate) fn trace_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<
             let (samples, weight) = samples_of(map, x, y, pass);
             for s in samples {
                 let result = trace_sample::<N, FLUORESCENCE, T>(
-                    tracer, filter, settings, x, y, s, &mut value,
+                    integrator, filter, settings, x, y, s, &mut value,
                 );
                 rays += result.rays;
                 rejected += u64::from(out.add(x as usize, s, &result, &value, settings, weight));

@@ -8,10 +8,10 @@ use prism_scene::world::EmissionCache;
 use crate::film::filter::FilterSampler;
 use crate::film::sample_value::SampleValue;
 use crate::pixels::sample_plan::SamplePlan;
-use crate::transport::context::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::transport::context::{FIRST_BOUNCE_DIMENSION, Integrator, PathResult};
 use crate::transport::reuse_record::ReuseRecord;
 use crate::transport::throughput::Throughput;
-use crate::transport::volume::FlightNumbers;
+use crate::transport::volume::FlightStreams;
 
 /// Sample `s` of pixel (`x`, `y`): its stream (positioned after the film dimensions),
 /// the number that chooses its wavelengths and its point on the film (in [0, 1]^2).
@@ -36,7 +36,7 @@ pub(crate) fn camera_sample(
 
 /// Traces sample `s` of pixel (`x`, `y`) into `value` (cleared first).
 pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     settings: &SamplePlan,
     x: u32,
@@ -49,33 +49,33 @@ pub(crate) fn trace_sample<const N: usize, const FLUORESCENCE: bool, T: Throughp
     value.clear();
     let aspect = w as f32 / h as f32;
     let mut sink = |radiance: &T::Radiance, lambdas: &_| {
-        value.add(tracer.sensor(), settings.outputs, radiance, lambdas)
+        value.add(integrator.sensor(), settings.outputs, radiance, lambdas)
     };
-    if tracer.scene.features().media {
+    if integrator.scene.features().media {
         let pixel = u64::from(y) * u64::from(w) + u64::from(x);
-        return tracer.trace_volume::<N, FLUORESCENCE, false, T>(
+        return integrator.trace_volume::<N, FLUORESCENCE, false, T>(
             &mut stream,
             FIRST_BOUNCE_DIMENSION,
-            &tracer.package(u_lambda),
+            &integrator.package(u_lambda),
             film,
             aspect,
             &mut sink,
             &mut ReuseRecord::new(T::black()),
             &mut EmissionCache::new(),
-            &mut FlightNumbers::new(settings.seed, pixel, s),
+            &mut FlightStreams::new(settings.seed, pixel, s),
         );
     }
     // Unsplit renders run a path tracer compiled without the splitting code.
-    let trace = if tracer.splits > 1 {
-        Tracer::trace::<N, FLUORESCENCE, true, false, T>
+    let trace = if integrator.splits > 1 {
+        Integrator::trace::<N, FLUORESCENCE, true, false, T>
     } else {
-        Tracer::trace::<N, FLUORESCENCE, false, false, T>
+        Integrator::trace::<N, FLUORESCENCE, false, false, T>
     };
     trace(
-        tracer,
+        integrator,
         &mut stream,
         FIRST_BOUNCE_DIMENSION,
-        &tracer.package(u_lambda),
+        &integrator.package(u_lambda),
         film,
         aspect,
         &mut sink,

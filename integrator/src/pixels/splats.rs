@@ -14,7 +14,7 @@ use crate::film::filter::FilterSampler;
 use crate::film::sample_value::SampleValue;
 use crate::film::splatter::Splatter;
 use crate::pixels::sample_plan::SamplePlan;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::light_path::light_seed;
 use crate::transport::light_throughput::{LightThroughput, PolarizedLight};
 
@@ -38,7 +38,7 @@ struct RowSplats {
 /// sample: the film's mean divides by the samples per pixel, and light paths' camera
 /// importance is per pixel).
 fn light_row<const N: usize, L: LightThroughput<N>>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     settings: &SamplePlan,
     y: u32,
 ) -> RowSplats {
@@ -49,10 +49,12 @@ fn light_row<const N: usize, L: LightThroughput<N>>(
         let pixel = u64::from(y) * u64::from(w) + u64::from(x);
         for s in settings.samples.clone() {
             let mut stream = settings.stream(light_seed(settings.seed), pixel, s);
-            out.rays +=
-                tracer.trace_light::<N, L>(&mut stream, aspect, &mut |film, radiance, lambdas| {
+            out.rays += integrator.trace_light::<N, L>(
+                &mut stream,
+                aspect,
+                &mut |film, radiance, lambdas| {
                     let mut value = SampleValue::default();
-                    value.add(tracer.sensor(), settings.outputs, radiance, lambdas);
+                    value.add(integrator.sensor(), settings.outputs, radiance, lambdas);
                     if value.finite() {
                         out.splats.push(Splat {
                             film,
@@ -62,7 +64,8 @@ fn light_row<const N: usize, L: LightThroughput<N>>(
                     } else {
                         out.rejected += 1;
                     }
-                });
+                },
+            );
         }
     }
     out
@@ -74,7 +77,7 @@ fn light_row<const N: usize, L: LightThroughput<N>>(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn add_light_paths(
     pool: &rayon::ThreadPool,
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     plan: &SamplePlan,
     settings: &RenderSettings,
@@ -112,7 +115,7 @@ pub(crate) fn add_light_paths(
         let batch: Vec<RowSplats> = pool.install(|| {
             (first..last)
                 .into_par_iter()
-                .map(|y| light_row(tracer, plan, y))
+                .map(|y| light_row(integrator, plan, y))
                 .collect()
         });
         for row in batch {

@@ -11,7 +11,7 @@ use crate::film::sample_value::SampleValue;
 use crate::pixels::sample::trace_sample;
 use crate::pixels::sample_plan::SamplePlan;
 use crate::plan::setup::{Setup, specialized, specialized_by_width};
-use crate::transport::context::{PathResult, Tracer};
+use crate::transport::context::{Integrator, PathResult};
 use crate::transport::throughput::Throughput;
 
 /// Adaptive sampling's map for a render of `setup` with `splits` continuations per
@@ -19,7 +19,7 @@ use crate::transport::throughput::Throughput;
 /// traced, so that its rays go where they lower the error most.
 pub(crate) fn sample_map(setup: &Setup, splits: u32, reuse: u32) -> Option<SampleMap> {
     let settings = setup.settings();
-    let tracer = setup.tracer(splits);
+    let integrator = setup.integrator(splits);
     let (width, height) = (settings.width, settings.height);
     let pixels = (width * height) as usize;
     let seeds =
@@ -32,13 +32,13 @@ pub(crate) fn sample_map(setup: &Setup, splits: u32, reuse: u32) -> Option<Sampl
             let band = specialized_by_width!(setup, pilot_band);
             (0..height.div_ceil(size))
                 .into_par_iter()
-                .map(|b| band(&tracer, filter, &seeds, &measure, size, b * size))
+                .map(|b| band(&integrator, filter, &seeds, &measure, size, b * size))
                 .collect()
         } else {
             let row = specialized!(setup, pilot_row);
             (0..height)
                 .into_par_iter()
-                .map(|y| row(&tracer, filter, &seeds, &measure, y))
+                .map(|y| row(&integrator, filter, &seeds, &measure, y))
                 .collect()
         }
     });
@@ -62,7 +62,7 @@ pub(crate) fn sample_map(setup: &Setup, splits: u32, reuse: u32) -> Option<Sampl
 /// Adaptive sampling's pilot of row `y`: each pixel's first sample of both `seeds`, its
 /// weighted error by `measure` and the rays both traced.
 fn pilot_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     seeds: &[SamplePlan; 2],
     measure: &PilotMeasure,
@@ -75,8 +75,9 @@ fn pilot_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             let mut rays = 0;
             for (rows, out) in seeds.iter().zip(&mut channels) {
                 let s = rows.samples.start;
-                let result =
-                    trace_sample::<N, FLUORESCENCE, T>(tracer, filter, rows, x, y, s, &mut value);
+                let result = trace_sample::<N, FLUORESCENCE, T>(
+                    integrator, filter, rows, x, y, s, &mut value,
+                );
                 measure.channels(&value, pilot_scale(&result, &value, rows), out);
                 rays += result.rays;
             }
@@ -93,7 +94,7 @@ fn pilot_row<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
 /// Adaptive sampling's pilot of the tiles of reuse (`size` pixels) in the band from row
 /// `y0`, as [`pilot_row`].
 fn pilot_band<const N: usize>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     seeds: &[SamplePlan; 2],
     measure: &PilotMeasure,
@@ -111,7 +112,7 @@ fn pilot_band<const N: usize>(
         for (k, rows) in seeds.iter().enumerate() {
             let s = rows.samples.start;
             crate::reuse::trace_tile_at::<N>(
-                tracer,
+                integrator,
                 filter,
                 rows,
                 xs.clone(),

@@ -26,7 +26,7 @@ use crate::pixels::sample::trace_sample;
 use crate::pixels::sample_plan::SamplePlan;
 use crate::plan::setup::Setup;
 use crate::reuse::Tile;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::throughput::Throughput;
 
 /// The choices. Against Mitsuba's references (docs/trade-offs.md) four continuations beat
@@ -160,7 +160,7 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     let settings = setup.settings();
     let (width, height) = (settings.width, settings.height);
     let (columns, rows) = (width.min(GRID), height.min(GRID));
-    let tracers = [setup.tracer(1), setup.tracer(2)];
+    let integrators = [setup.integrator(1), setup.integrator(2)];
     let seeds = PILOT_SEEDS.map(|s| setup.pilot_plan(settings.seed ^ s, 0..SAMPLES));
     let light = LightPilot::trace(setup);
     let per_pixel: Vec<Pilot> = (0..columns * rows)
@@ -170,7 +170,7 @@ pub(crate) fn pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
             let x = ((2 * (i % columns) + 1) * width / (2 * columns)).min(width - 1);
             let y = ((2 * (i / columns) + 1) * height / (2 * rows)).min(height - 1);
             let (means, rays) =
-                pixel_estimates::<N, FLUORESCENCE, T>(setup, &tracers, &seeds, x, y);
+                pixel_estimates::<N, FLUORESCENCE, T>(setup, &integrators, &seeds, x, y);
             let mut pixel = weighted_errors(&means, rays);
             if let Some(light) = &light {
                 let added = light.variance(x, y, camera_mean(&means));
@@ -347,7 +347,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     let settings = setup.settings();
     let (width, height) = (settings.width, settings.height);
     let (columns, rows) = (width.min(REUSE_GRID), height.min(REUSE_GRID));
-    let tracers = [setup.tracer(1), setup.tracer(2)];
+    let integrators = [setup.integrator(1), setup.integrator(2)];
     let seeds = PILOT_SEEDS.map(|s| setup.pilot_plan(settings.seed ^ s, 0..SAMPLES));
     let light = LightPilot::trace(setup);
     let corner = |i: u32| {
@@ -359,7 +359,8 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
     // The modes 0 and 1: a cell's corner pixel, unsplit and split in two.
     let split = |i: u32, cell: &mut ModePilot| {
         let (x, y) = corner(i);
-        let (means, rays) = pixel_estimates::<N, FLUORESCENCE, T>(setup, &tracers, &seeds, x, y);
+        let (means, rays) =
+            pixel_estimates::<N, FLUORESCENCE, T>(setup, &integrators, &seeds, x, y);
         for mode in 0..2 {
             cell.variance[mode] = weighted_error(&means[mode]);
             cell.rays[mode] = rays[mode] / (2 * SAMPLES) as f64;
@@ -385,7 +386,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
         for (seed, rows) in seeds.iter().enumerate() {
             for s in 0..SAMPLES {
                 crate::reuse::trace_tile_at::<N>(
-                    &tracers[0],
+                    &integrators[0],
                     setup.filter(),
                     rows,
                     xs.clone(),
@@ -417,7 +418,7 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
                     continue;
                 }
                 let (means, rays) =
-                    unsplit_estimates::<N, FLUORESCENCE, T>(setup, &tracers[0], &seeds, px, py);
+                    unsplit_estimates::<N, FLUORESCENCE, T>(setup, &integrators[0], &seeds, px, py);
                 unsplit += weighted_error(&means);
                 unsplit_rays += rays;
             }
@@ -526,22 +527,22 @@ fn weighted_error(means: &[[f64; 3]; 2]) -> f64 {
 /// `SAMPLES` samples, and per mode the rays they traced.
 fn pixel_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     setup: &Setup,
-    tracers: &[Tracer; 2],
+    integrators: &[Integrator; 2],
     seeds: &[SamplePlan; 2],
     x: u32,
     y: u32,
 ) -> ([[[f64; 3]; 2]; 2], [f64; 2]) {
-    let [a, b] = tracers
+    let [a, b] = integrators
         .each_ref()
-        .map(|tracer| unsplit_estimates::<N, FLUORESCENCE, T>(setup, tracer, seeds, x, y));
+        .map(|integrator| unsplit_estimates::<N, FLUORESCENCE, T>(setup, integrator, seeds, x, y));
     ([a.0, b.0], [a.1, b.1])
 }
 
-/// Per seed, the mean colour of pixel (`x`, `y`)'s `SAMPLES` samples by `tracer`, and the
+/// Per seed, the mean colour of pixel (`x`, `y`)'s `SAMPLES` samples by `integrator`, and the
 /// rays they traced.
 fn unsplit_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
     setup: &Setup,
-    tracer: &Tracer,
+    integrator: &Integrator,
     seeds: &[SamplePlan; 2],
     x: u32,
     y: u32,
@@ -552,7 +553,7 @@ fn unsplit_estimates<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>
     for (seed, rows) in seeds.iter().enumerate() {
         for s in 0..SAMPLES {
             let result = trace_sample::<N, FLUORESCENCE, T>(
-                tracer,
+                integrator,
                 setup.filter(),
                 rows,
                 x,

@@ -19,7 +19,7 @@ use crate::film::sample_value::Outputs;
 use crate::pixels::sample_plan::SamplePlan;
 use crate::pixels::splats::add_light_paths;
 use crate::plan::estimators::{Resolution, resolve};
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::footprint::Footprint;
 use crate::transport::throughput::CameraFrame;
 use crate::{RenderError, RenderSettings};
@@ -78,8 +78,8 @@ pub(crate) struct Setup<'a> {
     pub focus: Option<prism_scene::camera::Focus>,
     /// The camera's lens system, focused (None: a pinhole or a thin lens).
     pub system: Option<Arc<prism_scene::camera::FocusedSystem>>,
-    /// Where light paths from infinity aim (`Tracer::aim`).
-    aim: Option<prism_scene::world::Aim>,
+    /// Where light paths from infinity aim (`Integrator::aim`).
+    aim: Option<prism_scene::world::CausticTarget>,
     /// The settings resolved into estimators, before the pilots ran.
     pub resolution: Resolution,
 }
@@ -141,9 +141,9 @@ impl<'a> Setup<'a> {
     }
 
     /// What every path of this render shares, with `splits` continuations per sample.
-    pub(crate) fn tracer(&self, splits: u32) -> Tracer<'_> {
+    pub(crate) fn integrator(&self, splits: u32) -> Integrator<'_> {
         let settings = &self.settings;
-        Tracer {
+        Integrator {
             scene: self.scene,
             distribution: &self.distribution,
             scheme: settings.scheme,
@@ -232,13 +232,13 @@ impl<'a> Setup<'a> {
     /// a film of the render's size: what light paths add to each pixel's estimate, and the
     /// rays they traced. For the splits pilot (`crate::plan::modes::LightPilot`).
     pub(crate) fn light_pass(&self, seed: u64) -> (Film, u64) {
-        let tracer = self.tracer(1);
+        let integrator = self.integrator(1);
         let plan = self.pilot_plan(seed, 0..1);
         let mut pass = Film::for_settings(&self.settings);
         let (rays, nonfinite) = (AtomicU64::new(0), AtomicU64::new(0));
         add_light_paths(
             &self.pool,
-            &tracer,
+            &integrator,
             &self.filter,
             &plan,
             &self.settings,

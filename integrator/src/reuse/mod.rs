@@ -51,9 +51,9 @@ use crate::film::filter::FilterSampler;
 use crate::film::sample_value::SampleValue;
 use crate::pixels::sample::camera_sample;
 use crate::pixels::sample_plan::SamplePlan;
-use crate::transport::context::{FIRST_BOUNCE_DIMENSION, PathResult, Tracer};
+use crate::transport::context::{FIRST_BOUNCE_DIMENSION, Integrator, PathResult};
 use crate::transport::reuse_record::ReuseRecord;
-use crate::transport::volume::FlightNumbers;
+use crate::transport::volume::FlightStreams;
 
 /// A tile's pixels and the buffers of its gathering, kept from tile to tile.
 pub(crate) struct Tile<'s, const N: usize> {
@@ -81,7 +81,7 @@ impl<'s, const N: usize> Tile<'s, N> {
     }
 }
 
-impl<'a> Tracer<'a> {
+impl<'a> Integrator<'a> {
     /// Traces sample `s` of the tile of pixels `xs` x `ys` with the wavelengths drawn
     /// with `lambda` into `tile`.
     #[allow(clippy::too_many_arguments)]
@@ -137,7 +137,7 @@ impl<'a> Tracer<'a> {
                         &mut sink,
                         &mut here.record,
                         &mut tile.emission,
-                        &mut FlightNumbers::new(rows.seed, pixel, s),
+                        &mut FlightStreams::new(rows.seed, pixel, s),
                     )
                 } else {
                     self.trace::<N, false, false, true, SampledSpectrum<N>>(
@@ -171,7 +171,7 @@ impl<'a> Tracer<'a> {
 /// does (the pilot's tiles).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn trace_tile_at<'a, const N: usize>(
-    tracer: &Tracer<'a>,
+    integrator: &Integrator<'a>,
     filter: &FilterSampler,
     rows: &SamplePlan,
     xs: std::ops::Range<u32>,
@@ -181,14 +181,14 @@ pub(crate) fn trace_tile_at<'a, const N: usize>(
 ) {
     let corner = u64::from(ys.start) * u64::from(rows.width) + u64::from(xs.start);
     let lambda = rows.stream(rows.seed, corner, s).next_1d();
-    tracer.trace_tile::<N>(filter, rows, xs, ys, s, lambda, tile);
+    integrator.trace_tile::<N>(filter, rows, xs, ys, s, lambda, tile);
 }
 
 /// Traces pass `s` of every pixel of the rows `ys` (one row of tiles) in tiles `size`
 /// pixels wide (one sample, or adaptive sampling's samples of the pass), and hands each
 /// pixel's sample to `add` with its index and weight.
 pub(crate) fn trace_band<const N: usize>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     rows: &SamplePlan,
     size: u32,
@@ -203,7 +203,7 @@ pub(crate) fn trace_band<const N: usize>(
         let (samples, weight) = crate::adaptive::samples_of(rows.map.as_deref(), x0, ys.start, s);
         for sample in samples {
             trace_tile_at::<N>(
-                tracer,
+                integrator,
                 filter,
                 rows,
                 xs.clone(),

@@ -6,13 +6,13 @@ use crate::film::filter::FilterSampler;
 use crate::pixels::rows::RowOutput;
 use crate::pixels::sample_plan::SamplePlan;
 use crate::reuse::trace_band;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 
 /// Traces sample `s` of every pixel in tiles whose paths share their second vertices
 /// (`crate::reuse`): bands of tile rows in parallel, each band's tiles in order. Returns
 /// rays traced and samples rejected.
 pub(crate) fn reuse_pass<const N: usize>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     rows: &SamplePlan,
     size: u32,
@@ -30,7 +30,7 @@ pub(crate) fn reuse_pass<const N: usize>(
             let (mut rays, mut rejected) = (0u64, 0u64);
             let ys = y0..y0 + band.len() as u32;
             trace_band::<N>(
-                tracer,
+                integrator,
                 filter,
                 rows,
                 size,

@@ -1,4 +1,4 @@
-//! What every path of a render shares (`Tracer`): the scene, the wavelengths' sampling,
+//! What every path of a render shares (`Integrator`): the scene, the wavelengths' sampling,
 //! the sensor, the camera and the clock; the sample stream's dimensions; and what every
 //! estimator asks of them (a camera ray, a package of wavelengths, a light's schedule).
 
@@ -15,7 +15,7 @@ use crate::transport::footprint::Footprint;
 use crate::transport::throughput::Carried;
 
 /// What every path of a render shares.
-pub(crate) struct Tracer<'a> {
+pub(crate) struct Integrator<'a> {
     pub scene: &'a Scene,
     pub distribution: &'a WavelengthDistribution,
     pub scheme: PackageScheme,
@@ -31,7 +31,7 @@ pub(crate) struct Tracer<'a> {
     /// Light paths' aim at the surfaces where their first bounce can be focused
     /// (`Material::focuses`): light from infinity crosses their bounding sphere (None: no
     /// light paths).
-    pub aim: Option<&'a prism_scene::world::Aim>,
+    pub aim: Option<&'a prism_scene::world::CausticTarget>,
     /// Whether camera rays that leave the scene show nothing (a transparent background).
     pub transparent: bool,
     /// How wide a pixel's footprint is where a path meets a surface, for filtering
@@ -123,7 +123,7 @@ pub(crate) fn wavelengths<const N: usize>(
     SampledWavelengths::new(package.lambda, package.pdf).ok()
 }
 
-impl<'a> Tracer<'a> {
+impl<'a> Integrator<'a> {
     /// What turns this render's spectra into the film's colour.
     #[inline(always)]
     pub(crate) fn sensor(&self) -> crate::film::sample_value::Sensor<'a> {
@@ -177,7 +177,7 @@ impl<'a> Tracer<'a> {
     }
 }
 
-impl Tracer<'_> {
+impl Integrator<'_> {
     /// Darkens the lanes of `le`, light `light`'s, whose time finds it off.
     pub(crate) fn gate<const N: usize>(
         &self,

@@ -13,7 +13,7 @@ use crate::film::filter::FilterSampler;
 use crate::pixels::sample::camera_sample;
 use crate::pixels::sample_plan::SamplePlan;
 use crate::transport::context::{
-    DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Tracer, wavelengths,
+    DIMENSIONS_PER_BOUNCE, FIRST_BOUNCE_DIMENSION, Integrator, wavelengths,
 };
 use prism_scene::geometry::Frame;
 
@@ -32,7 +32,7 @@ pub(crate) struct Features {
     pub first: Option<(f64, Vec3, u32)>,
 }
 
-impl Tracer<'_> {
+impl Integrator<'_> {
     /// The features of sample `s` of pixel (`x`, `y`): its camera ray (the radiance's:
     /// the same film point, lens point and hero wavelength) followed through delta
     /// vertices by the BSDF numbers the radiance's path draws at each bounce, until a
@@ -126,7 +126,7 @@ fn bounce_numbers(stream: &mut SobolStream, depth: u64) -> (f32, glam::Vec2) {
 /// Adds the features of `rows.samples` of every pixel to `sums`, rows in parallel (on the
 /// caller's thread pool); stops between rows when `cancel` is set.
 pub(crate) fn features_pass<const N: usize>(
-    tracer: &Tracer,
+    integrator: &Integrator,
     filter: &FilterSampler,
     rows: &SamplePlan,
     sums: &mut AovSums,
@@ -140,7 +140,7 @@ pub(crate) fn features_pass<const N: usize>(
         }
         for x in 0..rows.width {
             for s in rows.samples.clone() {
-                let f = tracer.features::<N>(filter, rows, x, y as u32, s);
+                let f = integrator.features::<N>(filter, rows, x, y as u32, s);
                 add(row, x as usize, s, &f);
             }
         }

@@ -15,7 +15,7 @@
 //! narrow (a glossy highlight seen directly is the camera's to find), k >= 2 and no vertex
 //! fluorescent; camera paths skip the light found along such paths (`Walk::advance`: a
 //! first bounce that is not focused, no fluorescent vertex, and a focused bounce onto the
-//! emitter or out to the environment; `Tracer::next_event`: no light sample from a narrow
+//! emitter or out to the environment; `Integrator::next_event`: no light sample from a narrow
 //! surface past the first bounce). Everything else stays with the camera paths, so the
 //! sum is unbiased and each
 //! path is counted once.
@@ -23,7 +23,7 @@
 //! Light from infinity (a directional light, the environment: the sun in an HDR sky,
 //! focused by a metal sphere onto the floor) leaves a disk that covers only the surfaces
 //! where a first bounce can be focused (`Material::focuses`, their bounding sphere
-//! `Tracer::aim`), not the whole scene: every other ray would end at its first hit.
+//! `Integrator::aim`), not the whole scene: every other ray would end at its first hit.
 
 use glam::Vec2;
 use prism_sampling::distribution::positive_finite;
@@ -32,7 +32,7 @@ use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::bsdf::TransportMode;
 use prism_spectrum::SampledWavelengths;
 
-use crate::transport::context::{Tracer, absorb, wavelengths};
+use crate::transport::context::{Integrator, absorb, wavelengths};
 use crate::transport::light_throughput::LightThroughput;
 use crate::transport::throughput::Vertex;
 use prism_scene::geometry::Frame;
@@ -58,7 +58,7 @@ pub(crate) fn light_seed(seed: u64) -> u64 {
     seed ^ 0x6c69_6768_745f_7061
 }
 
-impl Tracer<'_> {
+impl Integrator<'_> {
     /// Where the camera sees `point` (a light path's vertex at `depth`), connecting it to
     /// the pinhole or to a point of the lens the light path's stream chooses.
     fn seen(

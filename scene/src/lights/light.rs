@@ -247,7 +247,7 @@ pub struct Lights {
 /// radius) only, and light paths choose lights by the power that reaches it (see
 /// `world::Scene::aim`).
 #[derive(Debug, Clone)]
-pub struct Aim {
+pub struct CausticTarget {
     pub(crate) sphere: (Vec3, f32),
     /// None when no light has power.
     pub(crate) choice: Option<AliasTable>,
@@ -318,7 +318,7 @@ impl Lights {
     /// A faint sky beside a spot light then starts few light paths (a sky chosen by its
     /// power over the whole scene started a third of them in the prism scene, and traced
     /// half again as many rays for no less error).
-    pub(crate) fn aimed(&self, sphere: (Vec3, f32), scene_radius: f32) -> Aim {
+    pub(crate) fn aimed(&self, sphere: (Vec3, f32), scene_radius: f32) -> CausticTarget {
         let share = f64::from((sphere.1 / scene_radius).min(1.0)).powi(2);
         let weights: Vec<f64> = self
             .lights
@@ -332,7 +332,7 @@ impl Lights {
             })
             .collect();
         let usable = weights.iter().any(|&p| p > 0.0);
-        Aim {
+        CausticTarget {
             sphere,
             choice: if usable {
                 AliasTable::new(&weights).ok()
@@ -575,7 +575,7 @@ impl Lights {
         wavelengths: &SampledWavelengths<N>,
         emission: &[SceneSpectrum],
         scene: (Vec3, f32),
-        aim: Option<&Aim>,
+        aim: Option<&CausticTarget>,
     ) -> Option<EmissionSample<N>> {
         let (index, pmf, aim) = match aim {
             Some(a) => {

@@ -13,6 +13,10 @@ pub use emission_cache::EmissionCache;
 pub use environment::{
     DEFAULT_ENVIRONMENT, Environment, EnvironmentMap, grey_environment, unit_d65,
 };
-pub use light::{Aim, EmissionSample, Light, LightSample, Lights};
+pub use light::{CausticTarget, EmissionSample, Light, LightSample, Lights};
+
+/// The former name of [`CausticTarget`].
+#[deprecated(note = "renamed CausticTarget: where light paths aim")]
+pub type Aim = CausticTarget;
 pub(crate) use light::{light_extent, light_spectrum, solid_angle_sampled, texture_coverage};
 pub use light_choice::MAX_GROUPS;

@@ -17,9 +17,11 @@ mod options;
 mod time;
 
 pub use crate::bsdf::Bsdf;
+#[allow(deprecated)]
+pub use crate::lights::Aim;
 pub use crate::lights::{
-    Aim, DEFAULT_ENVIRONMENT, EmissionCache, EmissionSample, Environment, EnvironmentMap, Light,
-    LightSample, Lights, MAX_GROUPS, grey_environment, unit_d65,
+    CausticTarget, DEFAULT_ENVIRONMENT, EmissionCache, EmissionSample, Environment, EnvironmentMap,
+    Light, LightSample, Lights, MAX_GROUPS, grey_environment, unit_d65,
 };
 pub use crate::materials::{
     Alpha, AlphaMode, AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc,
@@ -929,7 +931,7 @@ impl Scene {
         u_position: Vec2,
         u_direction: Vec2,
         wavelengths: &SampledWavelengths<N>,
-        aim: Option<&Aim>,
+        aim: Option<&CausticTarget>,
     ) -> Option<EmissionSample<N>> {
         self.lights.sample_emission(
             u_choice,
@@ -945,7 +947,7 @@ impl Scene {
     /// Light paths that count only light reaching the triangles whose material `keep`s
     /// first aimed at them: their bounding sphere ([`Scene::bounding_sphere_where`]), and
     /// the lights' choice by the power that can reach it. None when `keep` keeps nothing.
-    pub fn aim(&self, keep: impl Fn(&Material) -> bool) -> Option<Aim> {
+    pub fn aim(&self, keep: impl Fn(&Material) -> bool) -> Option<CausticTarget> {
         let sphere = self.bounding_sphere_where(keep)?;
         Some(self.lights.aimed(sphere, self.radius))
     }

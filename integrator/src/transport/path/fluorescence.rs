@@ -8,13 +8,13 @@ use prism_scene::world::{Bsdf, EmissionCache, Hit, Material, SceneSpectrum};
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::walk::Walk;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::throughput::Throughput;
 
-impl<'a> Tracer<'a> {
+impl<'a> Integrator<'a> {
     /// The BSDF a camera path meets at `hit`: at a fluorescent surface (in scenes with
     /// re-radiation, `FLUORESCENCE`) each lane first picks the wavelength its light arrived
-    /// at ([`Tracer::fluoresce`], drawing from `here`); any other surface is the scene's
+    /// at ([`Integrator::fluoresce`], drawing from `here`); any other surface is the scene's
     /// BSDF at the path's wavelengths. None where no wavelength is left.
     #[inline(always)]
     pub(crate) fn vertex_bsdf<const N: usize, const FLUORESCENCE: bool, T: Throughput<N>>(
@@ -40,8 +40,8 @@ impl<'a> Tracer<'a> {
 
     /// A fluorescent vertex of reflectance `reflectance` and re-radiation `reradiation`
     /// at `hit`: each lane of `walk` picks the wavelength its light arrived at
-    /// ([`Tracer::reradiated`], drawn from `here`), a phosphor's lanes also when
-    /// ([`Tracer::delay`]), and the walk carries on with those wavelengths and weights. The
+    /// ([`Integrator::reradiated`], drawn from `here`), a phosphor's lanes also when
+    /// ([`Integrator::delay`]), and the walk carries on with those wavelengths and weights. The
     /// surface is Lambertian either way: its BSDF, or None where no wavelength is left.
     #[inline]
     pub(crate) fn fluoresce<const N: usize, T: Throughput<N>>(

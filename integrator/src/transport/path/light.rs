@@ -6,11 +6,11 @@ use prism_sampling::mis::power_heuristic;
 use prism_scene::world::{EmissionCache, Hit};
 
 use super::walk::Walk;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::light_path::CAUSTIC_ALPHA;
 use crate::transport::throughput::{Arrival, Throughput, Vertex};
 
-impl Tracer<'_> {
+impl Integrator<'_> {
     /// Adds the light of the environment a ray that left the scene arrives from, weighed by
     /// MIS against light sampling after a bounce.
     #[inline(always)]

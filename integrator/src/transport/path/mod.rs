@@ -16,14 +16,16 @@ use prism_spectrum::SampledWavelengths;
 
 use walk::Walk;
 
-use crate::transport::context::{DIMENSIONS_PER_BOUNCE, PathResult, Tracer, absorb, wavelengths};
+use crate::transport::context::{
+    DIMENSIONS_PER_BOUNCE, Integrator, PathResult, absorb, wavelengths,
+};
 use crate::transport::reuse_record::{FirstVertex, ReuseRecord};
 use crate::transport::throughput::{Throughput, Vertex};
 
-impl<'a> Tracer<'a> {
+impl<'a> Integrator<'a> {
     /// Traces the path of sample `stream` through film point `film` (in [0, 1]^2) of an
     /// image with aspect ratio `aspect`. The stream must be positioned after the film
-    /// dimensions; `first_package` holds the sample's wavelengths ([`Tracer::package`]),
+    /// dimensions; `first_package` holds the sample's wavelengths ([`Integrator::package`]),
     /// and `emission` caches spectra at them (a cache from another path is refilled if its
     /// wavelengths differ). The path's radiance goes to `sink` with the wavelengths and
     /// densities it was estimated with: once at the end, and once more before a package

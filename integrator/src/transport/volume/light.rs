@@ -12,9 +12,9 @@ use prism_scene::world::{EmissionCache, Hit};
 use prism_spectrum::SampledSpectrum;
 
 use super::ratios::{Ratios, spectral_weight};
-use super::segment::FlightNumbers;
+use super::segment::FlightStreams;
 use super::stack::MediumStack;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 use crate::transport::path::walk::Walk;
 use crate::transport::throughput::{Arrival, Throughput, Vertex};
 
@@ -62,7 +62,7 @@ impl<const N: usize> Scatterer<'_, '_, '_, N> {
     }
 }
 
-impl Tracer<'_> {
+impl Integrator<'_> {
     /// Adds light `le` (before MIS) that the path's last ray met, emitted by the scene's
     /// light `light` and found by unidirectional sampling: after the camera or a delta
     /// bounce no other strategy could have found it (`light_pdf` is not asked for), else
@@ -90,7 +90,7 @@ impl Tracer<'_> {
         walk.beta.add_emitted(&mut walk.radiance, &le, 1.0);
     }
 
-    /// Adds the emission of surface `hit` towards `wo_world` (see [`Tracer::add_met_light`]).
+    /// Adds the emission of surface `hit` towards `wo_world` (see [`Integrator::add_met_light`]).
     #[inline]
     pub(crate) fn add_volume_hit_emission<const N: usize, T: Throughput<N>>(
         &self,
@@ -140,7 +140,7 @@ impl Tracer<'_> {
         u_light: Vec2,
         walk: &mut Walk<N, T>,
         ratios: &Ratios<N>,
-        numbers: &mut FlightNumbers,
+        numbers: &mut FlightStreams,
         emission: &mut EmissionCache<N>,
     ) -> u64 {
         let light = match at {

@@ -30,10 +30,10 @@ use prism_scene::geometry::Ray;
 use prism_scene::medium::Phase;
 use prism_scene::world::EmissionCache;
 use prism_spectrum::SampledWavelengths;
-pub(crate) use segment::FlightNumbers;
+pub(crate) use segment::FlightStreams;
 pub(crate) use stack::MediumStack;
 
-use crate::transport::context::{DIMENSIONS_PER_BOUNCE, PathResult, ROULETTE_DEPTH, Tracer};
+use crate::transport::context::{DIMENSIONS_PER_BOUNCE, Integrator, PathResult, ROULETTE_DEPTH};
 use crate::transport::context::{absorb, wavelengths};
 use crate::transport::path::walk::Walk;
 use crate::transport::path::walk::roulette_capped;
@@ -62,9 +62,9 @@ const SURVIVAL_CAP: f32 = 0.99;
 /// boundaries would otherwise hold it forever).
 const MAX_INTERFACES: u32 = 256;
 
-impl<'a> Tracer<'a> {
+impl<'a> Integrator<'a> {
     /// Traces the path of sample `stream` through film point `film` in a scene with media,
-    /// as [`Tracer::trace`] does in a vacuum (unsplit, without reuse or light paths); the
+    /// as [`Integrator::trace`] does in a vacuum (unsplit, without reuse or light paths); the
     /// flights through media draw from `numbers`.
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
@@ -83,7 +83,7 @@ impl<'a> Tracer<'a> {
         sink: &mut impl FnMut(&T::Radiance, &SampledWavelengths<N>),
         record: &mut ReuseRecord<'a, N, T::Radiance>,
         emission: &mut EmissionCache<N>,
-        numbers: &mut FlightNumbers,
+        numbers: &mut FlightStreams,
     ) -> PathResult {
         let Some(first_lambdas) = wavelengths(first_package) else {
             return PathResult::nothing(false);
@@ -293,7 +293,7 @@ impl<'a> Tracer<'a> {
         sample_base: u64,
         walk: &mut Walk<N, T>,
         ratios: &mut Ratios<N>,
-        numbers: &mut FlightNumbers,
+        numbers: &mut FlightStreams,
         emission: &mut EmissionCache<N>,
     ) -> u64 {
         stream.set_dimension(sample_base + u64::from(walk.depth) * DIMENSIONS_PER_BOUNCE);

@@ -37,14 +37,14 @@ pub(crate) enum Flight {
 /// number of collisions came before; except that the first collision of a bounce's
 /// first stretch may be drawn from a stratified pair (`first`), as its own dimensions
 /// of the sample's Sobol stream.
-pub(crate) struct FlightNumbers {
+pub(crate) struct FlightStreams {
     pub distances: IndependentStream,
     pub kinds: IndependentStream,
     /// (distance, kind) numbers for the next flight's first collision, used once.
     pub first: Option<Vec2>,
 }
 
-impl FlightNumbers {
+impl FlightStreams {
     pub(crate) fn new(seed: u64, pixel: u64, sample: u64) -> Self {
         // Streams of their own, apart from every other stream of the sample.
         const DISTANCES: u64 = 0x6d65_6469_756d_0001;
@@ -80,7 +80,7 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
     emits: bool,
     walk: &mut Walk<N, T>,
     ratios: &mut Ratios<N>,
-    numbers: &mut FlightNumbers,
+    numbers: &mut FlightStreams,
 ) -> Flight {
     let wavelengths = walk.transport;
     let emits = emits && medium.emissive();
@@ -89,7 +89,7 @@ pub(crate) fn fly<const N: usize, T: Throughput<N>>(
         Some(pair) => (pair.x, Some(pair.y)),
         None => (numbers.distances.next_1d(), None),
     };
-    let FlightNumbers {
+    let FlightStreams {
         distances, kinds, ..
     } = numbers;
     let t_maj = sample_majorant_at(

@@ -16,9 +16,9 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::dye::straight_density;
 use super::ratios::Ratios;
-use super::segment::{FlightNumbers, null_coefficient};
+use super::segment::{FlightStreams, null_coefficient};
 use super::stack::MediumStack;
-use crate::transport::context::Tracer;
+use crate::transport::context::Integrator;
 
 /// Interfaces a shadow ray crosses at most (coplanar or degenerate boundaries end it).
 const MAX_CROSSINGS: u32 = 256;
@@ -34,7 +34,7 @@ pub(crate) struct Shadow<const N: usize> {
     pub ratios: Ratios<N>,
 }
 
-impl Tracer<'_> {
+impl Integrator<'_> {
     /// Traces `ray` (unit direction, ending short of the light) from a vertex inside
     /// `media`, at `wavelengths` (the media's coefficients there kept in `cache`): None
     /// where a surface other than an interface blocks it or no light is left, else the
@@ -44,7 +44,7 @@ impl Tracer<'_> {
         mut ray: Ray,
         mut media: MediumStack,
         wavelengths: &SampledWavelengths<N>,
-        numbers: &mut FlightNumbers,
+        numbers: &mut FlightStreams,
         cache: &mut EmissionCache<N>,
     ) -> (Option<Shadow<N>>, u64) {
         let mut transmittance = SampledSpectrum::splat(1.0);
@@ -76,7 +76,7 @@ impl Tracer<'_> {
                 } else {
                     let dyed = medium.fluorescence().is_some();
                     let u = numbers.distances.next_1d();
-                    let FlightNumbers {
+                    let FlightStreams {
                         distances, kinds, ..
                     } = numbers;
                     let t_maj = sample_majorant_at(
