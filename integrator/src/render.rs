@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use crate::adaptive::SampleMap;
 use crate::film::Film;
+use crate::pixels::features::features_pass;
 use crate::pixels::rows::{RowTracer, row_outputs, trace_row};
 use crate::pixels::sample_plan::SamplePlan;
 use crate::pixels::splats::add_light_paths;
@@ -20,7 +21,6 @@ use crate::plan::modes::{mode_pilot, pilot};
 use crate::plan::setup::{Setup, specialized, specialized_by_width};
 use crate::reuse::pass::reuse_pass;
 use crate::transport::context::Integrator;
-use crate::transport::features::features_pass;
 use crate::{RenderError, RenderSettings};
 
 /// Counts gathered during a render.

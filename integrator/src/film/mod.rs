@@ -8,6 +8,7 @@ pub(crate) mod aov_sums;
 pub(crate) mod bands;
 pub(crate) mod camera_response;
 pub(crate) mod filter;
+pub(crate) mod radiance;
 pub(crate) mod sample_value;
 pub(crate) mod splatter;
 

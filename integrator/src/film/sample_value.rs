@@ -6,7 +6,7 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use crate::SpectralBands;
 use crate::film::camera_response::CameraResponse;
-use crate::transport::throughput::Radiance;
+use crate::film::radiance::Radiance;
 
 /// What turns a sample's spectrum into the film's colour: the CIE observer, or a camera's
 /// response curves (raw channels) where the render has one.

@@ -2,6 +2,7 @@
 //! sample traced by the tracer the scene needs (`sample`), rows of pixels summed in order
 //! (`rows`) and light paths' splats collected per row (`splats`).
 
+pub(crate) mod features;
 pub(crate) mod rows;
 pub(crate) mod sample;
 pub(crate) mod sample_plan;

@@ -8,9 +8,8 @@ use glam::{Mat4, Vec3, Vec4};
 use prism_scene::polarization::{Stokes, interactions, polarizes, rotate_frame};
 use prism_spectrum::SampledSpectrum;
 
-use crate::transport::throughput::{
-    CameraFrame, Carried, Radiance, StokesSpectrum, Vertex, camera_basis,
-};
+use crate::film::radiance::{Radiance, StokesSpectrum};
+use crate::transport::throughput::{CameraFrame, Carried, Vertex, camera_basis};
 
 /// A light path's throughput.
 pub(crate) trait LightThroughput<const N: usize>: Carried<N> + Sized {

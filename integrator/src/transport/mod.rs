@@ -4,7 +4,6 @@
 
 pub(crate) mod clock;
 pub(crate) mod context;
-pub(crate) mod features;
 pub(crate) mod footprint;
 pub(crate) mod light_path;
 pub(crate) mod light_throughput;

@@ -22,6 +22,8 @@ use prism_scene::polarization::{
 use prism_scene::world::Bsdf;
 use prism_spectrum::SampledSpectrum;
 
+use crate::film::radiance::{Radiance, StokesSpectrum};
+
 /// A scattering vertex: the BSDF in its local frame and the direction the path arrived
 /// from (local, pointing away from the surface).
 pub(crate) struct Vertex<'v, 'b, const N: usize> {
@@ -37,49 +39,6 @@ pub(crate) struct Arrival<'a, const N: usize> {
     pub f: &'a SampledSpectrum<N>,
     pub radiance: &'a SampledSpectrum<N>,
     pub weight: f32,
-}
-
-/// The radiance a path gathers: a spectrum, or per lane a Stokes vector.
-pub(crate) trait Radiance<const N: usize>: Clone {
-    /// Intensity (S0) per lane.
-    fn intensity(&self) -> &SampledSpectrum<N>;
-    /// S1, S2, S3 per lane, when polarized.
-    fn polarization(&self) -> Option<&[SampledSpectrum<N>; 3]>;
-}
-
-impl<const N: usize> Radiance<N> for SampledSpectrum<N> {
-    fn intensity(&self) -> &SampledSpectrum<N> {
-        self
-    }
-    fn polarization(&self) -> Option<&[SampledSpectrum<N>; 3]> {
-        None
-    }
-}
-
-/// Stokes vectors per lane, component by component.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct StokesSpectrum<const N: usize> {
-    pub s0: SampledSpectrum<N>,
-    pub polarization: [SampledSpectrum<N>; 3],
-}
-
-impl<const N: usize> Radiance<N> for StokesSpectrum<N> {
-    fn intensity(&self) -> &SampledSpectrum<N> {
-        &self.s0
-    }
-    fn polarization(&self) -> Option<&[SampledSpectrum<N>; 3]> {
-        Some(&self.polarization)
-    }
-}
-
-impl<const N: usize> StokesSpectrum<N> {
-    /// Adds `weight` times the Stokes vector `stokes` in lane `lane`.
-    pub(crate) fn add(&mut self, lane: usize, stokes: Vec4) {
-        self.s0[lane] += stokes.x;
-        self.polarization[0][lane] += stokes.y;
-        self.polarization[1][lane] += stokes.z;
-        self.polarization[2][lane] += stokes.w;
-    }
 }
 
 /// What camera and light paths alike do to what they carry: weigh it per lane or as a
