@@ -12,46 +12,49 @@
 //!
 //! ## Where things are
 //!
-//! The hero-wavelength path tracer (`path/`: the bounce loop in `mod.rs`; a continuation's
-//! state, its scattering and Russian roulette in `walk.rs`; the light it meets,
-//! MIS-weighed, in `light.rs`; fluorescent vertices in `fluorescence.rs`; texture
-//! footprints in `footprint.rs`), written once over what a path carries (`throughput.rs`: a
-//! spectrum, or for `--polarized` per-lane Mueller matrices with their reference frame;
-//! each specialization compiled apart, so unpolarized renders run the code they always
-//! did), an instant or exposure of the scene's clock (`path::Clock`: per-lane times,
-//! phosphors' delays, sources gated by their schedules), splitting at the first vertex,
-//! path reuse across tiles of pixels (`reuse/`: each pixel's first vertex gathers its
-//! tile's second vertices by multiple importance sampling, in `gather.rs` eight first
-//! vertices at a time in SIMD lanes over `prism_sampling::lanes::real::Real`, their shadow
-//! rays leaving from origins offset once per side (`Hit::departure`); a `REUSE`
-//! specialization of the path tracer records them; a tile's paths share one package of
-//! wavelengths and one cache of the spectra evaluated at them), and the automatic choice
-//! among them by a pilot (`splits.rs`), the batch tracer (`batch/`, `Tracing::Lanes`: the
-//! paths of neighbouring pixels of a row in lanes as wide as the CPU's vectors, bounce by
-//! bounce; `lane.rs` a lane's path (the path tracer's `Walk`) and what it does alone with
-//! the path tracer's functions: its ray, the light it meets, non-Lambertian vertices;
-//! `lambertian.rs` the Lambertian vertices lane-wide over the code the path tracer runs for
-//! one path (`Frames`, `lambertian_sample`/`lambertian_pdf`, `power_heuristic_of`,
-//! `path::roulette`), compiled per width for AVX-512/AVX2/baseline; `paths.rs` the bounce
-//! loop; the path tracer's images to the bit; unpolarized, 4-16 wavelengths, unsplit,
-//! without reuse), the volumetric path tracer for scenes with media (`volume/`, beside
-//! `path/`: the bounce loop in `mod.rs`; a flight through one stretch of medium, collisions
-//! chosen by the hero with every lane's density kept as ratios, in `segment.rs`; collisions
-//! in a medium with a fluorescent dye, chosen among scattering, re-emission and null
-//! collisions with absorption as a weight, in `dye.rs`; the ratios and their
-//! balance-heuristic weights over lanes and strategies in `ratios.rs`; met light and
-//! next-event estimation in `light.rs`, its shadow rays' ratio tracking through interfaces
-//! in `shadow.rs`; the nesting of volumes in `stack.rs`), light paths for caustics seen
-//! directly (`light_path.rs`, unpolarized renders only), the f64 film and its filters,
-//! EXR/PNG encoding (and the polarization PNG) and lossless accumulation files of every
-//! film channel: XYZ or raw, bands, energy, Stokes components (bytes only).
+//! In layers, lowest first; a file imports from its own layer or below
+//! (`python3 .ci/circles.py integrator/src --check` finds no circle):
 //!
-//! Which of these a render uses is decided in one place (`plan/estimators.rs`): the
-//! settings and the scene resolved into [`Estimators`] (tracer, splits, reuse, light paths,
-//! adaptive sampling, each with why), before the pilots choose what is left to them;
-//! adaptive sampling's map and what its pilot measures in each output are `adaptive/`.
+//! - `settings.rs`, `error.rs`: what a render is asked for, and its one error type.
+//! - `film/`: the f64 film and its sums, the pixel filter and light paths' splats by it,
+//!   what a sample brings (`radiance.rs`: a spectrum, or Stokes vectors) and its value in
+//!   the film's units (`sample_value.rs`, with a `Sensor`: the observer or a camera's
+//!   response), spectral bands, and the feature buffers' names and sums (`aov.rs`,
+//!   `aov_sums.rs`).
+//! - `io/`: EXR and PNG encodings (and the polarization PNG), lossless accumulation files
+//!   of every film channel, image comparison, a denoised image's EXR (bytes only).
+//! - `transport/`: light transport. `context.rs` holds what every path of a render shares
+//!   (the `Integrator`: scene, wavelengths, sensor, camera, clock) and the sample stream's
+//!   dimensions; `throughput.rs` what a camera path carries (a spectrum, or per-lane
+//!   Mueller matrices for `--polarized`, each specialization compiled apart); `path/` the
+//!   hero-wavelength path tracer (the bounce loop in `mod.rs`, a continuation's state,
+//!   scattering and Russian roulette in `walk.rs`, the light it meets, MIS-weighed, in
+//!   `light.rs`, fluorescent vertices in `fluorescence.rs`); `volume/` the volumetric path
+//!   tracer for scenes with media (a flight through one stretch of medium in `segment.rs`,
+//!   collisions in a medium with a fluorescent dye in `dye.rs`, the lanes' density ratios
+//!   and their balance-heuristic weights in `ratios.rs`, met light and next-event
+//!   estimation in `light.rs`, shadow rays' ratio tracking in `shadow.rs`, the nesting of
+//!   volumes in `stack.rs`); `light_path.rs` light paths for the caustics seen directly
+//!   (unpolarized renders); `reuse_record.rs` what a camera path records for path reuse;
+//!   `clock.rs` an instant or an exposure of the scene's clock; `footprint.rs` texture
+//!   footprints.
+//! - `adaptive/`: adaptive sampling's map of samples per tile, and what its pilot measures
+//!   in each output.
+//! - `pixels/`: a pass's sample plan (`sample_plan.rs`), one camera sample traced by the
+//!   tracer its scene needs (`sample.rs`, the one place that chooses), rows of pixels
+//!   summed in index order (`rows.rs`), the feature buffers' rays (`features.rs`) and light
+//!   paths' splats collected per row (`splats.rs`).
+//! - `reuse/`: path reuse across tiles of pixels: each pixel's first vertex gathers its
+//!   tile's second vertices by multiple importance sampling, in `gather.rs` eight first
+//!   vertices at a time in SIMD lanes over `prism_sampling::lanes::real::Real`; a tile's
+//!   paths share one package of wavelengths and one cache of the spectra at them.
+//! - `plan/`: the one place a render's settings become its estimators
+//!   (`estimators.rs`: [`Estimators`], each with why), what every pass shares
+//!   (`setup.rs`), and the pilots that choose what is left to them: splits and reuse
+//!   (`modes.rs`) and adaptive sampling's map (`adaptive_pilot.rs`).
+//! - `render.rs`: runs the plan ([`Renderer`], [`render`], [`render_into`]).
 //!
-//! Key types: `RenderSettings`, `Splits`, `Reuse`, `Tracing`, `Renderer`, `Estimators`, `render`,
+//! Key types: `RenderSettings`, `Splits`, `Reuse`, `Renderer`, `Estimators`, `render`,
 //! `render_into`, `Film`, `Filter`, `encode_exr`, `encode_png`, `encode_polarization_png`,
 //! `encode_accumulation`, `decode_accumulation`, `merge_accumulations`.
 //!

@@ -1,6 +1,7 @@
-//! Light transport: what a path carries (`throughput`, `light_throughput`), the path
-//! tracer (`path/`), the volumetric path tracer (`volume/`), light paths for caustics
-//! (`light_path`) and the feature buffers' rays (`features`).
+//! Light transport: what every path of a render shares (`context`), what a path carries
+//! (`throughput`, `light_throughput`), the path tracer (`path/`), the volumetric path
+//! tracer (`volume/`), light paths for caustics (`light_path`) and what a camera path
+//! records for path reuse (`reuse_record`).
 
 pub(crate) mod clock;
 pub(crate) mod context;
