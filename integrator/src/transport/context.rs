@@ -123,6 +123,16 @@ pub(crate) fn wavelengths<const N: usize>(
     SampledWavelengths::new(package.lambda, package.pdf).ok()
 }
 
+/// Where a camera path starts: its wavelengths, its times on the scene's clock (None:
+/// the steady state), its camera ray and the lens's weight on that ray.
+#[derive(Clone, Copy)]
+pub(crate) struct CameraStart<const N: usize> {
+    pub lambdas: SampledWavelengths<N>,
+    pub times: Option<[f64; N]>,
+    pub ray: Ray,
+    pub lens_weight: f32,
+}
+
 impl<'a> Integrator<'a> {
     /// What turns this render's spectra into the film's colour.
     #[inline(always)]
@@ -131,6 +141,34 @@ impl<'a> Integrator<'a> {
             observer: self.observer,
             camera: self.camera,
         }
+    }
+
+    /// The start of the camera path of sample `stream` (after the film dimensions)
+    /// through film point `film`, with the wavelengths of `package`: the one place every
+    /// camera path tracer starts. Err is the path's result when there is nothing to trace:
+    /// invalid wavelengths (not counted), or a camera ray a lens stopped (a black sample).
+    #[inline(always)]
+    pub(crate) fn start_camera_path<const N: usize>(
+        &self,
+        stream: &mut SobolStream,
+        package: &WavelengthPackage<N>,
+        film: Vec2,
+        aspect: f32,
+    ) -> Result<CameraStart<N>, PathResult> {
+        let Some(lambdas) = wavelengths(package) else {
+            return Err(PathResult::nothing(false));
+        };
+        let times = self.clock.map(|clock| [clock.time(stream); N]);
+        let Some((ray, lens_weight)) = self.camera_ray(film, aspect, stream, package.lambda[0])
+        else {
+            return Err(PathResult::nothing(true));
+        };
+        Ok(CameraStart {
+            lambdas,
+            times,
+            ray,
+            lens_weight,
+        })
     }
 
     /// The camera ray of the sample `stream` belongs to (at any dimension) through film

@@ -16,9 +16,7 @@ use prism_spectrum::SampledWavelengths;
 
 use walk::Walk;
 
-use crate::transport::context::{
-    DIMENSIONS_PER_BOUNCE, Integrator, PathResult, absorb, wavelengths,
-};
+use crate::transport::context::{DIMENSIONS_PER_BOUNCE, Integrator, PathResult, absorb};
 use crate::transport::reuse_record::{FirstVertex, ReuseRecord};
 use crate::transport::throughput::{Throughput, Vertex};
 
@@ -62,14 +60,9 @@ impl<'a> Integrator<'a> {
         emission: &mut EmissionCache<N>,
     ) -> PathResult {
         let first_package = *first_package;
-        let Some(first_lambdas) = wavelengths(&first_package) else {
-            return PathResult::nothing(false);
-        };
-        let first_times = self.clock.map(|clock| [clock.time(stream); N]);
-        let Some((camera_ray, lens_weight)) =
-            self.camera_ray(film, aspect, stream, first_package.lambda[0])
-        else {
-            return PathResult::nothing(true);
+        let start = match self.start_camera_path(stream, &first_package, film, aspect) {
+            Ok(start) => start,
+            Err(nothing) => return nothing,
         };
         let mut rays = 0u64;
         let mut covered = false;
@@ -85,14 +78,7 @@ impl<'a> Integrator<'a> {
         let mut first_hit: Option<Option<prism_scene::world::Hit>> = None;
         let mut split = 0u32;
         while split < splits {
-            let mut walk = Walk::<N, T>::new(
-                first_package,
-                first_lambdas,
-                first_times,
-                camera_ray,
-                &self.camera_frame,
-            );
-            walk.weigh_camera_ray(lens_weight);
+            let mut walk = Walk::<N, T>::from_camera(first_package, &start, &self.camera_frame);
             // The stream of this split's bounces (set at the first vertex).
             let mut bounces = stream.clone();
             loop {

@@ -9,7 +9,7 @@ use prism_scene::geometry::Ray;
 use prism_scene::world::Hit;
 use prism_spectrum::SampledWavelengths;
 
-use crate::transport::context::{ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
+use crate::transport::context::{CameraStart, ROULETTE_DEPTH, ROULETTE_THROUGHPUT, wavelengths};
 use crate::transport::light_path::CAUSTIC_ALPHA;
 use crate::transport::reuse_record::{ReuseRecord, SecondVertex};
 use crate::transport::throughput::{CameraFrame, Throughput, Vertex};
@@ -75,6 +75,19 @@ impl<const N: usize, T: Throughput<N>> Walk<N, T> {
             caustic_eligible: false,
             light_caustic: false,
         }
+    }
+
+    /// A path leaving the camera from `start` with the wavelengths of `package`, weighed
+    /// by its lens.
+    #[inline(always)]
+    pub fn from_camera(
+        package: WavelengthPackage<N>,
+        start: &CameraStart<N>,
+        camera: &CameraFrame,
+    ) -> Self {
+        let mut walk = Self::new(package, start.lambdas, start.times, start.ray, camera);
+        walk.weigh_camera_ray(start.lens_weight);
+        walk
     }
 
     /// Scales the path by its camera ray's `weight` (a lens system's: what the film gathers

@@ -33,8 +33,8 @@ use prism_spectrum::SampledWavelengths;
 pub(crate) use segment::FlightStreams;
 pub(crate) use stack::MediumStack;
 
+use crate::transport::context::absorb;
 use crate::transport::context::{DIMENSIONS_PER_BOUNCE, Integrator, PathResult, ROULETTE_DEPTH};
-use crate::transport::context::{absorb, wavelengths};
 use crate::transport::path::walk::Walk;
 use crate::transport::path::walk::roulette_capped;
 use crate::transport::reuse_record::{FirstVertex, ReuseRecord};
@@ -85,23 +85,11 @@ impl<'a> Integrator<'a> {
         emission: &mut EmissionCache<N>,
         numbers: &mut FlightStreams,
     ) -> PathResult {
-        let Some(first_lambdas) = wavelengths(first_package) else {
-            return PathResult::nothing(false);
+        let start = match self.start_camera_path(stream, first_package, film, aspect) {
+            Ok(start) => start,
+            Err(nothing) => return nothing,
         };
-        let times = self.clock.map(|clock| [clock.time(stream); N]);
-        let Some((camera_ray, lens_weight)) =
-            self.camera_ray(film, aspect, stream, first_package.lambda[0])
-        else {
-            return PathResult::nothing(true);
-        };
-        let mut walk = Walk::<N, T>::new(
-            *first_package,
-            first_lambdas,
-            times,
-            camera_ray,
-            &self.camera_frame,
-        );
-        walk.weigh_camera_ray(lens_weight);
+        let mut walk = Walk::<N, T>::from_camera(*first_package, &start, &self.camera_frame);
         let mut ratios = Ratios::<N>::one();
         let mut media = self.camera_media;
         let (mut rays, mut covered, mut interfaces) = (0u64, false, 0u32);
