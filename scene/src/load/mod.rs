@@ -12,6 +12,7 @@ mod instancing;
 mod lights;
 mod material_layers;
 mod materials;
+pub mod meshes;
 mod meshopt;
 mod primitive;
 pub mod prism_spectral;
