@@ -26,15 +26,7 @@
 //! rays leaving from origins offset once per side (`Hit::departure`); a `REUSE`
 //! specialization of the path tracer records them; a tile's paths share one package of
 //! wavelengths and one cache of the spectra evaluated at them), and the automatic choice
-//! among them by a pilot (`splits.rs`), the batch tracer (`batch/`, `Tracing::Lanes`: the
-//! paths of neighbouring pixels of a row in lanes as wide as the CPU's vectors, bounce by
-//! bounce; `lane.rs` a lane's path (the path tracer's `Walk`) and what it does alone with
-//! the path tracer's functions: its ray, the light it meets, non-Lambertian vertices;
-//! `lambertian.rs` the Lambertian vertices lane-wide over the code the path tracer runs for
-//! one path (`Frames`, `lambertian_sample`/`lambertian_pdf`, `power_heuristic_of`,
-//! `path::roulette`), compiled per width for AVX-512/AVX2/baseline; `paths.rs` the bounce
-//! loop; the path tracer's images to the bit; unpolarized, 4-16 wavelengths, unsplit,
-//! without reuse), the volumetric path tracer for scenes with media (`volume/`, beside
+//! among them by a pilot (`plan/modes.rs`), the volumetric path tracer for scenes with media (`volume/`, beside
 //! `path/`: the bounce loop in `mod.rs`; a flight through one stretch of medium, collisions
 //! chosen by the hero with every lane's density kept as ratios, in `segment.rs`; collisions
 //! in a medium with a fluorescent dye, chosen among scattering, re-emission and null
