@@ -26,17 +26,17 @@
 //! rays leaving from origins offset once per side (`Hit::departure`); a `REUSE`
 //! specialization of the path tracer records them; a tile's paths share one package of
 //! wavelengths and one cache of the spectra evaluated at them), and the automatic choice
-//! among them by a pilot (`plan/modes.rs`), the volumetric path tracer for scenes with media (`volume/`, beside
-//! `path/`: the bounce loop in `mod.rs`; a flight through one stretch of medium, collisions
-//! chosen by the hero with every lane's density kept as ratios, in `segment.rs`; collisions
-//! in a medium with a fluorescent dye, chosen among scattering, re-emission and null
-//! collisions with absorption as a weight, in `dye.rs`; the ratios and their
-//! balance-heuristic weights over lanes and strategies in `ratios.rs`; met light and
-//! next-event estimation in `light.rs`, its shadow rays' ratio tracking through interfaces
-//! in `shadow.rs`; the nesting of volumes in `stack.rs`), light paths for caustics seen
-//! directly (`light_path.rs`, unpolarized renders only), the f64 film and its filters,
-//! EXR/PNG encoding (and the polarization PNG) and lossless accumulation files of every
-//! film channel: XYZ or raw, bands, energy, Stokes components (bytes only).
+//! among them by a pilot (`plan/modes.rs`), the volumetric path tracer for scenes with
+//! media (`volume/`, beside `path/`: the bounce loop in `mod.rs`; a flight through one
+//! stretch of medium, collisions chosen by the hero with every lane's density kept as
+//! ratios, in `segment.rs`; collisions in a medium with a fluorescent dye, chosen among
+//! scattering, re-emission and null collisions with absorption as a weight, in `dye.rs`;
+//! the ratios and their balance-heuristic weights over lanes and strategies in `ratios.rs`;
+//! met light and next-event estimation in `light.rs`, its shadow rays' ratio tracking
+//! through interfaces in `shadow.rs`; the nesting of volumes in `stack.rs`), light paths
+//! for caustics seen directly (`light_path.rs`, unpolarized renders only), the f64 film and
+//! its filters, EXR/PNG encoding (and the polarization PNG) and lossless accumulation files
+//! of every film channel: XYZ or raw, bands, energy, Stokes components (bytes only).
 //!
 //! Which of these a render uses is decided in one place (`plan/estimators.rs`): the
 //! settings and the scene resolved into [`Estimators`] (tracer, splits, reuse, light paths,

@@ -130,9 +130,9 @@ pub struct RenderSettings {
     /// a small light's caustic stays noise and a punctual light's is missing).
     pub light_paths: bool,
     /// Adaptive sampling: the samples spread over the image where a pilot finds the error
-    /// (off by default here, on in the CLI; docs/trade-offs.md, "Adaptive sampling"). It applies to renders of the path tracer from
-    /// sample 0 to a multiple of 4 samples, at least 16, without the variance AOV; others
-    /// sample uniformly.
+    /// (off by default here, on in the CLI; docs/trade-offs.md, "Adaptive sampling"). It
+    /// applies to renders of the path tracer from sample 0 to a multiple of 4 samples, at
+    /// least 16, without the variance AOV; others sample uniformly.
     pub adaptive: bool,
     /// Whether this render is one piece of a larger one (a farm's sample range, merged
     /// later with the others): its samples are then the uniform render's, so that the

@@ -132,8 +132,8 @@
 //!   the scalar watertight test lane by lane, bit for bit, so its guarantees hold for
 //!   every query. (obvhs's compressed eight-wide tree measured slower in whole renders:
 //!   decoding its quantized boxes costs more than it saves on a CPU; docs/trade-offs.md,
-//!   "The BVH and its node test".) The collapse is planned by the surface area heuristic, bottom-up, rather
-//!   than greedy.
+//!   "The BVH and its node test".) The collapse is planned by the surface area heuristic,
+//!   bottom-up, rather than greedy.
 //! - **Light sampling by what the receiver sees.** Lights are chosen by power (an alias
 //!   table), or, when their spectra differ in ways a package of wavelengths can see
 //!   (narrow bands, ultraviolet), by power at the path's own wavelengths

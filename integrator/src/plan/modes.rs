@@ -10,8 +10,9 @@
 //! same samples of a grid of pixels unsplit and split in two: V(1) - V(2) = V_c / 2, and
 //! the rays they trace give C_p and C_c. Variances are weighted as the relative MSE weighs
 //! errors (by 1 / (mean^2 + 0.01)), costs counted in rays (measured, a render's time is
-//! nearly proportional to its rays), so the choice is a pure function of the scene, the image size, the settings and the seed:
-//! every thread count and every machine of a farm makes the same one.
+//! nearly proportional to its rays), so the choice is a pure function of the scene, the
+//! image size, the settings and the seed: every thread count and every machine of a farm
+//! makes the same one.
 //!
 //! Where light paths carry caustics, what they add to a pixel neither splits nor depends
 //! on the splits: their variance adds to the prefix's, their rays to the prefix's cost

@@ -33,9 +33,10 @@
 //! gathers over its samples come from a few Sobol streams, each stratified over the
 //! samples: tiles that moved with every sample (their corner cycling through the T^2
 //! offsets) raised the Cornell box's error, and so did tiles that moved every few
-//! samples (docs/trade-offs.md, "Tried and not kept"). The price is that within a tile the noise is shared: at a few samples per
-//! pixel the image shows it as faint T x T blocks. A tile's wavelengths are its corner
-//! pixel's (that pixel's wavelength dimension), stratified over the samples.
+//! samples (docs/trade-offs.md, "Tried and not kept"). The price is that within a tile the
+//! noise is shared: at a few samples per pixel the image shows it as faint T x T blocks. A
+//! tile's wavelengths are its corner pixel's (that pixel's wavelength dimension),
+//! stratified over the samples.
 
 use prism_sampling::stream::SampleStream;
 use prism_scene::world::EmissionCache;

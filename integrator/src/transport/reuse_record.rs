@@ -56,8 +56,9 @@ impl<'s, const N: usize> FirstVertex<'s, N> {
 /// its light reflected by the lobe it did not draw would be lost): a smooth coating's
 /// mirror is a delta. Conductors and glass are left out: the glossy box's copper (GGX alpha
 /// 0.15) and aluminium (0.3) lowered its error less than they added to the time, their
-/// lobes too narrow for most pairs (docs/trade-offs.md, "Tried and not kept"); a narrow one ([`crate::transport::light_path::CAUSTIC_ALPHA`]) would also
-/// mix paths whose caustics light paths carry with paths whose they do not.
+/// lobes too narrow for most pairs (docs/trade-offs.md, "Tried and not kept"); a narrow one
+/// ([`crate::transport::light_path::CAUSTIC_ALPHA`]) would also mix paths whose caustics
+/// light paths carry with paths whose they do not.
 fn shares_first(material: &Material) -> bool {
     match material {
         Material::Diffuse { .. } => true,

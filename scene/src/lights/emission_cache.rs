@@ -13,9 +13,9 @@ const SLOTS: usize = 8;
 /// most once. A path evaluates its lights at the same wavelengths at every vertex (next-event
 /// estimation, then the emitter a bounce hits), and an RGB illuminant costs a sigmoid and
 /// an illuminant table per lane: measured, these repeats were a noticeable share of the
-/// Cornell box's instructions. Values are keyed by the wavelengths themselves, so a cache that outlives
-/// a change of wavelengths (fluorescence) refills instead of answering wrongly, and what
-/// it returns is bit for bit what evaluating would.
+/// Cornell box's instructions. Values are keyed by the wavelengths themselves, so a cache
+/// that outlives a change of wavelengths (fluorescence) refills instead of answering
+/// wrongly, and what it returns is bit for bit what evaluating would.
 #[derive(Debug, Clone)]
 pub struct EmissionCache<const N: usize> {
     lambdas: [f32; N],
