@@ -147,7 +147,7 @@ fn streams(c: &mut Criterion) {
 /// Sixteen light samples from sixteen points (a quad light's triangle overhead, as the
 /// Cornell box's): sixteen scalar spherical-triangle warps, or the same warp over lanes of
 /// 8 or 16, compiled for the build's baseline and, where the CPU has them, for AVX2 and
-/// AVX-512 (what a batch tracer dispatching by `native_width` would run).
+/// AVX-512 (the widths `native_width` reports).
 fn light_warps(c: &mut Criterion) {
     use prism_sampling::glam::{Vec2, Vec3};
     use prism_sampling::lanes::real::{Reals, V3};

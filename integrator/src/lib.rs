@@ -76,8 +76,8 @@
 //! - **Russian roulette tuned for time to equal error, not paths per second**: a path is
 //!   at risk only once its throughput (with the 1 / eta^2 of each refraction undone: it
 //!   returns when the path leaves the glass) falls below a quarter. Measured on five
-//!   scenes, this is 10% to twice as efficient as survival equal to the throughput, for
-//!   5-13% fewer paths per second (the repository's docs/trade-offs.md, "Russian roulette").
+//!   scenes, this is more efficient than survival equal to the throughput on every one,
+//!   for fewer paths per second (the repository's docs/trade-offs.md, "Russian roulette").
 //! - **Non-finite samples are rejected and counted**, never written: they count as zero
 //!   in the pixel's normalization, and the count is reported.
 //! - **RGB never reaches here.** The scene hands over spectra and BSDFs; this crate does not

@@ -59,7 +59,7 @@ pub struct Renderer<'a> {
     estimators: Estimators,
     /// The film a pass adds to, kept between passes: sessions render one sample per pixel
     /// per pass, and a fresh film each time cost page faults and TLB flushes on every
-    /// thread (7% of a render with AOVs: its sums are large).
+    /// thread (a measurable share of a render with AOVs, whose sums are large).
     scratch: std::sync::Mutex<Option<Film>>,
 }
 

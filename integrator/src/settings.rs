@@ -100,7 +100,7 @@ pub struct RenderSettings {
     /// (see [`Reuse`]). Chosen per render by default ([`Reuse::Auto`]).
     pub reuse: Reuse,
     /// Wavelengths per path: 1, 2, 4, 8 or 16 (default 8: the most efficient on the
-    /// measured scenes, the repository's docs/trade-offs.md).
+    /// measured scenes, the repository's docs/trade-offs.md, "Wavelengths per path").
     pub wavelengths: usize,
     /// How the hero wavelength is chosen.
     pub lambda_sampler: LambdaSampler,
@@ -130,9 +130,9 @@ pub struct RenderSettings {
     /// a small light's caustic stays noise and a punctual light's is missing).
     pub light_paths: bool,
     /// Adaptive sampling: the samples spread over the image where a pilot finds the error
-    /// (off by default here, on in the CLI; docs/trade-offs.md). It applies to renders of the path tracer from
-    /// sample 0 to a multiple of 4 samples, at least 16, without the variance AOV; others
-    /// sample uniformly.
+    /// (off by default here, on in the CLI; docs/trade-offs.md, "Adaptive sampling"). It
+    /// applies to renders of the path tracer from sample 0 to a multiple of 4 samples, at
+    /// least 16, without the variance AOV; others sample uniformly.
     pub adaptive: bool,
     /// Whether this render is one piece of a larger one (a farm's sample range, merged
     /// later with the others): its samples are then the uniform render's, so that the
@@ -247,7 +247,8 @@ pub const MAX_SPLITS: u32 = 64;
 /// Splitting pays where the error is in indirect light (a Cornell box's ceiling, lit only
 /// by bounces) and costs where it is in what the camera ray and the first light sample
 /// find (direct light, textures, edges); `Auto` tells them apart per render with a pilot
-/// (see the integrator's `splits` module and docs/trade-offs.md).
+/// (see the integrator's `plan::modes` module and docs/trade-offs.md, "Splitting at the
+/// first vertex").
 ///
 /// ```
 /// use prism_integrator::Splits;
@@ -349,10 +350,11 @@ pub const MAX_REUSE: u32 = 8;
 /// Path reuse (Bekaert, Sbert and Halton 2002): the pixels of each T x T tile share the
 /// light their paths find beyond the first bounce, so each pixel's indirect light is
 /// estimated from T^2 continuations for T^2 - 1 shadow rays. Unbiased; it pays where the
-/// error is in indirect light on Lambertian surfaces (a Cornell box: 5x as efficient at
-/// T = 4), costs shadow rays where it is not, and does not apply to polarized, timed,
-/// fluorescent, dispersive or cut-out scenes, or with splitting (see the integrator's
-/// `reuse` module and docs/trade-offs.md).
+/// error is in indirect light on Lambertian surfaces (on a Cornell box, tiles of four were
+/// the most efficient mode measured), costs shadow rays where it is not, and does not
+/// apply to polarized, timed, fluorescent, dispersive or cut-out scenes, or with
+/// splitting (see the integrator's `reuse` module and docs/trade-offs.md, "Path reuse
+/// across tiles of pixels").
 ///
 /// ```
 /// use prism_integrator::Reuse;

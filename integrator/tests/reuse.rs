@@ -296,8 +296,9 @@ fn auto_reuses_where_indirect_light_dominates() {
 }
 
 /// A render that samples adaptively shares vertices in tiles of four wherever the pilot
-/// chooses reuse (with adaptive sampling's spread, four measured 1.01-1.17x two where the
-/// uniform pilot chose two); without it, the pilot still chooses between two and four.
+/// chooses reuse (with adaptive sampling's spread, four measured better than two where the
+/// uniform pilot chose two: docs/trade-offs.md, "Path reuse across tiles of pixels");
+/// without it, the pilot still chooses between two and four.
 #[test]
 fn adaptive_renders_reuse_in_the_widest_tiles() {
     let medium = repository_scene("cornell-medium.gltf", |_| {});

@@ -57,8 +57,8 @@ fn split_paths_estimate_the_unsplit_image() {
 }
 
 /// Continuations are distinct paths: four per sample lower the Cornell box's error against
-/// a converged image to well under the unsplit error at the same samples (measured 0.22x at
-/// 8 samples per pixel; four copies of one continuation would leave it unchanged).
+/// a converged image to well under the unsplit error at the same samples (the test asks
+/// for under 0.6 of it; four copies of one continuation would leave it unchanged).
 #[test]
 fn splitting_lowers_the_error() {
     let scene = cornell();
@@ -93,8 +93,8 @@ fn auto_splits_where_indirect_light_dominates() {
     assert_eq!(auto(&box_), 2);
     assert_eq!(auto(&repository_scene("textured.gltf", |_| {})), 1);
     // The caustic box at 128 x 128: its camera paths alone would split, but the light
-    // paths' share of the error does not (one continuation measured 1.31x as efficient
-    // there, docs/trade-offs.md).
+    // paths' share of the error does not (one continuation measured more efficient
+    // there, docs/trade-offs.md, "Splitting at the first vertex").
     let caustic = repository_scene("cornell-caustic.gltf", |_| {});
     let at_128 = settings(128, 4, 1).splits(Splits::Auto);
     assert_eq!(Renderer::new(&caustic, &at_128).unwrap().splits(), 1);

@@ -1,11 +1,12 @@
 //! exp of an f32, written so that LLVM vectorizes loops over lanes that call it.
 //!
 //! The visible-wavelength density needs one exponential per lane per path; libm's f64 exp
-//! is a call per lane that LLVM cannot vectorize (measured: 8.5% of the Cornell box's
-//! instructions went into sampling packages of 8 wavelengths). This is the classic
-//! Cody-Waite construction (as in Cephes' `expf`): x = n ln 2 + r with |r| <= ln 2 / 2,
-//! exp(r) by its degree-6 Taylor polynomial (truncation error below 2e-8 relative), and
-//! 2^n built from the exponent bits. Every step is branch-free arithmetic on each lane.
+//! is a call per lane that LLVM cannot vectorize (measured: sampling packages of 8
+//! wavelengths with it was a noticeable share of the Cornell box's instructions). This is
+//! the classic Cody-Waite construction (as in Cephes' `expf`): x = n ln 2 + r with |r| <=
+//! ln 2 / 2, exp(r) by its degree-6 Taylor polynomial (truncation error below 2e-8
+//! relative), and 2^n built from the exponent bits. Every step is branch-free arithmetic on
+//! each lane.
 
 /// ln 2 split so that `n * LN2_HI` is exact for |n| < 2^9 (its low mantissa bits are zero).
 const LN2_HI: f32 = 0.693_359_4;

@@ -24,8 +24,8 @@
 //!
 //! Monte Carlo machinery with no knowledge of scenes or spectrum types: distributions,
 //! warps, deterministic sample streams (and `SobolLanes`, W consecutive samples drawn at
-//! once, bit-identical to W scalar streams), lanes (`lanes`: `Lanes<T, W>`, the type a
-//! batch tracer's per-path code is to be written over, `Word` for code shared by one word
+//! once, bit-identical to W scalar streams), lanes (`lanes`: `Lanes<T, W>`, in which path
+//! reuse's gather connects a tile's vertices eight at a time, `Word` for code shared by one word
 //! and lanes of them, `Real` and `V3` for arithmetic shared by one `f32` and lanes of them
 //! (`Reals<W, EXACT>`; the cosine-hemisphere, concentric-disk and spherical-triangle warps
 //! are written once over it, libm for `f32`, the branch-free `lanes::trig` sine, arcsine

@@ -1,6 +1,6 @@
 //! Lanes compute, lane for lane, what the scalar code computes: the Sobol lane stream is
 //! bit-identical to the scalar streams of the same samples, and every lane operation to
-//! its scalar operation (issue 30's first stage: the batch tracer's draws are today's).
+//! its scalar operation.
 
 use prism_sampling::lanes::{Lanes, Word, native_width};
 use prism_sampling::stream::{SampleStream, SobolLanes, SobolStream};

@@ -125,13 +125,15 @@
 //!   closed enum sampled per package without dynamic dispatch) and per-hit BSDFs, so the
 //!   integrator does not depend on `prism-upsample`.
 //! - **One traversal, prism's own intersection.** obvhs builds a binary BVH (PLOC with
-//!   reinsertion); prism collapses it into a four-wide tree whose leaves are packets of
-//!   four triangles and traverses it one ray at a time with SSE, testing four boxes or four
-//!   triangles per instruction. The packet test is the scalar watertight test lane by lane,
-//!   bit for bit, so its guarantees hold for every query. (obvhs's compressed eight-wide
-//!   tree was measured 8% slower on the Cornell box and 17% on the bunny box, in whole
-//!   renders.) The collapse is planned by the surface area heuristic, bottom-up, rather
-//!   than greedy.
+//!   reinsertion); prism collapses it into an eight-wide tree, each node two groups of
+//!   four boxes, whose leaves are one or two packets of four triangles, and traverses it
+//!   one ray at a time with SSE, testing four boxes or four triangles per instruction (all
+//!   eight boxes in one test where the CPU has AVX2, to the same bits). The packet test is
+//!   the scalar watertight test lane by lane, bit for bit, so its guarantees hold for
+//!   every query. (obvhs's compressed eight-wide tree measured slower in whole renders:
+//!   decoding its quantized boxes costs more than it saves on a CPU; docs/trade-offs.md,
+//!   "The BVH and its node test".) The collapse is planned by the surface area heuristic,
+//!   bottom-up, rather than greedy.
 //! - **Light sampling by what the receiver sees.** Lights are chosen by power (an alias
 //!   table), or, when their spectra differ in ways a package of wavelengths can see
 //!   (narrow bands, ultraviolet), by power at the path's own wavelengths

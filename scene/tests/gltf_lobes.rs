@@ -688,7 +688,7 @@ mod diffuse_transmission {
 }
 /// The extensions' state is allocated only for materials that have it: the BSDF every
 /// hit builds and moves stays as small as before they existed (it was 360 bytes at 8
-/// lanes with the state inline, and cost the Cornell box 1.3% more instructions).
+/// lanes with the state inline, and cost the Cornell box more instructions).
 #[test]
 fn a_bsdf_without_extensions_stays_small() {
     let size = std::mem::size_of::<prism_scene::world::Bsdf<'static, 8>>();

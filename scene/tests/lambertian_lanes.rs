@@ -1,6 +1,6 @@
 //! The Lambertian vertex written over `Real` (the frame, the sampled direction, the density)
 //! gives, lane by lane, what the scalar BSDF and frame give, to the bit: with libm's sine
-//! in every lane (`Reals<W, true>`) a batch of paths is the scalar paths (issue 30).
+//! in every lane (`Reals<W, true>`) lanes of paths are the scalar paths.
 
 use glam::{Vec2, Vec3};
 use prism_sampling::lanes::Lanes;

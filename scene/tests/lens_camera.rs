@@ -240,8 +240,8 @@ proptest! {
 
 /// How many camera rays pass through the double Gauss and the wide angle when aimed in
 /// the exit-pupil bounds, against aiming at the rear element's disk (what the bounds
-/// save; docs/trade-offs.md quotes it): `cargo test -p prism-scene --test lens_camera
-/// -- --ignored --nocapture`.
+/// save; docs/trade-offs.md, "Cameras: thin lenses and lens systems", quotes it):
+/// `cargo test -p prism-scene --test lens_camera -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn exit_pupil_bounds_save_rays() {

@@ -11,7 +11,7 @@
 //! 9.4 MB with mean 0.008 / max 0.04. 32^3 keeps every lookup far below a visible
 //! difference (dE2000 1) at an eighth of the size of 64^3, which would make the crate
 //! too large to publish; callers who want 64^3 fit it once ([`CoefficientTable::fit`],
-//! about 5 s on two cores) and keep the bytes ([`CoefficientTable::to_bytes`]).
+//! seconds on a few cores) and keep the bytes ([`CoefficientTable::to_bytes`]).
 
 use std::sync::{Arc, LazyLock};
 

@@ -34,7 +34,7 @@ pub struct CoefficientTable {
     /// [x], each padded to four lanes (the fourth is 0) so that interpolation runs on
     /// whole 16-byte nodes. In nm rather than in the fitter's normalized t, because the
     /// conversion is linear and so commutes with interpolation: done once per node here,
-    /// it is not on every lookup's critical path (measured: 41.7 -> 36.8 ns per lookup).
+    /// it is not on every lookup's critical path (measured: a faster lookup).
     pub(crate) nodes: Vec<[f32; 4]>,
 }
 
@@ -142,7 +142,7 @@ impl AxisInverse {
     #[inline(always)]
     fn eval(&self, a: f32) -> f32 {
         // The half is chosen by an index offset before the load rather than by a select
-        // after it, which shortens the chain (measured: 39.6 -> 37.8 ns per lookup).
+        // after it, which shortens the chain (measured: a faster lookup).
         self.eval_half(a.min(1.0 - a), a > 0.5)
     }
 
@@ -150,8 +150,8 @@ impl AxisInverse {
     /// in SSE2 lanes (in [0, 1], not NaN), for `resolution` - 1 = `scale`: the operations
     /// of [`AxisInverse::eval`] and [`cell`] on the same values, so the same bits (tested).
     /// Batch lookups use it (`table_batch`); a lone lookup keeps one scalar chain per
-    /// axis, which is shorter (measured: three axes of one colour in lanes, 52 ns per
-    /// lookup against 40).
+    /// axis, which is shorter (measured: three axes of one colour in lanes made a lookup
+    /// slower).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
     #[allow(unsafe_code, reason = "SSE2 intrinsics, in the x86_64 baseline")]
@@ -426,7 +426,7 @@ impl CoefficientTable {
         let [r, g, b] = rgb.map(|c| c.max(0.0).min(1.0) as f32);
         // The largest channel and the two others in cyclic order after it. Branches, not
         // selects: a predicted branch lets the core start on the rest before the
-        // comparison resolves (measured: a branch-free choice was 15% slower).
+        // comparison resolves (measured: a branch-free choice was slower).
         let (channel, z, first, second) = if r >= g && r >= b {
             (0, r, g, b)
         } else if g >= b {

@@ -1,8 +1,8 @@
 //! Table lookups of many colours at once.
 //!
 //! One lookup is a chain of dependent steps (channel, ratios, axis inverses, cells, loads,
-//! weights) about a hundred cycles long, which leaves most of a core idle: measured alone
-//! it takes ~40 ns, and without the axis inverses ~25. On x86_64 a batch takes four
+//! weights) about a hundred cycles long, which leaves most of a core idle, and the axis
+//! inverses are a large part of it (measured). On x86_64 a batch takes four
 //! colours through the front of the chain in SSE2 lanes (clamp, largest channel, ratios,
 //! axis inverses, cells), a quarter of the instructions per colour, then interpolates
 //! each colour as [`CoefficientTable::lookup`] does. Every step is the same IEEE operation

@@ -50,10 +50,11 @@ impl Denoiser {
     /// The filter works in ACES2065-1 (AP0 primaries), whose gamut holds every colour
     /// light can have: OIDN's HDR mode takes non-negative light, and the spectral colours
     /// of a dispersed or fluorescent render lie outside sRGB's (negative components),
-    /// which clipping would grey. Measured on a prism's spectrum on a wall at 16 spp
-    /// (benches/denoise/measure.py): its most saturated pixels were CIEDE2000 6.9 from
-    /// the converged image noisy, 22.0 denoised in sRGB, 5.6 denoised in AP0, which also
-    /// cut the relative MSE 6.9x where sRGB cut it 3.8x (docs/trade-offs.md, "Denoising").
+    /// which clipping would grey. Measured on a prism's spectrum on a wall
+    /// (benches/denoise/measure.py), denoising in sRGB took its most saturated pixels
+    /// further from the converged image than the noise had, while denoising in AP0
+    /// brought them closer and cut the relative MSE more (docs/trade-offs.md,
+    /// "Denoising").
     pub fn denoise(
         &self,
         width: usize,

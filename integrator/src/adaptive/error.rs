@@ -6,11 +6,11 @@
 //! where the sky is seen directly, every sample's colour is nearly the same (the hero
 //! package's wavelengths, spread evenly, integrate a flat spectrum almost exactly), while
 //! each band is hit or missed by a sample's few wavelengths. A pilot that judged colour
-//! alone gave such pixels the fewest samples and left their bands four times as noisy as
-//! a uniform render's. So each output the film keeps enters the pilot's error with the
-//! same weight as colour: its channels' errors, each weighted as the relative MSE weighs
-//! it (`channel_error`), in that output's units, averaged over its
-//! channels and scaled to colour's three.
+//! alone gave such pixels the fewest samples and left their bands several times as noisy
+//! as a uniform render's (docs/trade-offs.md, "Adaptive sampling"). So each output the film
+//! keeps enters the pilot's error with the same weight as colour: its channels' errors,
+//! each weighted as the relative MSE weighs it (`channel_error`), in that output's units,
+//! averaged over its channels and scaled to colour's three.
 
 use prism_spectrum::colorimetry::Observer;
 

@@ -8,7 +8,7 @@
 //! sampling, Cochran, *Sampling Techniques*, 3rd ed., §5.5). The total of samples is kept,
 //! so that a render of N samples per pixel still takes N on average. Where error gathers (a glass sphere, a caustic, a glossy
 //! highlight of the sky), equal samples everywhere waste most of them: the measured gains
-//! are in docs/trade-offs.md.
+//! are in docs/trade-offs.md, "Adaptive sampling".
 //!
 //! The pilot traces every pixel once under each of two seeds of its own, in the render's
 //! own modes (splits, reuse); the two estimates' squared difference over two is a one-sample
@@ -46,10 +46,11 @@ const TILE: u32 = 4;
 
 /// The side of the box (pixels) that averages the pilot's one-sample error estimates.
 /// Measured on the specular, glossy, caustic, medium and Cornell boxes and the textured
-/// sky (128 x 128, against per-pixel errors from 16 seeds): boxes of 9 gave 1.01-1.1x the
-/// gain of boxes of 3 and 5. A pilot of a quarter of the pixels (every other one, or every
-/// other tile of reuse) gave 0.98-0.99 of the gain there, but 0.82-0.89x the efficiency
-/// of the full pilot on the Cornell and bunny boxes (tiles of reuse 8 pixels apart).
+/// sky (against per-pixel errors from many seeds): boxes of 9 gained at least as much as
+/// boxes of 3 and 5. A pilot of a quarter of the pixels (every other one, or every other
+/// tile of reuse) gained nearly as much there, but was less efficient than the full pilot
+/// on the Cornell and bunny boxes (tiles of reuse 8 pixels apart; docs/trade-offs.md,
+/// "Tried and not kept").
 const SMOOTHING: u32 = 9;
 
 /// The fewest samples per pixel at which a render samples adaptively: the pilot costs two

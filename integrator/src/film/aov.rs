@@ -17,14 +17,14 @@
 //!   nothing; the lowest-numbered sample's, so that merged ranges agree with one render.
 //! - `variance`: the variance of each pixel's mean (R, G, B): its expected squared error.
 //!   prism's samples are scrambled Sobol points (randomized quasi-Monte Carlo), whose
-//!   means err less than the spread of their samples says, by a factor of the integrand
-//!   (3-25x on the test scenes). So a film that records the variance splits its samples
+//!   means err less than the spread of their samples says, by a factor of the integrand.
+//!   So a film that records the variance splits its samples
 //!   into two independently scrambled sequences (`Replicas`: even and odd samples),
 //!   sums the second's colours apart, and estimates the variance of the pixel from the
 //!   two means' difference, without bias: n_a n_b / n^2 (A - B)^2. The radiance is then
 //!   the mean of two sequences of n / 2 points rather than one of n, another image of the
-//!   same expectation with more error (1.4x the squared error on the Cornell box:
-//!   docs/trade-offs.md, "Feature buffers and the variance buffer").
+//!   same expectation with more error (docs/trade-offs.md, "Feature buffers and the
+//!   variance buffer").
 //!
 //! The features are traced by a pass of their own (`trace`), one camera ray per sample
 //! with the radiance's film point, lens point, time and wavelengths, followed through

@@ -164,9 +164,9 @@ pub(crate) fn resolve(
         Tracing::Lanes(_) => (TracerKind::Paths, LANES_NOT_KEPT),
     };
     let no_reuse = why_not_reuse(scene, settings, lens_system);
-    // A denoiser keeps reuse's blocks of shared noise as detail: on the Cornell box at 16
-    // spp denoising cut the relative MSE 5.8x without reuse and 1.07x with tiles of 2
-    // (docs/trade-offs.md, "Denoising").
+    // A denoiser keeps reuse's blocks of shared noise as detail: on the Cornell box,
+    // denoising cut the relative MSE several times over without reuse and hardly at all
+    // with tiles of 2 (docs/trade-offs.md, "Denoising").
     let denoised_auto = settings.denoised && settings.reuse == Reuse::Auto;
     let reuse = if denoised_auto {
         Reuse::Fixed(1)

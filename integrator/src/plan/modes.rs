@@ -9,10 +9,10 @@
 //! 1 / (V(K) C(K)) is greatest at K* = sqrt(V_c C_p / (V_b C_c)). The pilot traces the
 //! same samples of a grid of pixels unsplit and split in two: V(1) - V(2) = V_c / 2, and
 //! the rays they trace give C_p and C_c. Variances are weighted as the relative MSE weighs
-//! errors (by 1 / (mean^2 + 0.01)), costs counted in rays (measured on the Cornell box and
-//! the effects stage, a render's time is within 5% of proportional to its rays), so the
-//! choice is a pure function of the scene, the image size, the settings and the seed:
-//! every thread count and every machine of a farm makes the same one.
+//! errors (by 1 / (mean^2 + 0.01)), costs counted in rays (measured, a render's time is
+//! nearly proportional to its rays), so the choice is a pure function of the scene, the
+//! image size, the settings and the seed: every thread count and every machine of a farm
+//! makes the same one.
 //!
 //! Where light paths carry caustics, what they add to a pixel neither splits nor depends
 //! on the splits: their variance adds to the prefix's, their rays to the prefix's cost
@@ -29,12 +29,13 @@ use crate::reuse::Tile;
 use crate::transport::context::Integrator;
 use crate::transport::throughput::Throughput;
 
-/// The choices. Against Mitsuba's references (docs/trade-offs.md) four continuations beat
-/// two by 5% on the Cornell box and lost by 4% on the bunny box, a difference the pilot
-/// cannot resolve (its estimates of the prefix's small variance are mostly its own
-/// noise), while between one and two it is clear on every scene measured; and a render
-/// asked for N samples should not take three times as long as N unsplit samples do
-/// (two continuations take 1.7x). `--splits 4` remains for those who know their scene.
+/// The choices. Against Mitsuba's references four continuations beat two on the Cornell
+/// box and lost to them on the bunny box, both by little (docs/trade-offs.md, "Splitting
+/// at the first vertex"), a difference the pilot cannot resolve (its estimates of the
+/// prefix's small variance are mostly its own noise), while between one and two it is
+/// clear on every scene measured; and a render asked for N samples should not take
+/// several times as long as N unsplit samples do (two continuations take nearly twice as
+/// long). `--splits 4` remains for those who know their scene.
 const CHOICES: [u32; 2] = [1, 2];
 
 /// Pilot pixels per image side (at most), and samples per pilot pixel.
@@ -201,27 +202,27 @@ const REUSE_MARGIN: f64 = 0.85;
 /// The margin of [`REUSE_MARGIN`] for a render that samples adaptively, which reuses in
 /// [`WIDEST_TILES`]: the pilot measures tiles of two under uniform samples, and with
 /// adaptive sampling's spread tiles of four gain more than it sees. Measured against the
-/// margin of uniform renders (128 x 128 and 256 x 256, 64 spp, noise from 6 seeds'
-/// variance, each render's pilot included): the glossy box 1.08x and 1.37x, the specular
-/// box 1.10x and 1.36x, the caustic box 1.50x and 1.45x, the plastic box 1.27x at 256
-/// (at 128 it reused already); at 64 x 64 the glossy, specular and caustic boxes 1.07x,
-/// 1.48x, 1.61x, the plastic box 0.94x. A margin of 1.3 measured the same.
+/// margin of uniform renders (each render's pilot included), it was more efficient on the
+/// glossy, specular and caustic boxes at every size, and on the plastic box but at the
+/// smallest size; a margin of 1.3 measured the same (docs/trade-offs.md, "Path reuse
+/// across tiles of pixels").
 const ADAPTIVE_REUSE_MARGIN: f64 = 1.1;
 
 /// What reuse must do to its own tiles' error per ray (at most this share of it without
 /// reuse, [`ModePilot::reuse_gain`]) to be chosen under [`ADAPTIVE_REUSE_MARGIN`]: where
 /// no path shares a vertex (textured walls, no Lambertian second vertex) the pilot
-/// measures 0.97-1.03, and 4 x 4 tiles that share nothing cost 5-7% (the textured scene
-/// at 128 x 128: their wavelengths are shared too). The glossy, specular and caustic
-/// boxes measure 0.86-0.96, the plastic box 0.70-0.81 (6 seeds each).
+/// measures about 1 either side, within its noise, and 4 x 4 tiles that share nothing
+/// cost time (their wavelengths are shared too); the glossy, specular and caustic boxes
+/// measure below this, the plastic box well below (docs/trade-offs.md, "Path reuse across
+/// tiles of pixels").
 const ADAPTIVE_REUSE_GAIN: f64 = 0.97;
 
 /// What a connection of path reuse costs in the pilot's unit, a ray of a path: its shadow
 /// ray, the pair's geometry (eight pairs at a time in SIMD lanes) and the BSDF's value.
 /// callgrind on the Cornell box (32 x 32, 32 spp, `--reuse 2`, one thread) counts 761
 /// instructions per connection against 2112 per ray of the paths, all of their work
-/// included; counted as whole rays, reuse looked 1.2x dearer than it measured on the
-/// medium box (+21% rays for +6-9% time).
+/// included; counted as whole rays, reuse looked dearer than it measured on the medium
+/// box, whose render time grows much less than its rays with reuse.
 const CONNECTION_COST: f64 = 0.35;
 
 /// What the pilot with reuse measured, per mode (unsplit, split in two, then each of
@@ -231,7 +232,7 @@ const CONNECTION_COST: f64 = 0.35;
 /// tile's pixels are also traced unsplit (`unsplit`), so that reuse is judged against
 /// the same pixels and streams without it: against the corner pixel alone, the pilot's
 /// estimate of reuse's gain was mostly the noise of comparing different pixels (a scene
-/// where no path can share a vertex measured 1.1-1.4x the error with reuse).
+/// where no path can share a vertex measured more error with reuse than without).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct ModePilot {
     pub variance: [f64; 4],
@@ -313,23 +314,22 @@ impl ModePilot {
 
 /// The larger tiles of [`REUSE_CHOICES`] are tried only where the smallest promise at most
 /// this share of the best split's error per ray. Measured with every repository scene at
-/// 64, 128 and 256 pixels square, two seeds each: tiles of four were chosen where tiles
-/// of two promised 0.39-0.73 (the Cornell and bunny boxes, where four measure 1.4-2.3x
-/// better than two), and where two promised 0.74-0.84 (the medium, plastic and specular
-/// boxes) four measured 0.88-1.02x two, for a stage of the pilot that costs three times
-/// the rest (0.2 s of a 2.3 s render of the specular box at 128 x 128, 64 spp).
+/// 64, 128 and 256 pixels square: where tiles of four paid (the Cornell and bunny boxes,
+/// where four measure clearly better than two) tiles of two promised less than this, and
+/// where they promised more (the medium, plastic and specular boxes) four measured no
+/// better than two, for a stage of the pilot that costs more than the rest of it
+/// (docs/trade-offs.md, "Path reuse across tiles of pixels").
 const WIDE_TILES_BELOW: f64 = 0.8;
 
 /// The tiles a render that samples adaptively shares vertices in wherever the pilot
 /// chooses reuse ([`ModePilot::adaptive_choice`]): the largest of [`REUSE_CHOICES`],
-/// without the pilot's stage that compares them. The pilot measures each mode with uniform samples, where tiles of four
-/// measured 0.99x two on the medium box; with adaptive sampling's spread (`adaptive`),
-/// 1.17x. At 64 spp (noise from 4-6 seeds' variance), four against two: the medium box
-/// 1.09x, 1.16x and 1.16x at 64, 128 and 256 pixels square, the plastic box 1.12x,
-/// 1.09x, 1.01x, the specular box 1.01x and 1.13x at 64 and 128, the glossy box 1.03x at
-/// 64, the caustic box 1.16x and the milky bunny 1.03x at 256 (the pilot had chosen two
-/// on each but the medium box at 64); the boxes the pilot gave four keep them (images
-/// byte-identical), and every such render skips a stage that cost it 6-10%.
+/// without the pilot's stage that compares them. The pilot measures each mode with
+/// uniform samples, where tiles of four measured no better than two on the medium box;
+/// with adaptive sampling's spread (`adaptive`), four measured better than two there and
+/// on the plastic, specular, glossy and caustic boxes and the milky bunny, where the
+/// pilot chooses two (docs/trade-offs.md, "Path reuse across tiles of pixels"); the boxes
+/// the pilot gave four keep them (images byte-identical), and every such render skips
+/// the pilot's stage that compares the tiles.
 const WIDEST_TILES: u32 = REUSE_CHOICES[REUSE_CHOICES.len() - 1];
 
 /// Traces the pilot for a scene whose paths can share their second vertices: up to
@@ -465,8 +465,8 @@ pub(crate) fn mode_pilot<const N: usize, const FLUORESCENCE: bool, T: Throughput
 /// and counts each such cell's error as their mean in both: the tail of a scene's error
 /// (a caustic's rare paths, which reuse does not touch) still weighs against reuse's
 /// gain, while the noise of its few cells cannot decide for either. Left out entirely, the
-/// tail made reuse look 1.5x better than it was on the caustic box (0.56 against 0.86 at
-/// the pilot's 8 samples); counted as measured, one firefly decides.
+/// tail made reuse look much better than it was on the caustic box; counted as measured,
+/// one firefly decides.
 fn summarize_modes(per_cell: &[ModePilot], modes: usize) -> ModePilot {
     let mut total = ModePilot::default();
     let all = per_cell.len() as f64;

@@ -26,15 +26,17 @@
 //! What it costs: a shadow ray per pair of first and second vertices of different
 //! pixels, T^2 - 1 per pixel and sample. What it buys: each pixel's indirect light is
 //! estimated from T^2 continuations instead of one; on the Cornell box the error per
-//! sample falls 3.4x (T = 2) to 9x (T = 4) for 1.2-1.6x the time (docs/trade-offs.md).
+//! sample falls several times over for a fraction more time, the more the larger the tile
+//! (docs/trade-offs.md, "Path reuse across tiles of pixels").
 //!
 //! The tiles stay in place from sample to sample, so that the second vertices a pixel
 //! gathers over its samples come from a few Sobol streams, each stratified over the
 //! samples: tiles that moved with every sample (their corner cycling through the T^2
-//! offsets) raised the Cornell box's error by 30% at T = 4, by 12% moving every 8
-//! samples. The price is that within a tile the noise is shared: at a few samples per
-//! pixel the image shows it as faint T x T blocks. A tile's wavelengths are its corner
-//! pixel's (that pixel's wavelength dimension), stratified over the samples.
+//! offsets) raised the Cornell box's error, and so did tiles that moved every few
+//! samples (docs/trade-offs.md, "Tried and not kept"). The price is that within a tile the
+//! noise is shared: at a few samples per pixel the image shows it as faint T x T blocks. A
+//! tile's wavelengths are its corner pixel's (that pixel's wavelength dimension),
+//! stratified over the samples.
 
 use prism_sampling::stream::SampleStream;
 use prism_scene::world::EmissionCache;

@@ -68,9 +68,9 @@ pub(crate) const ROULETTE_DEPTH: u32 = 3;
 /// probability min(0.95, throughput / ROULETTE_THROUGHPUT), so survivors carry at least
 /// this much. Survival equal to the throughput (1 here) ended too many paths that still
 /// had light to bring: measured as efficiency, 1 / (seconds x relative MSE), on five
-/// scenes (docs/trade-offs.md), 0.25 is 10-23% more efficient on the Cornell box, the
-/// bunny box, the glass bunny and the effects stage and twice as efficient under the
-/// blacklight, for 5-13% fewer paths per second; 0.5 and 0.125 gain less.
+/// scenes, 0.25 was the most efficient of the values measured, or within noise of the
+/// most efficient, on every one, for fewer paths per second (docs/trade-offs.md, "Russian
+/// roulette").
 pub(crate) const ROULETTE_THROUGHPUT: f32 = 0.25;
 
 /// The result of one path; its light went to the caller's sink.

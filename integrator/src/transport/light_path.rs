@@ -39,9 +39,10 @@ use prism_scene::geometry::Frame;
 
 /// The roughest GGX lobe (alpha, roughness 0.35) whose light counts as focused: light
 /// leaving an emitter through such surfaces (or smooth ones) is carried by light paths,
-/// like a caustic through glass. Measured as time to equal error on the glossy box
-/// (docs/trade-offs.md): counting lobes up to 0.1 doubles the efficiency; counting
-/// rougher ones too (copper at 0.15, aluminium at 0.3) gives some of it back.
+/// like a caustic through glass. Measured as time to equal error on the glossy box,
+/// counting lobes about this narrow pays; counting rougher ones too (copper at 0.15,
+/// aluminium at 0.3) gives some of it back. What light paths buy: docs/trade-offs.md,
+/// "Light paths for caustics".
 pub(crate) const CAUSTIC_ALPHA: f32 = 0.12;
 
 /// Sample-stream dimensions of a light path: the wavelength (0), the light choice, its

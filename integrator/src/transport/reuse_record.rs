@@ -50,13 +50,15 @@ impl<'s, const N: usize> FirstVertex<'s, N> {
 
 /// Whether a first vertex of `material` gathers its tile's second vertices: Lambertian
 /// ones, and plastics under a rough coating, whose substrate's wide lobe overlaps its
-/// neighbours' (the plastic box: 1.03-1.05x to equal error at 128 and 256 pixels square). Every bounce drawn
+/// neighbours' (the plastic box reaches equal error sooner: docs/trade-offs.md, "Path
+/// reuse across tiles of pixels"). Every bounce drawn
 /// there must be one that can be shared (a pixel that drew a delta would not gather, and
 /// its light reflected by the lobe it did not draw would be lost): a smooth coating's
 /// mirror is a delta. Conductors and glass are left out: the glossy box's copper (GGX alpha
-/// 0.15) and aluminium (0.3) lowered its error 3.5% for 1.10x the time, their lobes too
-/// narrow for most pairs; a narrow one ([`crate::transport::light_path::CAUSTIC_ALPHA`]) would also
-/// mix paths whose caustics light paths carry with paths whose they do not.
+/// 0.15) and aluminium (0.3) lowered its error less than they added to the time, their
+/// lobes too narrow for most pairs (docs/trade-offs.md, "Tried and not kept"); a narrow one
+/// ([`crate::transport::light_path::CAUSTIC_ALPHA`]) would also mix paths whose caustics
+/// light paths carry with paths whose they do not.
 fn shares_first(material: &Material) -> bool {
     match material {
         Material::Diffuse { .. } => true,

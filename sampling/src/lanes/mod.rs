@@ -1,13 +1,14 @@
-//! Lanes: W values handled as one, the type the per-path code of a batch tracer is to be
-//! written over (issue 30's plan in docs/trade-offs.md, "Against Mitsuba 3": paths of
-//! neighbouring samples advancing together, one per lane, as Mitsuba 3 writes its plugins
-//! once over Dr.Jit's arrays).
+//! Lanes: W values handled as one. Path reuse's gather (the integrator's
+//! `reuse/gather.rs`) connects eight first vertices of a tile at a time in them, through
+//! [`real::Real`]; the Lambertian sampling, shading frames and Russian roulette the path
+//! tracer runs for one `f32` are written once over the same trait, so that they serve
+//! lanes as well; and `SobolLanes` draws W consecutive samples at once over [`Word`].
 //!
 //! A `Lanes<T, W>` is a plain aligned array whose operations are lane-by-lane loops that
 //! the compiler turns into SIMD instructions where the target has them; every operation
 //! is, lane for lane, the scalar operation of the same name, so code written over
-//! [`Word`] (or, later, a float trait) computes bit-identical values for `u32` and for
-//! lanes of it. [`native_width`] is the width the running CPU handles in one register.
+//! [`Word`] (or [`real::Real`]) computes bit-identical values for one `u32` (or `f32`)
+//! and for lanes of them. [`native_width`] is the width the running CPU handles in one register.
 
 pub mod real;
 pub mod trig;

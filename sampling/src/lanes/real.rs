@@ -1,6 +1,6 @@
 //! Real numbers, one or lanes of them, and 3-vectors of them: what the warps a path samples
-//! with are written over, so that a scalar path and a batch of paths in lanes run the same
-//! code (issue 30's plan: one implementation of the per-path code over a lane type).
+//! with are written over, so that one path and lanes of them (path reuse's gather, eight
+//! first vertices at a time) run the same code.
 //!
 //! For `f32` every operation is the one glam and the standard library perform (the same
 //! IEEE operations in the same order, libm's sine and arcsine), so code written over

@@ -1,5 +1,5 @@
 //! The Sobol stream of W neighbouring samples of one pixel at once, one sample per lane:
-//! what a batch of paths draws (issue 30). Lane `i` is, to the bit, [`SobolStream`] of
+//! what paths traced in lanes would draw. Lane `i` is, to the bit, [`SobolStream`] of
 //! sample `first + i`: the scramble runs the same code over lanes of words
 //! (`laine_karras_permutation` over [`Word`]), and what the lanes share (the pixel's key,
 //! the dimension's hash) is computed once for all of them.

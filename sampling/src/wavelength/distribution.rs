@@ -233,7 +233,7 @@ impl WavelengthDistribution {
 /// 4 e / (1 + e)^2 with e = exp(-2 |x|), times `scale`, and 0 outside `range`. A loop
 /// over slices, out of line: LLVM's loop vectorizer computes four lanes per instruction,
 /// while a package's eight lanes, unrolled as a fixed-size array, stayed scalar (measured:
-/// 300 instructions per path fewer on the Cornell box, the same densities to the bit).
+/// fewer instructions per path on the Cornell box, the same densities to the bit).
 #[inline(never)]
 fn visible_density(lambda: &[f32], density: &mut [f32], scale: f32, range: WavelengthRange) {
     let (center, sharpness) = (VISIBLE_CENTER_NM as f32, VISIBLE_SHARPNESS as f32);

@@ -18,7 +18,8 @@ pub fn fresnel_conductor(cos_i: f32, eta: f32, k: f32) -> f32 {
 
 /// [`fresnel_conductor`] for every lane at one cosine: the same values to the bit, the
 /// lanes computed side by side (the body has no branch, so the compiler vectorizes the
-/// square roots and divisions; the conductor's Fresnel was 5% of the glossy box's time).
+/// square roots and divisions; the conductor's Fresnel was a noticeable share of the
+/// glossy box's time).
 pub fn fresnel_conductor_lanes<const N: usize>(
     cos_i: f32,
     eta: &SampledSpectrum<N>,

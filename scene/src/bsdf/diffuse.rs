@@ -51,7 +51,8 @@ impl<const N: usize> Diffuse<N> {
 /// [`Diffuse::sample`]'s direction for one path or for lanes of them (`wo_z` the cosine of
 /// the outgoing direction in the shading frame): a cosine-distributed direction on
 /// `wo_z`'s side, its density, and where it exists (not at a grazing `wo` or a direction
-/// of density zero). One implementation for the path tracer and the batch tracer.
+/// of density zero). Written once over [`Real`]: the path tracer's one `f32`, or lanes
+/// of them, the same operations lane by lane (`scene/tests/lambertian_lanes.rs`).
 #[inline(always)]
 pub fn lambertian_sample<R: Real>(wo_z: R, u: [R; 2]) -> (V3<R>, R, R::Mask) {
     let zero = R::splat(0.0);

@@ -121,7 +121,7 @@ const GAUSS_16: [(f32, f32); 8] = [
 ///
 /// The extensions' state lives behind one allocation, made only for a material that has
 /// them: the plain material stays small, so that every BSDF of a scene without them is
-/// cheap to build and move (measured: inline, it made the Cornell box's paths 1.3% more
+/// cheap to build and move (measured: inline, it made the Cornell box's paths take more
 /// instructions).
 #[derive(Debug, Clone)]
 pub struct MetallicRoughness<'a, const N: usize> {

@@ -21,8 +21,8 @@ pub fn triangle_point_error(p: [Vec3; 3], barycentric: [f32; 3]) -> Vec3 {
 /// box, to the side the ray leaves on, then rounded away from `p` so that it is certainly
 /// outside the error box (*PBR* 4th ed. §6.8.6). A spawned ray then cannot re-hit the
 /// surface it starts on through rounding.
-// Always inlined: two calls per bounce, and out of line (as LLVM chose once the path
-// tracer grew a split variant) it cost 0.5% more instructions on the Cornell box.
+// Always inlined: two calls per bounce, and out of line (where LLVM placed it without the
+// attribute) it cost the Cornell box's paths more instructions.
 #[inline(always)]
 pub fn offset_ray_origin(p: Vec3, error: Vec3, n: Vec3, direction: Vec3) -> Vec3 {
     offset_ray_origin_to_side(p, error, n, direction.dot(n) < 0.0)

@@ -12,30 +12,30 @@ const SLOTS: usize = 8;
 /// The emission spectra of triangle lights evaluated at one set of wavelengths, each at
 /// most once. A path evaluates its lights at the same wavelengths at every vertex (next-event
 /// estimation, then the emitter a bounce hits), and an RGB illuminant costs a sigmoid and
-/// an illuminant table per lane: measured, these repeats were 6% of the Cornell box's
-/// instructions. Values are keyed by the wavelengths themselves, so a cache that outlives
-/// a change of wavelengths (fluorescence) refills instead of answering wrongly, and what
-/// it returns is bit for bit what evaluating would.
+/// an illuminant table per lane: measured, these repeats were a noticeable share of the
+/// Cornell box's instructions. Values are keyed by the wavelengths themselves, so a cache
+/// that outlives a change of wavelengths (fluorescence) refills instead of answering
+/// wrongly, and what it returns is bit for bit what evaluating would.
 #[derive(Debug, Clone)]
 pub struct EmissionCache<const N: usize> {
     lambdas: [f32; N],
     emission: Slots<SampledSpectrum<N>>,
     /// Lambertian materials' constant reflectances at these wavelengths, by material
     /// index (the first `SLOTS` materials): a path meets the same few walls again and
-    /// again, and each evaluation is a sigmoid per lane (measured: 7% of the Cornell
-    /// box's time went to evaluating reflectances).
+    /// again, and each evaluation is a sigmoid per lane (measured: evaluating reflectances
+    /// was a noticeable share of the Cornell box's time).
     reflectances: Slots<SampledSpectrum<N>>,
     /// The lights' choice weights at these wavelengths, once computed (scenes whose
     /// lights differ in spectrum; see `light_choice`).
     pub(crate) choice_weights: Option<Weights>,
     /// Media's coefficients at these wavelengths ([`Medium::at`]), by medium index (the
     /// first `SLOTS` media): a path through a medium evaluates them for every flight and
-    /// every shadow ray, two to four spectra each (measured: 7% of the instructions of the
-    /// medium box).
+    /// every shadow ray, two to four spectra each (measured: a noticeable share of the
+    /// medium box's instructions).
     media: Slots<MediumPoint<N>>,
     /// The environment image's illuminant at these wavelengths
     /// ([`EnvironmentMap::white`]): every lookup of the image multiplies by it (measured:
-    /// 5% of the textured sky scene's instructions evaluated it).
+    /// evaluating it was a noticeable share of the textured sky scene's instructions).
     ///
     /// [`EnvironmentMap::white`]: super::EnvironmentMap::white
     environment_white: Option<[f32; N]>,

@@ -136,8 +136,8 @@ fn around(axis: Vec3, local: Vec3) -> Vec3 {
 }
 
 /// What sampling a triangle light reads of its geometry, computed once per light: the
-/// normal, area and centroid were recomputed per light sample (~1% of the Cornell box's
-/// instructions).
+/// normal, area and centroid, recomputed per light sample, were a measurable share of
+/// the Cornell box's instructions.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct TriangleShape {
     pub(crate) vertices: [Vec3; 3],
@@ -184,11 +184,11 @@ impl TriangleShape {
 /// [`solid_angle_sampled`]). Area sampling's noise is the variation of cos / d^2 over the
 /// triangle, which grows with the angle it subtends; the spherical construction (Arvo
 /// 1995) removes it but costs inverse trigonometry per sample and a solid angle per
-/// emitter hit. Measured on the Cornell box (instructions per path under callgrind at
-/// C = 4; relMSE at 128^2 x 64 spp against 1024 spp): from 3e-4 sr, pbrt-v4's bound, 14%
-/// more instructions for 2-3% less error; from 0.05 sr, 0.7% more and the same gain. The
-/// effects stage's booth panels, close to what they light, lose 11-15% of their error
-/// either way. Above 6.22 sr (nearly a hemisphere) the construction degenerates (*PBR*
+/// emitter hit. Measured on the Cornell box (instructions per path under callgrind,
+/// relMSE against a converged render): from 3e-4 sr, pbrt-v4's bound, many more
+/// instructions for a small gain in error; from 0.05 sr, few more for the same gain. The
+/// effects stage's booth panels, close to what they light, lose a good share of their
+/// error either way. Above 6.22 sr (nearly a hemisphere) the construction degenerates (*PBR*
 /// 4th ed. §6.5.4).
 const SOLID_ANGLE_SAMPLING: std::ops::RangeInclusive<f32> = 0.05..=6.22;
 
@@ -198,8 +198,8 @@ const SOLID_ANGLE_SAMPLING: std::ops::RangeInclusive<f32> = 0.05..=6.22;
 pub(crate) fn solid_angle_sampled(p: Vec3, shape: &TriangleShape) -> Option<f32> {
     // Screened first by the solid angle of a small patch of the triangle's area at its
     // centroid, A |cos| / d^2 (no normalizations, no arctangent): most samples from most
-    // points are of far lights (measured: the exact angle for every decision was 1.5% of
-    // the Cornell box's instructions). Only what passes gets the exact angle.
+    // points are of far lights (measured: the exact angle for every decision was a
+    // noticeable share of the Cornell box's instructions). Only what passes gets the exact angle.
     let to = shape.centroid - p;
     let d2 = to.length_squared();
     let patch = 0.5 * shape.cross.dot(to).abs() / (d2 * d2.sqrt());
@@ -414,8 +414,8 @@ impl Lights {
     /// Chooses a light with `u.x` and samples it from `p` with what is left of `u.x` and
     /// with `u.y`: one 2D sample for the choice and the point, so that its stratification
     /// spans all of a light made of several triangles (a quad's two halves). Measured on
-    /// the Cornell box (128^2 x 64 spp, 5 seeds, every other dimension unchanged): 1.6-2.3%
-    /// less error than a separate number for the choice, in each seed.
+    /// the Cornell box (several seeds, every other dimension unchanged): less error than a
+    /// separate number for the choice, in each seed.
     pub(crate) fn sample<const N: usize>(
         &self,
         p: Vec3,

@@ -35,10 +35,10 @@
 //! bands narrower than a package's spacing, or light only outside the visible. A
 //! package's wavelengths are spread across the range, so a broad spectrum's sum over them
 //! is nearly its mean, and choosing by it only adds the other lights' spectral noise to
-//! each light's estimate: measured (docs/trade-offs.md, "Light choice"), the choice by
-//! power is 4-7% more efficient with a warm lamp and daylight or 40 nm LED bands, while the
-//! spectral choice gains 2-5% with 30 nm bands, 5% on the effects stage (its 365 nm
-//! tube), and 1.7-200 times with 20 nm bands.
+//! each light's estimate: measured (docs/trade-offs.md, "When the choice follows the
+//! wavelengths"), the choice by power is the more efficient with a warm lamp and daylight
+//! or 40 nm LED bands, while the spectral choice gains a little with 30 nm bands and on
+//! the effects stage (its 365 nm tube), and much with 20 nm bands.
 
 use std::collections::HashMap;
 
@@ -518,7 +518,8 @@ mod tests {
 
     /// Broad spectra that differ in shape (a warm and a cool lamp) keep the choice by
     /// power: their sums over a package barely change from path to path, and choosing by
-    /// them was measured to add noise (docs/trade-offs.md, "Light choice"). Bands narrower
+    /// them was measured to add noise (docs/trade-offs.md, "When the choice follows the
+    /// wavelengths"). Bands narrower
     /// than the package's spacing, or dark over the visible, make the choice spectral.
     #[test]
     fn only_spectra_that_vary_across_packages_make_the_choice_spectral() {

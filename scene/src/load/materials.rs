@@ -226,8 +226,8 @@ impl Upsampling {
     }
 }
 
-/// The table textures use when the mode names none: 32^3 stays within 1% of exact fits'
-/// error in rendered images, where 16^3 does not (docs/trade-offs.md), and it is the
+/// The table textures use when the mode names none: 32^3 renders with nearly the error of
+/// exact fits, where 16^3 does not (docs/trade-offs.md, "RGB upsampling"), and it is the
 /// resolution prism-upsample ships, so it costs no fitting.
 const TEXTURE_TABLE_RESOLUTION: usize = prism_upsample::SHIPPED_RESOLUTION;
 

@@ -49,8 +49,8 @@ impl DenselySampled {
     }
 
     /// The spectrum at `N` wavelengths (nm) at once, in f32: what a renderer samples per
-    /// path, without an f64 call per wavelength (measured: the f64 path was 5% of a
-    /// Cornell box render's instructions, through its light's D65). The same linear
+    /// path, without an f64 call per wavelength (measured: the f64 path was a noticeable
+    /// share of a Cornell box render's instructions, through its light's D65). The same linear
     /// interpolation as [`Spectrum::evaluate`], 0 outside the range and for NaN; within
     /// f32 rounding of it.
     pub fn evaluate_lanes<const N: usize>(&self, lambda: &[f32; N]) -> [f32; N] {
@@ -91,7 +91,7 @@ impl Spectrum for DenselySampled {
             return 0.0;
         }
         // x >= 0, so truncation is the floor (f64::floor is a libm call on baseline
-        // x86-64: measured 3% of a Cornell box render's instructions).
+        // x86-64: measured, a noticeable share of a Cornell box render's instructions).
         let i = (x as u32 as usize).min(self.values.len() - 1);
         if i + 1 == self.values.len() {
             return self.values[i];

@@ -241,7 +241,7 @@ pub struct RenderArgs {
     /// normal, world space), depth (camera distance), position (world space), material_id
     /// (1 + the material's index, 0 for none), variance (of each pixel's mean, R G B: its
     /// expected squared error, from two independently scrambled halves of the samples,
-    /// which leave the image 1.4x noisier on the Cornell box), or all. They share the
+    /// which leave the image somewhat noisier), or all. They share the
     /// radiance's film, filter, merges and checkpoints.
     #[arg(long, value_name = "LIST")]
     pub aov: Option<String>,

@@ -49,12 +49,12 @@ use segment::{Flight, fly};
 const FLIGHT_DIMENSION: u64 = 1 << 32;
 
 /// The most likely a path that still carries light survives Russian roulette after a
-/// scattering: in a medium a path's light comes after many scatterings (the medium box's
-/// block is 0.013 bright after one bounce, 0.076 unbounded), and the path tracer's cap of
+/// scattering: in a medium a path's light comes after many scatterings (most of the
+/// medium box's block's light comes after its first bounce), and the path tracer's cap of
 /// 0.95 ended 5% of paths at each of them whatever they carried, multiplying the rest by
-/// 1 / 0.95 each time. At 0.99 the milk bunny's error at equal samples is 0.71x for 14%
-/// more rays (1.15x sooner to equal error), the medium box's 0.94x for 5% more (even),
-/// the hot plume's unchanged (docs/trade-offs.md); a path in a closed scene that absorbs
+/// 1 / 0.95 each time. At 0.99 the milk bunny reaches equal error sooner, the medium box
+/// as soon, the hot plume unchanged (docs/trade-offs.md, "Participating media: the
+/// volumetric tracer against Mitsuba's volpathmis"); a path in a closed scene that absorbs
 /// nothing still ends, after a hundred bounces on average.
 const SURVIVAL_CAP: f32 = 0.99;
 
@@ -116,8 +116,8 @@ impl<'a> Integrator<'a> {
                     stratified = Some(walk.depth);
                     // Two 1D draws, each its own scrambled (0, 1)-sequence: stratified
                     // alone, never worse than independent numbers (Owen 1997), where a
-                    // joint 2D net can be up to twice as bad (it was, by 1.3x, on the
-                    // hot plume of scenes/media.gltf).
+                    // joint 2D net can be up to twice as bad (it was worse on the hot
+                    // plume of scenes/media.gltf).
                     let mut numbers = stream.clone();
                     numbers.set_dimension(FLIGHT_DIMENSION + 2 * u64::from(walk.depth));
                     let distance = numbers.next_1d();

@@ -90,7 +90,7 @@ impl NodeTest for BoxRay8 {
 
 // Helpers are always-inlined functions, not closures: a closure is compiled without the
 // AVX of the function it is written in, and its intrinsics can then stay calls (a trial
-// that tested leaf packets in pairs, eight lanes wide, with closures ran 23-32% slower).
+// that tested leaf packets in pairs, eight lanes wide, with closures ran much slower).
 impl BoxRay8 {
     /// Where the ray crosses plane `plane` (of axis `axis`) of the node's eight boxes.
     #[inline(always)]

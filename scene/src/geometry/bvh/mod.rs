@@ -217,8 +217,8 @@ impl Bvh {
 thread_local! {
     /// Each thread's traversal stack for trees deeper than an inline array serves: kept
     /// between traversals, because clearing a fresh one per ray (a memset of 256-512
-    /// bytes) was 2.5% of the bunny box's instructions. A traversal writes every entry
-    /// before it reads it, so what earlier rays left there never matters.
+    /// bytes) was a noticeable share of the bunny box's instructions. A traversal writes
+    /// every entry before it reads it, so what earlier rays left there never matters.
     static STACK: RefCell<Vec<Pending>> = const { RefCell::new(Vec::new()) };
 }
 

@@ -6,11 +6,11 @@
 //! boxes (what makes the CWBVH small on GPUs) costs more than it saves here. A node holds
 //! two such groups of four: their tests are independent, so the second overlaps the first
 //! in the pipeline, and the tree is a level shallower than a four-wide one. A leaf is one
-//! or two packets of four triangles, tested alike. Measured against the four-wide tree with
-//! one packet per leaf (2026-12-03, AMD EPYC Zen 5, `cargo bench -p prism-benches --bench
-//! scene -- rays`): bounce rays 11% faster in the Cornell box and 20% in the bunny box,
-//! shadow rays 5% and 17%, camera rays 20% and 26%; renders (128^2 x 64 spp, unsplit, 7-9
-//! alternating runs) 4-5% faster; images byte-identical on every repository scene.
+//! or two packets of four triangles, tested alike. Measured against a four-wide tree with
+//! one packet per leaf (`cargo bench -p prism-benches --bench scene -- rays`), camera,
+//! bounce and shadow rays are all faster, most in the bunny box, and so are whole
+//! renders, whose images are byte-identical on every repository scene (docs/trade-offs.md,
+//! "The BVH and its node test").
 //!
 //! The collapse is planned, not greedy: a dynamic programme over the binary tree (Ylitie,
 //! Karras and Laine, HPG 2017, §4.1) chooses which binary nodes become wide nodes, which
@@ -135,7 +135,7 @@ impl Source<'_> {
 /// four-lane watertight test), each per unit of the surface area that makes a ray visit
 /// it (the surface area heuristic). A packet test takes about twice a node test's
 /// instructions; ratios from 1.5 to 4 gave the same render times (see
-/// [`WideBvh::collapse`]), 1 (a packet as cheap as a node) 2% more instructions.
+/// [`WideBvh::collapse`]), 1 (a packet as cheap as a node) more instructions.
 const NODE_COST: f32 = 1.0;
 const PACKET_COST: f32 = 2.0;
 /// A leaf's further packets, as a share of the first's cost.
@@ -241,11 +241,10 @@ fn plan(binary: &Bvh2) -> Vec<Plan> {
 impl WideBvh {
     /// Collapses the binary tree by the plan of least expected cost. Against the greedy
     /// collapse of Wald, Benthin and Boulos (RT 2008, §3: open the largest child until
-    /// there are four, every subtree of at most four triangles one packet), measured on
-    /// 2026-12-01 (callgrind, 64^2 x 16 spp, one thread; wall time 256^2 x 64 spp, three
-    /// runs): the Cornell box's paths take 2-3% fewer instructions (closest-hit traversal
-    /// -4%) for the same time, the bunny box's 1.5% fewer and 1.5-2.5% less time; images
-    /// byte-identical. The plan costs ~7% more build time (3 ms on the bunny).
+    /// there are four, every subtree of at most four triangles one packet), measured
+    /// under callgrind and in wall time: the Cornell box's paths take fewer instructions
+    /// for the same time, the bunny box's fewer instructions and less time; images
+    /// byte-identical. The plan costs a little more build time.
     pub(super) fn collapse(source: &Source) -> Self {
         let nodes = &source.binary.nodes;
         let plans = plan(source.binary);
