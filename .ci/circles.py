@@ -99,7 +99,8 @@ def graph(src):
         text = re.sub(r"//[^\n]*", "", text)
         texts[module] = text
         paths = []
-        without_uses = USE.sub("", text)
+        # Where a re-exported name is used: not in `use` lines, nor in `mod` declarations.
+        without_uses = re.sub(r"(?m)^\s*(pub(\([^)]*\))?\s+)?mod\s+\w+\s*;", "", USE.sub("", text))
         for m in USE.finditer(text):
             public = m.group(1) is not None
             for path in expand(m.group(2)):

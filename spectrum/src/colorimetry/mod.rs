@@ -7,12 +7,14 @@
 
 mod cct;
 mod ciede2000;
+mod integrate;
 mod lab;
 mod observer;
 mod xyz;
 
 pub use cct::{CCT_MAX_KELVIN, CCT_MIN_KELVIN, CctResult, cct_ohno2013, planckian_uv};
 pub use ciede2000::ciede2000;
+pub use integrate::{emission_xyz, luminous_xyz_normalized, reflectance_xyz};
 pub use lab::{Lab, WhitePoint};
 pub use observer::Observer;
-pub use xyz::{Chromaticity, Uv, Xyz, emission_xyz, luminous_xyz_normalized, reflectance_xyz};
+pub use xyz::{Chromaticity, Uv, Xyz};

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use prism_integrator::{Film, decode_accumulation};
 
-use super::RenderArgs;
+use super::args::RenderArgs;
 
 /// What must match for a checkpoint to be resumed or parts merged: everything that changes
 /// the estimate or what the film accumulates (bands, energy, a camera's channels). Not

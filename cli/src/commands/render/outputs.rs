@@ -11,7 +11,7 @@ use prism_integrator::{
 };
 use prism_spectrum::color::{Mat3, RgbSpaceId, ToneMap};
 
-use super::RenderArgs;
+use super::args::RenderArgs;
 use crate::denoise::Denoiser;
 use crate::output::{check_writable, write_atomically};
 use crate::session::{Ending, Outcome};

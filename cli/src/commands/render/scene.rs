@@ -13,7 +13,7 @@ use prism_scene::load::{LoadedGeometry, environment_map, load_geometry};
 use prism_scene::world::{DEFAULT_ENVIRONMENT, Environment, Scene, SceneOptions, grey_environment};
 use prism_spectrum::Readable;
 
-use super::RenderArgs;
+use super::args::RenderArgs;
 
 /// The scene `prism render` renders without a SCENE argument: the repository's spectral
 /// effects stage (`scenes/effects.gltf`, one file with its buffer embedded): dispersion,

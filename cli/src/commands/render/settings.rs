@@ -12,7 +12,7 @@ use prism_integrator::{
 use prism_spectrum::Readable;
 use prism_spectrum::color::RgbSpaceId;
 
-use super::RenderArgs;
+use super::args::RenderArgs;
 use super::outputs::has_extension;
 use crate::session::SessionOptions;
 
