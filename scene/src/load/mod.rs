@@ -13,6 +13,8 @@ mod lights;
 mod material_layers;
 mod materials;
 mod meshopt;
+#[cfg(feature = "mitsuba")]
+pub mod mitsuba;
 mod primitive;
 pub mod prism_spectral;
 mod summary;
