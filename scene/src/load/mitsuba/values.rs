@@ -121,7 +121,11 @@ pub fn spd_file(text: &str) -> Result<SpectrumValue, String> {
 }
 
 fn increasing(samples: Vec<(f64, f64)>) -> Result<SpectrumValue, String> {
-    if samples.windows(2).any(|w| !(w[1].0 >= w[0].0)) {
+    let decreasing = |w: &[(f64, f64)]| match w {
+        [(a, _), (b, _)] => b.partial_cmp(a).is_none_or(std::cmp::Ordering::is_lt),
+        _ => false,
+    };
+    if samples.windows(2).any(decreasing) {
         return Err("wavelengths must be given in increasing order".into());
     }
     Ok(SpectrumValue::Samples(samples))
