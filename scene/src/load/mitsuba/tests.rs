@@ -676,3 +676,23 @@ fn the_valid_fuzz_seed_parses() {
     let parsed = parse_with(VALID, &files_for_fuzz(), &[]).unwrap();
     assert_eq!(parsed.scene.children.len(), 4);
 }
+
+#[test]
+fn deep_nesting_is_an_error_not_a_stack_overflow() {
+    let depth = 5000;
+    let text = format!(
+        "<scene version=\"3.0.0\">{}{}</scene>",
+        "<bsdf type=\"a\">".repeat(depth),
+        "</bsdf>".repeat(depth)
+    );
+    let message = err(&text, "scenes/main.xml:1");
+    assert!(message.contains("nested deeper"), "{message}");
+    // Just inside the limit parses.
+    let depth = 190;
+    let text = format!(
+        "<scene version=\"3.0.0\">{}{}</scene>",
+        "<bsdf type=\"a\">".repeat(depth),
+        "</bsdf>".repeat(depth)
+    );
+    ok(&text);
+}
