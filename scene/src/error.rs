@@ -43,6 +43,15 @@ pub enum LoadError {
     /// An image that cannot be decoded (not PNG, JPEG, WebP, OpenEXR or Radiance, or
     /// malformed).
     Image(String),
+    /// A Mitsuba XML scene that cannot be read: malformed XML, an unknown tag, a missing
+    /// attribute, a bad number, an undefined `$name`, an unknown reference, an include
+    /// that is missing or circular.
+    Mitsuba {
+        /// Where: `file:line`.
+        at: String,
+        /// What is wrong, in words.
+        reason: String,
+    },
     /// A name that is not one of the accepted ones.
     UnknownName {
         /// What kind of thing was named, for example "upsampling".
@@ -69,6 +78,7 @@ impl fmt::Display for LoadError {
             LoadError::Spectral(m) => write!(f, "spectral description: {m}"),
             LoadError::Fluorescence(m) => write!(f, "fluorescent material: {m}"),
             LoadError::Unsupported(m) | LoadError::Image(m) => write!(f, "{m}"),
+            LoadError::Mitsuba { at, reason } => write!(f, "{at}: {reason}"),
             LoadError::UnknownName { kind, name, valid } => {
                 write!(f, "unknown {kind} '{name}' (valid: {valid})")
             }

@@ -14,6 +14,8 @@ mod material_layers;
 mod materials;
 pub mod meshes;
 mod meshopt;
+#[cfg(feature = "mitsuba")]
+pub mod mitsuba;
 mod primitive;
 pub mod prism_spectral;
 mod summary;
