@@ -86,6 +86,50 @@ pub struct MaterialDesc {
 }
 
 impl MaterialDesc {
+    /// A material that is `surface`, emitting `emission` from its front faces where given
+    /// (as another scene format than glTF describes its materials): no glTF factor,
+    /// texture or extension; its base colour, which only previews read, is grey.
+    pub(crate) fn surface(
+        name: String,
+        surface: crate::materials::Material,
+        emission: Option<SceneSpectrum>,
+        upsampler: &Upsampler,
+    ) -> Result<Self, LoadError> {
+        let base_color = upsampler
+            .fit([0.5; 3], RgbKind::Albedo)
+            .map_err(|e| LoadError::Geometry(format!("material {name}: {e}")))?;
+        Ok(Self {
+            name,
+            base_color,
+            metallic: 0.0,
+            roughness: 1.0,
+            ior: 1.5,
+            transmission: 0.0,
+            transmission_texture: None,
+            thin_walled: false,
+            base_white: false,
+            emission: None,
+            double_sided: false,
+            has_base_color_texture: false,
+            base_color_texture: None,
+            metallic_roughness_texture: None,
+            normal_texture: None,
+            emissive_texture: None,
+            dispersion: 0.0,
+            absorption: None,
+            medium: None,
+            spectral: Some(SpectralMaterial {
+                surface: Some(surface),
+                emission,
+                ..SpectralMaterial::default()
+            }),
+            alpha: None,
+            iridescence: None,
+            layers: None,
+            emission_peak: 0.0,
+        })
+    }
+
     /// Whether the material emits light (an RGB emissive colour or a spectral emission).
     pub fn emits(&self) -> bool {
         self.emission.is_some() || self.spectral.as_ref().is_some_and(|s| s.emission.is_some())

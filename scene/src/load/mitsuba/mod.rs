@@ -37,10 +37,22 @@ mod resolve;
 mod tree;
 mod values;
 
+// What the plugins mean: the tree turned into prism's loaded geometry, one file per
+// plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
+mod bsdfs;
+mod scene;
+mod sensors;
+mod shapes;
+mod spectra;
+
+#[cfg(test)]
+mod scene_tests;
 #[cfg(test)]
 mod tests;
 
 pub use parse::MAX_INCLUDE_DEPTH;
+pub use scene::{MitsubaScene, load};
+pub use sensors::Film;
 pub use tree::{Child, Class, Location, Object, Property, SpectrumValue, Value};
 
 use crate::LoadError;

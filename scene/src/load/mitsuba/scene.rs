@@ -1,0 +1,211 @@
+//! A Mitsuba scene as prism's loaded geometry: the tree's shapes, BSDFs, emitters and
+//! sensor turned into triangles, materials, lights and a camera, which
+//! [`crate::world::Scene::from_loaded`] makes a render-ready scene as it does glTF's.
+//!
+//! Each shape is one instance; shapes that share a BSDF (by reference) share a material,
+//! and a shape with an area emitter gets a material of its own that emits. Plugins and
+//! parameters not read yet are errors naming them (file:line), never a silent default.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::bsdfs::{key, material};
+use super::parse::error;
+use super::sensors::{Film, camera, number};
+use super::shapes::triangles;
+use super::spectra::{Kind, spectrum};
+use super::tree::{Class, Object};
+use super::{ParseOptions, parse};
+use crate::LoadError;
+use crate::lights::Environment;
+use crate::load::{LightDesc, LoadOptions, LoadedGeometry, MaterialDesc, MeshInstance, Upsampler};
+
+/// A Mitsuba scene read for prism.
+#[derive(Debug, Clone)]
+pub struct MitsubaScene {
+    /// The geometry, materials, lights and camera ([`crate::world::Scene::from_loaded`]).
+    pub geometry: LoadedGeometry,
+    /// The image size and samples the sensor's film and sampler ask for.
+    pub film: Film,
+    /// The integrator's `max_depth` as prism's bounces (None: unbounded).
+    pub max_depth: Option<u32>,
+}
+
+/// Reads the Mitsuba scene `text` (named `file`) with `parse`'s definitions and resolver,
+/// upsampling RGB as `load` says.
+pub fn load(
+    text: &str,
+    file: &str,
+    options: &ParseOptions,
+    load: &LoadOptions,
+) -> Result<MitsubaScene, LoadError> {
+    let parsed = parse(text, file, options)?;
+    let upsampler = Upsampler::new(load.upsampling, load.table.clone())?;
+    let mut geometry = LoadedGeometry {
+        warnings: parsed.warnings,
+        ..LoadedGeometry::default()
+    };
+    let mut shared: HashMap<usize, usize> = HashMap::new();
+    let mut film = None;
+    let mut max_depth = None;
+    for child in &parsed.scene.children {
+        let object = &child.object;
+        match object.class {
+            Class::Shape => shape(object, options, &upsampler, &mut shared, &mut geometry)?,
+            Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
+            Class::Sensor => {
+                if geometry.cameras.is_empty() {
+                    let (c, f) = camera(object)?;
+                    geometry.cameras.push(c);
+                    film = Some(f);
+                } else {
+                    geometry
+                        .warnings
+                        .push(format!("{}: a second sensor is not read (the first is)", object.at));
+                }
+            }
+            Class::Integrator => max_depth = integrator(object, &mut geometry.warnings)?,
+            // Objects defined at the top for reference (BSDFs, textures) are read where
+            // they are used.
+            Class::Bsdf | Class::Texture | Class::Spectrum | Class::Rgb => {}
+            other => {
+                return Err(error(
+                    &object.at,
+                    format!("{} '{}' is not read yet", other.tag(), object.kind),
+                ));
+            }
+        }
+    }
+    let film = film.ok_or_else(|| error(&parsed.scene.at, "the scene has no sensor"))?;
+    Ok(MitsubaScene {
+        geometry,
+        film,
+        max_depth,
+    })
+}
+
+/// Adds `shape`'s triangles, its material and, with an area emitter, its light.
+fn shape(
+    shape: &Object,
+    options: &ParseOptions,
+    upsampler: &Upsampler,
+    shared: &mut HashMap<usize, usize>,
+    out: &mut LoadedGeometry,
+) -> Result<(), LoadError> {
+    let tris = triangles(shape, options.resolve)?;
+    let mut bsdfs = shape.children_of(Class::Bsdf);
+    let bsdf = bsdfs.next();
+    if bsdfs.next().is_some() {
+        return Err(error(&shape.at, "a shape has one BSDF"));
+    }
+    let mut emitters = shape.children_of(Class::Emitter);
+    let emitter = emitters.next();
+    if emitters.next().is_some() {
+        return Err(error(&shape.at, "a shape has one emitter"));
+    }
+    let emission = match emitter {
+        None => None,
+        Some(e) if e.object.kind == "area" => Some(spectrum(
+            &e.object,
+            "radiance",
+            Kind::Illuminant,
+            1.0,
+            upsampler,
+        )?),
+        Some(e) => {
+            return Err(error(
+                &e.object.at,
+                format!("emitter '{}' on a shape: only 'area' is", e.object.kind),
+            ));
+        }
+    };
+    // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
+    let surface = match bsdf {
+        Some(b) => material(&b.object, upsampler)?,
+        None => crate::materials::Material::Diffuse {
+            reflectance: crate::textures::SceneSpectrum::Constant(0.5),
+        },
+    };
+    let name = shape.id.clone().unwrap_or_else(|| format!("shape {}", out.instances.len()));
+    let material = match (bsdf, &emission) {
+        (Some(b), None) if shared.contains_key(&key(&b.object)) => shared[&key(&b.object)],
+        _ => {
+            out.materials.push(MaterialDesc::surface(
+                b_name(bsdf.map(|b| &b.object), &name),
+                surface,
+                emission.clone(),
+                upsampler,
+            )?);
+            let index = out.materials.len() - 1;
+            if let (Some(b), None) = (bsdf, &emission) {
+                shared.insert(key(&b.object), index);
+            }
+            index
+        }
+    };
+    let first = out.triangles.len();
+    out.triangles.extend(tris);
+    out.instances.push(MeshInstance {
+        node: name,
+        material: Some(material),
+        first,
+        count: out.triangles.len() - first,
+    });
+    if emission.is_some() {
+        out.lights.push(LightDesc::Area {
+            instance: out.instances.len() - 1,
+            double_sided: false,
+        });
+    }
+    Ok(())
+}
+
+fn b_name(bsdf: Option<&Arc<Object>>, shape: &str) -> String {
+    bsdf.and_then(|b| b.id.clone())
+        .unwrap_or_else(|| format!("{shape} material"))
+}
+
+/// Adds a top-level emitter: `constant` as the environment.
+fn emitter(
+    emitter: &Object,
+    upsampler: &Upsampler,
+    out: &mut LoadedGeometry,
+) -> Result<(), LoadError> {
+    match emitter.kind.as_str() {
+        "constant" => {
+            if out.spectral.environment.is_some() {
+                return Err(error(&emitter.at, "a second environment emitter"));
+            }
+            let radiance = spectrum(emitter, "radiance", Kind::Illuminant, 1.0, upsampler)?;
+            out.spectral.environment = Some(Environment::Uniform(radiance));
+            Ok(())
+        }
+        other => Err(error(
+            &emitter.at,
+            format!("emitter '{other}' is not read yet (area and constant are)"),
+        )),
+    }
+}
+
+/// The integrator's `max_depth` as prism's bounces, warning where prism's path tracer
+/// differs from the one asked for.
+fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<u32>, LoadError> {
+    match integrator.kind.as_str() {
+        "path" | "volpath" | "volpathmis" => {}
+        other => warnings.push(format!(
+            "{}: integrator '{other}' renders with prism's path tracer",
+            integrator.at
+        )),
+    }
+    // Mitsuba's max_depth counts path vertices from the camera: 1 sees emitters only,
+    // 2 adds direct light; prism's counts bounces, so it is one less. -1: unbounded.
+    match number(integrator, "max_depth")? {
+        None => Ok(None),
+        Some(d) if d < 0.0 => Ok(None),
+        Some(d) if d >= 1.0 && d.fract() == 0.0 && d <= f64::from(u32::MAX) => Ok(Some(d as u32 - 1)),
+        Some(d) => Err(error(
+            &integrator.at,
+            format!("max_depth {d}: expected -1 or a whole number of at least 1"),
+        )),
+    }
+}
