@@ -3,14 +3,53 @@
 
 use std::path::Path;
 
+use prism_scene::load::mitsuba::{self, MitsubaScene, ParseOptions};
 use prism_scene::load::{LoadOptions, LoadedGeometry, Upsampling, load_scene};
 use prism_scene::spectral::Overlay;
 
-/// Loads `path`: a .gltf or .glb, or a TOML overlay (`.toml`) naming the glTF it applies
-/// to. External buffers and `csv:` spectra resolve relative to the glTF file. Errors name
-/// the file.
+/// Loads `path`: a .gltf or .glb, a TOML overlay (`.toml`) naming the glTF it applies
+/// to, or a Mitsuba 3 scene (`.xml`) at its defaults. External buffers and `csv:` spectra
+/// resolve relative to the glTF file. Errors name the file.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<LoadedGeometry, String> {
+    if is_mitsuba(path) {
+        return load_mitsuba(path, &[]).map(|m| m.geometry);
+    }
     load_with(path, scene, Upsampling::Exact)
+}
+
+/// Whether `path` names a Mitsuba scene (`.xml`).
+pub fn is_mitsuba(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+}
+
+/// Loads the Mitsuba 3 scene `path` with `defines` (`NAME=VALUE`, as `mitsuba -D`): its
+/// includes, `.spd` spectra and meshes resolve relative to it. Warnings go to stderr.
+pub fn load_mitsuba(path: &Path, defines: &[String]) -> Result<MitsubaScene, String> {
+    let defines = defines
+        .iter()
+        .map(|d| {
+            d.split_once('=')
+                .map(|(n, v)| (n.trim().to_string(), v.to_string()))
+                .filter(|(n, _)| !n.is_empty())
+                .ok_or_else(|| format!("-D '{d}': expected NAME=VALUE"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let text = String::from_utf8(crate::output::read_file(path)?)
+        .map_err(|_| format!("'{}': not UTF-8 text", path.display()))?;
+    // The loader joins the names a file gives to that file's directory.
+    let resolve = |name: &str| std::fs::read(name);
+    let file = path.display().to_string();
+    let options = ParseOptions {
+        defines: &defines,
+        resolve: &resolve,
+    };
+    let scene = mitsuba::load(&text, &file, &options, &LoadOptions::default())
+        .map_err(|e| e.to_string())?;
+    for warning in &scene.geometry.warnings {
+        eprintln!("prism: warning: {warning}");
+    }
+    Ok(scene)
 }
 
 /// [`load`] with a choice of upsampling (`prism trade` measures them).

@@ -104,6 +104,20 @@ def main():
     if worst > 1e-5:
         sys.exit(f"{path}: Mitsuba renders it differently from mi.cornell_box() ({worst:.2e})")
     print(f"wrote {path} (Mitsuba renders it as mi.cornell_box(), within {worst:.1e})")
+    reference(path, "cornell-box", size=32, spp=16384)
+
+
+def reference(path, name, size, spp):
+    """Mitsuba's render of the scene at `path`, `size` pixels square: the reference
+    cli/tests/mitsuba.rs compares prism's render of the same file with."""
+    text = open(path).read()
+    for axis in ("width", "height"):
+        text = text.replace(f'name="{axis}" value="256"', f'name="{axis}" value="{size}"')
+    image = mi.render(mi.load_string(text), spp=spp, seed=7)
+    out = os.path.join(os.path.dirname(path), "references", f"{name}-{size}.exr")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    mi.Bitmap(image).write(out)
+    print(f"wrote {out} (Mitsuba {mi.__version__} scalar_spectral, {spp} spp)")
 
 
 if __name__ == "__main__":

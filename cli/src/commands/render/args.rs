@@ -9,15 +9,19 @@ use clap::Args;
     after_help = "Examples:\n  prism render -o effects.png\n  prism render scenes/cornell-bunny.gltf --spp 256 -o bunny.exr -o bunny.png --stats\n\nOutputs are chosen by extension: .exr (linear f32 RGB in --space, with chromaticities) or\n.png (tone mapped, 8-bit). The image depends only on the scene, the settings and --seed."
 )]
 pub struct RenderArgs {
-    /// A .gltf or .glb file, or a .toml overlay (default: the embedded effects stage,
-    /// scenes/effects.gltf).
+    /// A .gltf or .glb file, a .toml overlay, or a Mitsuba 3 scene (.xml) (default: the
+    /// embedded effects stage, scenes/effects.gltf).
     pub scene: Option<PathBuf>,
+    /// A Mitsuba scene's parameter, as `mitsuba -D`: replaces its `<default>` and every
+    /// `$NAME` in the file. Repeat for several.
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    pub defines: Vec<String>,
     /// Output file(s), .exr or .png; repeat for several.
     #[arg(short = 'o', long = "output", default_value = "prism.png")]
     pub outputs: Vec<PathBuf>,
-    /// Samples per pixel.
-    #[arg(long, default_value_t = 64, conflicts_with = "sample_range")]
-    pub spp: u64,
+    /// Samples per pixel (default: 64, or a Mitsuba scene's sampler's count).
+    #[arg(long, conflicts_with = "sample_range")]
+    pub spp: Option<u64>,
     /// Render only sample indices A to B-1 of every pixel and write accumulation files
     /// (.exr only) for `prism merge` (farms: one range per machine).
     #[arg(long, value_name = "A..B")]
@@ -34,7 +38,8 @@ pub struct RenderArgs {
     /// Worker threads (default: one per core; at most 1024); never changes the image.
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
-    /// Longest path in bounces (default: unbounded, ended by Russian roulette).
+    /// Longest path in bounces (default: unbounded, ended by Russian roulette, or a
+    /// Mitsuba scene's integrator's max_depth, less the camera's vertex).
     #[arg(long)]
     pub max_depth: Option<u32>,
     /// Continuations per camera sample from its first vertex: auto (chosen per render by a

@@ -101,14 +101,20 @@ pub fn render(
     check_outputs(&args.outputs)?;
     let samples_only = settings::samples_only(args)?;
     let started = Instant::now();
-    let (scene, camera) = scene::prepare(args, loaded)?;
-    let (width, height) = scene::image_size(args.width, args.height, scene.camera().aspect_ratio);
+    let (scene, camera, defaults) = scene::prepare(args, loaded)?;
+    let (width, height) = match (args.width, args.height, defaults.size) {
+        (None, None, Some(size)) => size,
+        _ => scene::image_size(args.width, args.height, scene.camera().aspect_ratio),
+    };
     let settings = settings::render_settings(
         args,
         settings::Image {
             width,
             height,
-            samples: samples_only.clone().unwrap_or(0..args.spp),
+            samples: samples_only
+                .clone()
+                .unwrap_or(0..args.spp.or(defaults.spp).unwrap_or(64)),
+            max_depth: args.max_depth.or(defaults.max_depth),
             lambda_sampler,
             filter,
         },

@@ -26,10 +26,10 @@ const DEFAULT_GLTF: &[u8] = include_bytes!("../../../../scenes/effects.gltf");
 pub(super) fn prepare(
     args: &RenderArgs,
     loaded: Option<LoadedGeometry>,
-) -> Result<(Scene, Option<CameraResponse>), String> {
-    let loaded = match loaded {
-        Some(loaded) => loaded,
-        None => load(args.scene.as_deref(), args.scene_index)?,
+) -> Result<(Scene, Option<CameraResponse>, FileDefaults), String> {
+    let (loaded, defaults) = match loaded {
+        Some(loaded) => (loaded, FileDefaults::default()),
+        None => load(args)?,
     };
     let quality = match args.bvh.as_str() {
         "medium" => BvhQuality::Medium,
@@ -86,10 +86,38 @@ pub(super) fn prepare(
              neutral environment (CIE D65, --environment {DEFAULT_ENVIRONMENT}); choose another with --environment VALUE|FILE"
         );
     }
-    Ok((scene, camera))
+    Ok((scene, camera, defaults))
 }
 
-fn load(path: Option<&Path>, scene: Option<usize>) -> Result<LoadedGeometry, String> {
+/// What a scene file asks of the render where the command line does not say: a Mitsuba
+/// scene's film size, sampler's count and integrator's depth.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct FileDefaults {
+    pub size: Option<(u32, u32)>,
+    pub spp: Option<u64>,
+    pub max_depth: Option<u32>,
+}
+
+fn load(args: &RenderArgs) -> Result<(LoadedGeometry, FileDefaults), String> {
+    if let Some(path) = args.scene.as_deref()
+        && crate::scene_file::is_mitsuba(path)
+    {
+        let scene = crate::scene_file::load_mitsuba(path, &args.defines)?;
+        let defaults = FileDefaults {
+            size: Some((scene.film.width, scene.film.height)),
+            spp: scene.film.spp,
+            max_depth: scene.max_depth,
+        };
+        return Ok((scene.geometry, defaults));
+    }
+    if !args.defines.is_empty() {
+        return Err("-D sets a Mitsuba scene's parameters; this scene is not one (.xml)".into());
+    }
+    let geometry = load_geometry_file(args.scene.as_deref(), args.scene_index)?;
+    Ok((geometry, FileDefaults::default()))
+}
+
+fn load_geometry_file(path: Option<&Path>, scene: Option<usize>) -> Result<LoadedGeometry, String> {
     match path {
         Some(p) => crate::scene_file::load(p, scene),
         None => load_geometry(

@@ -24,6 +24,8 @@ pub(super) struct Image {
     pub samples: Range<u64>,
     pub lambda_sampler: LambdaSampler,
     pub filter: Filter,
+    /// Longest path in bounces (None: unbounded).
+    pub max_depth: Option<u32>,
 }
 
 /// `--sample-range`, whose renders write accumulation files, so only .exr outputs.
@@ -71,7 +73,7 @@ pub(super) fn render_settings(
         .height(image.height)
         .samples(image.samples)
         .seed(args.seed)
-        .max_depth(args.max_depth)
+        .max_depth(image.max_depth)
         .splits(args.splits.parse::<Splits>()?)
         .reuse(reuse(args)?)
         .tracing(args.tracer.parse::<Tracing>()?)

@@ -19,7 +19,10 @@ pub(crate) fn material(bsdf: &Object, upsampler: &Upsampler) -> Result<Material,
         }),
         // prism's surfaces reflect on both sides, so `twosided` is its one BSDF.
         "twosided" => {
-            let mut inner = bsdf.children.iter().filter(|c| c.object.class == super::tree::Class::Bsdf);
+            let mut inner = bsdf
+                .children
+                .iter()
+                .filter(|c| c.object.class == super::tree::Class::Bsdf);
             match (inner.next(), inner.next()) {
                 (Some(one), None) => material(&one.object, upsampler),
                 (Some(_), Some(_)) => Err(error(

@@ -59,9 +59,10 @@ pub fn load(
                     geometry.cameras.push(c);
                     film = Some(f);
                 } else {
-                    geometry
-                        .warnings
-                        .push(format!("{}: a second sensor is not read (the first is)", object.at));
+                    geometry.warnings.push(format!(
+                        "{}: a second sensor is not read (the first is)",
+                        object.at
+                    ));
                 }
             }
             Class::Integrator => max_depth = integrator(object, &mut geometry.warnings)?,
@@ -126,7 +127,10 @@ fn shape(
             reflectance: crate::textures::SceneSpectrum::Constant(0.5),
         },
     };
-    let name = shape.id.clone().unwrap_or_else(|| format!("shape {}", out.instances.len()));
+    let name = shape
+        .id
+        .clone()
+        .unwrap_or_else(|| format!("shape {}", out.instances.len()));
     let material = match (bsdf, &emission) {
         (Some(b), None) if shared.contains_key(&key(&b.object)) => shared[&key(&b.object)],
         _ => {
@@ -202,7 +206,9 @@ fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<
     match number(integrator, "max_depth")? {
         None => Ok(None),
         Some(d) if d < 0.0 => Ok(None),
-        Some(d) if d >= 1.0 && d.fract() == 0.0 && d <= f64::from(u32::MAX) => Ok(Some(d as u32 - 1)),
+        Some(d) if d >= 1.0 && d.fract() == 0.0 && d <= f64::from(u32::MAX) => {
+            Ok(Some(d as u32 - 1))
+        }
         Some(d) => Err(error(
             &integrator.at,
             format!("max_depth {d}: expected -1 or a whole number of at least 1"),

@@ -28,7 +28,10 @@ fn mitsuba_box() -> super::scene::MitsubaScene {
 fn gltf_box() -> LoadedGeometry {
     let path = repository("cornell-box.gltf");
     let bytes = std::fs::read(&path).unwrap();
-    let dir = std::path::PathBuf::from(path).parent().unwrap().to_path_buf();
+    let dir = std::path::PathBuf::from(path)
+        .parent()
+        .unwrap()
+        .to_path_buf();
     load_geometry(&bytes, &move |uri| std::fs::read(dir.join(uri)), None).unwrap()
 }
 
@@ -75,7 +78,12 @@ fn the_sensor_is_the_gltf_camera() {
     let mitsuba = mitsuba_box();
     let gltf = gltf_box();
     let (a, b) = (&mitsuba.geometry.cameras[0], &gltf.cameras[0]);
-    assert!(a.to_world.abs_diff_eq(b.to_world, 1e-5), "{:?} {:?}", a.to_world, b.to_world);
+    assert!(
+        a.to_world.abs_diff_eq(b.to_world, 1e-5),
+        "{:?} {:?}",
+        a.to_world,
+        b.to_world
+    );
     match (a.projection, b.projection) {
         (
             crate::camera::Projection::Perspective { yfov: x },
@@ -83,7 +91,10 @@ fn the_sensor_is_the_gltf_camera() {
         ) => assert!((x - y).abs() < 1e-5, "{x} {y}"),
         other => panic!("{other:?}"),
     }
-    assert_eq!((mitsuba.film.width, mitsuba.film.height, mitsuba.film.spp), (256, 256, Some(64)));
+    assert_eq!(
+        (mitsuba.film.width, mitsuba.film.height, mitsuba.film.spp),
+        (256, 256, Some(64))
+    );
     assert_eq!(mitsuba.max_depth, Some(7));
 }
 
@@ -95,20 +106,35 @@ fn the_box_has_the_gltf_boxs_colours_and_light() {
     let gltf = gltf_box();
     let by_name = |name: &str| gltf.materials.iter().find(|m| m.name == name).unwrap();
     let at = |s: &crate::textures::SceneSpectrum| -> Vec<f64> {
-        (380..=780).step_by(20).map(|l| s.evaluate(f64::from(l))).collect()
+        (380..=780)
+            .step_by(20)
+            .map(|l| s.evaluate(f64::from(l)))
+            .collect()
     };
     let rgb = |s: &prism_upsample::RgbSpectrum| -> Vec<f64> {
-        at(&crate::textures::SceneSpectrum::Rgb(std::sync::Arc::new(s.clone())))
+        at(&crate::textures::SceneSpectrum::Rgb(std::sync::Arc::new(
+            s.clone(),
+        )))
     };
     for name in ["white", "red", "green"] {
-        let m = mitsuba.geometry.materials.iter().find(|m| m.name == name).unwrap();
+        let m = mitsuba
+            .geometry
+            .materials
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap();
         let surface = m.spectral.as_ref().and_then(|s| s.surface.clone());
         let Some(crate::materials::Material::Diffuse { reflectance }) = surface else {
             panic!("{name}: {surface:?}");
         };
         assert_eq!(at(&reflectance), rgb(&by_name(name).base_color), "{name}");
     }
-    let emitting: Vec<_> = mitsuba.geometry.materials.iter().filter(|m| m.emits()).collect();
+    let emitting: Vec<_> = mitsuba
+        .geometry
+        .materials
+        .iter()
+        .filter(|m| m.emits())
+        .collect();
     assert_eq!(emitting.len(), 1);
     let emission = emitting[0].emission_spectrum().unwrap();
     let gltf_emission = by_name("white-emitter").emission_spectrum().unwrap();

@@ -36,7 +36,10 @@ pub(crate) fn camera(sensor: &Object) -> Result<(Camera, Film), LoadError> {
     let aspect = f64::from(film.width) / f64::from(film.height);
     let fov = number(sensor, "fov")?.unwrap_or(45.0);
     if !(fov > 0.0 && fov < 180.0) {
-        return Err(error(&sensor.at, format!("fov {fov} must be in (0, 180) degrees")));
+        return Err(error(
+            &sensor.at,
+            format!("fov {fov} must be in (0, 180) degrees"),
+        ));
     }
     let axis = match sensor.property("fov_axis").map(|p| &p.value) {
         None => "x".to_string(),
@@ -84,7 +87,10 @@ fn film(sensor: &Object) -> Result<Film, LoadError> {
     if let Some(film) = sensor.children_of(Class::Film).next() {
         let film = &film.object;
         if film.kind != "hdrfilm" {
-            return Err(error(&film.at, format!("film '{}' is not read yet (hdrfilm is)", film.kind)));
+            return Err(error(
+                &film.at,
+                format!("film '{}' is not read yet (hdrfilm is)", film.kind),
+            ));
         }
         out.width = size(film, "width")?.unwrap_or(768);
         out.height = size(film, "height")?.unwrap_or(576);

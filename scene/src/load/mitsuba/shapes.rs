@@ -4,8 +4,8 @@
 
 use glam::{DMat4, Vec3};
 
-use super::tree::{Object, Value};
 use super::parse::error;
+use super::tree::{Object, Value};
 use crate::LoadError;
 use crate::load::meshes::TriangleMesh;
 
@@ -86,11 +86,14 @@ fn serialized(
     let file = string(shape, "filename")?;
     let index = match shape.property("shape_index").map(|p| (&p.value, &p.at)) {
         None => 0,
-        Some((Value::Integer(i), at)) => usize::try_from(*i)
-            .map_err(|_| error(at, "shape_index must be at least 0"))?,
+        Some((Value::Integer(i), at)) => {
+            usize::try_from(*i).map_err(|_| error(at, "shape_index must be at least 0"))?
+        }
         Some((_, at)) => return Err(error(at, "shape_index must be an integer")),
     };
-    let bytes = resolve(&file).map_err(|e| error(&shape.at, format!("{file}: {e}")))?;
+    // Relative to the file that names it, as Mitsuba resolves it.
+    let path = super::paths::join(super::paths::directory(&shape.at.file), &file);
+    let bytes = resolve(&path).map_err(|e| error(&shape.at, format!("{file}: {e}")))?;
     let mesh = crate::load::meshes::serialized::read(&bytes, index)
         .map_err(|e| error(&shape.at, format!("{file}: {e}")))?;
     Ok(mesh_triangles(&mesh))
@@ -108,6 +111,9 @@ pub(crate) fn string(object: &Object, name: &str) -> Result<String, LoadError> {
     match object.property(name).map(|p| (&p.value, &p.at)) {
         Some((Value::String(s), _)) => Ok(s.clone()),
         Some((_, at)) => Err(error(at, format!("'{name}' must be a string"))),
-        None => Err(error(&object.at, format!("{} '{}' needs '{name}'", object.class.tag(), object.kind))),
+        None => Err(error(
+            &object.at,
+            format!("{} '{}' needs '{name}'", object.class.tag(), object.kind),
+        )),
     }
 }

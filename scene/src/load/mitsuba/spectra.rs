@@ -50,7 +50,10 @@ pub(crate) fn spectrum(
                 }?;
                 Ok(SceneSpectrum::Rgb(Arc::new(fitted)))
             }
-            _ => Err(error(&p.at, format!("'{name}' must be a spectrum, a colour or a number"))),
+            _ => Err(error(
+                &p.at,
+                format!("'{name}' must be a spectrum, a colour or a number"),
+            )),
         };
     }
     if let Some(child) = object.child(name) {
