@@ -71,10 +71,23 @@ fn main() -> ExitCode {
         Ok(()) if stdout::failed() => ExitCode::from(1),
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
-            eprintln!("prism: error: {message}");
+            eprintln!("prism: error: {}", one_line(&message));
             ExitCode::from(1)
         }
     }
+}
+
+/// An error on one line whatever the input put into it: line and paragraph separators
+/// become spaces, other control characters are written escaped.
+fn one_line(message: &str) -> String {
+    message
+        .chars()
+        .map(|c| match c {
+            '\n' | '\r' | '\u{2028}' | '\u{2029}' => " ".to_string(),
+            c if c.is_control() => c.escape_unicode().to_string(),
+            c => c.to_string(),
+        })
+        .collect()
 }
 
 /// Help and version go to stdout with success; real usage errors become one line.

@@ -11,6 +11,9 @@ exit code 1 or 2; a good one in a finite image.
   python3 scenes/tools/fuzz_cli.py glb 1500             # GLB headers, chunk lengths, bytes
   python3 scenes/tools/fuzz_cli.py args 400             # command-line options
   python3 scenes/tools/fuzz_cli.py specs 1000           # prism color and upsample inputs
+  python3 scenes/tools/fuzz_cli.py xml 1000             # Mitsuba scenes (scenes/mitsuba):
+      # truncated, values replaced (huge, negative, NaN, not numbers), tags retyped,
+      # cyclic and missing includes, deep nesting, hostile serialized meshes
   python3 scenes/tools/fuzz_cli.py files 1000           # the other files prism reads:
       # coefficient tables (table info), accumulation files (merge, render --resume),
       # images (compare), spectrum and camera-response CSVs (color, --camera-response)
@@ -319,6 +322,65 @@ def case_specs(work, rng, i):
     return args + [f for f in ["--exact", "--refine", "--json"] if rng.random() < 0.2], None
 
 
+XML_VALUES = ["", "abc", "nan", "inf", "-1", "0", "1e308", "-1e308", "99999999999999999999",
+              "4294967296", "2147483648", "1e-320", "1, 2", "1 2 3 4 5", "$missing", "$$", "0x10"]
+XML_TAGS = ["float", "integer", "boolean", "string", "rgb", "spectrum", "point", "vector",
+            "shape", "bsdf", "emitter", "transform", "include", "ref", "default", "scene"]
+
+
+def serialized_file(rng):
+    """A `serialized` mesh file: valid, or with its counts, bytes or length broken."""
+    import zlib
+    plain = struct.pack("<I", 0x1000) + b"m\0" + struct.pack("<QQ", 3, 1)
+    plain += struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3I", 0, 1, 2)
+    kind = rng.randrange(4)
+    if kind == 1:  # counts far beyond the data
+        plain = plain[:6] + struct.pack("<QQ", rng.choice([2**31, 2**40, 2**64 - 1]), 1) + plain[22:]
+    data = struct.pack("<HH", 0x041C, 4) + zlib.compress(plain)
+    if kind == 2:
+        data = data[: rng.randrange(len(data))]
+    if kind == 3:
+        data = mutate_bytes(data, rng)
+    return data + struct.pack("<QI", 0, 1)
+
+
+def case_xml(work, rng, i):
+    import re
+    text = open(os.path.join(SCENES, "mitsuba", "cornell-box.xml")).read()
+    kind = rng.randrange(8)
+    if kind == 0:  # truncated
+        text = text[: rng.randrange(len(text))]
+    elif kind == 1:  # a value replaced
+        values = list(re.finditer(r'value="([^"]*)"', text))
+        m = rng.choice(values)
+        text = text[: m.start(1)] + rng.choice(XML_VALUES) + text[m.end(1):]
+    elif kind == 2:  # a tag retyped
+        tags = list(re.finditer(r"<(/?)(\w+)", text))
+        m = rng.choice(tags)
+        text = text[: m.start(2)] + rng.choice(XML_TAGS) + text[m.end(2):]
+    elif kind == 3:  # cyclic or missing includes
+        other = os.path.join(work, f"inc{i}.xml")
+        open(other, "w").write(f'<scene version="3.0.0"><include filename="case{i}.xml"/></scene>')
+        name = rng.choice([f"inc{i}.xml", "missing.xml", "../../../../etc/passwd", ""])
+        text = text.replace("</scene>", f'<include filename="{name}"/></scene>')
+    elif kind == 4:  # deep nesting
+        depth = rng.choice([50, 300, 5000])
+        text = text.replace("</scene>", '<shape type="cube">' * depth + "</shape>" * depth + "</scene>")
+    elif kind == 5:  # a serialized mesh, hostile or missing
+        open(os.path.join(work, f"mesh{i}.serialized"), "wb").write(serialized_file(rng))
+        name = rng.choice([f"mesh{i}.serialized", "missing.serialized"])
+        index = rng.choice(["0", "1", "-1", "99999999999"])
+        text = text.replace("</scene>", f'<shape type="serialized"><string name="filename" value="{name}"/>'
+                            f'<integer name="shape_index" value="{index}"/></shape></scene>')
+    elif kind == 6:  # a reference to nothing, or a duplicate id
+        text = text.replace('<ref name="bsdf" id="white"/>', rng.choice(['<ref id="nothing"/>', '<bsdf type="diffuse" id="white"/>']), 1)
+    else:  # bytes flipped
+        text = mutate_bytes(text.encode(), rng).decode("utf-8", "replace")
+    path = os.path.join(work, f"case{i}.xml")
+    open(path, "w").write(text)
+    return [path]
+
+
 def finite_exr(path):
     try:
         import numpy as np, mitsuba as mi
@@ -330,7 +392,7 @@ def finite_exr(path):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("kind", choices=["gltf", "assets", "toml", "glb", "args", "files", "specs"])
+    ap.add_argument("kind", choices=["gltf", "assets", "toml", "glb", "args", "files", "specs", "xml"])
     ap.add_argument("cases", type=int)
     ap.add_argument("--seed", type=int, default=1)
     a = ap.parse_args()
@@ -340,7 +402,8 @@ def main():
         if os.path.isfile(os.path.join(SCENES, f)) and not f.endswith(".toml"):
             shutil.copy(os.path.join(SCENES, f), work)
     shutil.copy(os.path.join(SCENES, "assets", "grey-0.5.hdr"), work)
-    make = {"gltf": case_gltf, "assets": case_assets, "toml": case_toml, "glb": case_glb, "args": case_args}.get(a.kind)
+    make = {"gltf": case_gltf, "assets": case_assets, "toml": case_toml, "glb": case_glb, "args": case_args,
+            "xml": case_xml}.get(a.kind)
     codes, bad = Counter(), 0
     for i in range(a.cases):
         out = os.path.join(work, "out.exr")

@@ -28,12 +28,21 @@ pub fn error(at: &Location, reason: impl Into<String>) -> LoadError {
     }
 }
 
+/// The message on one line: a line break becomes a space, and any other control
+/// character the input put into it is written escaped (`\u{b}`), so that no terminal or
+/// log reads it as a second line.
 fn one_line(text: String) -> String {
-    if text.contains(['\n', '\r']) {
-        text.replace(['\n', '\r'], " ")
-    } else {
-        text
+    let breaks = |c: char| c.is_control() || c == '\u{2028}' || c == '\u{2029}';
+    if !text.chars().any(breaks) {
+        return text;
     }
+    text.chars()
+        .map(|c| match c {
+            '\n' | '\r' | '\u{2028}' | '\u{2029}' => " ".to_string(),
+            c if c.is_control() => c.escape_unicode().to_string(),
+            c => c.to_string(),
+        })
+        .collect()
 }
 
 /// Parses a Mitsuba scene (see the module's documentation).
