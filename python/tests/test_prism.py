@@ -422,7 +422,8 @@ def python_blocks(path):
     return blocks
 
 
-@pytest.mark.parametrize("document", ["README.md", "docs/guide/python.md", "docs/guide/denoising.md"])
+@pytest.mark.parametrize("document", ["README.md", "docs/guide/python.md", "docs/guide/denoising.md",
+                                      "docs/guide/from-mitsuba.md"])
 def test_documented_snippets_run(document, tmp_path, monkeypatch):
     blocks = python_blocks(ROOT / document)
     assert blocks, f"{document} has no python block"
