@@ -9,11 +9,13 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::bsdfs::{key, material};
+use super::bsdfs::key;
+use super::files::Files;
 use super::parse::error;
 use super::sensors::{Film, camera, number};
 use super::shapes::triangles;
 use super::spectra::{Kind, spectrum};
+use super::textures::Context;
 use super::tree::{Class, Object};
 use super::{ParseOptions, parse};
 use crate::LoadError;
@@ -41,6 +43,13 @@ pub fn load(
 ) -> Result<MitsubaScene, LoadError> {
     let parsed = parse(text, file, options)?;
     let upsampler = Upsampler::new(load.upsampling, load.table.clone())?;
+    let cx = Context {
+        upsampler: &upsampler,
+        files: Files {
+            resolve: options.resolve,
+            search: &parsed.search,
+        },
+    };
     let mut geometry = LoadedGeometry {
         warnings: parsed.warnings,
         ..LoadedGeometry::default()
@@ -51,7 +60,7 @@ pub fn load(
     for child in &parsed.scene.children {
         let object = &child.object;
         match object.class {
-            Class::Shape => shape(object, options, &upsampler, &mut shared, &mut geometry)?,
+            Class::Shape => shape(object, options, &cx, &mut shared, &mut geometry)?,
             Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
             Class::Sensor => {
                 if geometry.cameras.is_empty() {
@@ -89,10 +98,11 @@ pub fn load(
 fn shape(
     shape: &Object,
     options: &ParseOptions,
-    upsampler: &Upsampler,
+    cx: &Context,
     shared: &mut HashMap<usize, usize>,
     out: &mut LoadedGeometry,
 ) -> Result<(), LoadError> {
+    let upsampler = cx.upsampler;
     let tris = triangles(shape, options.resolve)?;
     let mut bsdfs = shape.children_of(Class::Bsdf);
     let bsdf = bsdfs.next();
@@ -121,11 +131,14 @@ fn shape(
         }
     };
     // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
-    let surface = match bsdf {
-        Some(b) => material(&b.object, upsampler)?,
-        None => crate::materials::Material::Diffuse {
-            reflectance: crate::textures::SceneSpectrum::Constant(0.5),
-        },
+    let (surface, alpha) = match bsdf {
+        Some(b) => super::wrappers::surface(&b.object, cx)?,
+        None => (
+            crate::materials::Material::Diffuse {
+                reflectance: crate::textures::SceneSpectrum::Constant(0.5),
+            },
+            None,
+        ),
     };
     let name = shape
         .id
@@ -134,12 +147,14 @@ fn shape(
     let material = match (bsdf, &emission) {
         (Some(b), None) if shared.contains_key(&key(&b.object)) => shared[&key(&b.object)],
         _ => {
-            out.materials.push(MaterialDesc::surface(
+            let mut desc = MaterialDesc::surface(
                 b_name(bsdf.map(|b| &b.object), &name),
                 surface,
                 emission.clone(),
                 upsampler,
-            )?);
+            )?;
+            desc.alpha = alpha;
+            out.materials.push(desc);
             let index = out.materials.len() - 1;
             if let (Some(b), None) = (bsdf, &emission) {
                 shared.insert(key(&b.object), index);
@@ -149,6 +164,7 @@ fn shape(
     };
     let first = out.triangles.len();
     out.triangles.extend(tris);
+    super::uvs::add(shape, first, out)?;
     out.instances.push(MeshInstance {
         node: name,
         material: Some(material),
