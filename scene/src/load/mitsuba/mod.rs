@@ -40,13 +40,20 @@ mod values;
 // What the plugins mean: the tree turned into prism's loaded geometry, one file per
 // plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
 mod bsdfs;
+mod files;
+mod instances;
+mod mesh_attribute;
+mod primitives;
 mod scene;
 mod sensors;
+mod shape_mesh;
 mod shapes;
 mod spectra;
 
 #[cfg(test)]
 mod scene_tests;
+#[cfg(test)]
+mod shapes_tests;
 #[cfg(test)]
 mod tests;
 
@@ -73,6 +80,9 @@ pub struct Parsed {
     pub scene: Object,
     /// Warnings, one line each, starting with `file:line:`.
     pub warnings: Vec<String>,
+    /// The `<path>` directories, the latest first: where the files plugins name (meshes,
+    /// images) are looked for before the directory of the file naming them.
+    pub search: Vec<String>,
 }
 
 /// Parses the text of a Mitsuba scene file. `file` is the name errors and warnings give
