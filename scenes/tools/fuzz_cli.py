@@ -13,7 +13,8 @@ exit code 1 or 2; a good one in a finite image.
   python3 scenes/tools/fuzz_cli.py specs 1000           # prism color and upsample inputs
   python3 scenes/tools/fuzz_cli.py xml 1000             # Mitsuba scenes (scenes/mitsuba):
       # truncated, values replaced (huge, negative, NaN, not numbers), tags retyped,
-      # cyclic and missing includes, deep nesting, hostile serialized meshes
+      # cyclic and missing includes, deep nesting, hostile serialized, OBJ and PLY meshes
+      # (counts far beyond the data, cut short, bytes flipped, indices out of range)
   python3 scenes/tools/fuzz_cli.py files 1000           # the other files prism reads:
       # coefficient tables (table info), accumulation files (merge, render --resume),
       # images (compare), spectrum and camera-response CSVs (color, --camera-response)
@@ -344,10 +345,53 @@ def serialized_file(rng):
     return data + struct.pack("<QI", 0, 1)
 
 
+def obj_file(rng):
+    """An OBJ mesh: valid, or with indices out of range, numbers broken or bytes cut."""
+    text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1 4/2/1\n"
+    kind = rng.randrange(5)
+    if kind == 1:  # an index far out of range, zero or too relative
+        text += "f 1 2 " + rng.choice(["99999999999", "0", "-9", "5/1/1", "1/9/1", "1/1/9"]) + "\n"
+    elif kind == 2:  # a number that is not one
+        text = text.replace("1 1 0", rng.choice(["1 nan 0", "1 inf 0", "1 x 0", "1", "1e99999 0 0"]))
+    elif kind == 3:
+        text = text[: rng.randrange(len(text))]
+    data = text.encode()
+    return mutate_bytes(data, rng) if kind == 4 else data
+
+
+def ply_file(rng):
+    """A PLY mesh, ASCII or binary: valid, or declaring counts far beyond its data, cut
+    short, with an index out of range or bytes flipped."""
+    binary = rng.random() < 0.5
+    counts = [4, 2]
+    kind = rng.randrange(5)
+    if kind == 1:  # counts far beyond the data
+        counts[rng.randrange(2)] = rng.choice([2**31, 2**32 + 1, 2**40, 2**64 - 1])
+    head = ("ply\nformat " + ("binary_little_endian" if binary else "ascii") + " 1.0\n"
+            f"element vertex {counts[0]}\nproperty float x\nproperty float y\nproperty float z\n"
+            "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+            f"element face {counts[1]}\nproperty list uchar int vertex_indices\n"
+            "property float weight_0\nend_header\n").encode()
+    corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    faces = [[0, 1, 2], [0, 2, rng.choice([3, 3, 4, 2**31 - 1])]]
+    if binary:
+        body = b"".join(struct.pack("<3f3B", *p, 200, 100, 50) for p in corners)
+        body += b"".join(struct.pack("<B3if", 3, *f, 0.5) for f in faces)
+    else:
+        body = "".join(f"{x} {y} {z} 200 100 50\n" for x, y, z in corners).encode()
+        body += "".join(f"3 {f[0]} {f[1]} {f[2]} 0.5\n" for f in faces).encode()
+    data = head + body
+    if kind == 2:
+        data = data[: rng.randrange(len(data))]
+    if kind == 3:
+        data = mutate_bytes(data, rng)
+    return data
+
+
 def case_xml(work, rng, i):
     import re
     text = open(os.path.join(SCENES, "mitsuba", "cornell-box.xml")).read()
-    kind = rng.randrange(8)
+    kind = rng.randrange(10)
     if kind == 0:  # truncated
         text = text[: rng.randrange(len(text))]
     elif kind == 1:  # a value replaced
@@ -372,6 +416,14 @@ def case_xml(work, rng, i):
         index = rng.choice(["0", "1", "-1", "99999999999"])
         text = text.replace("</scene>", f'<shape type="serialized"><string name="filename" value="{name}"/>'
                             f'<integer name="shape_index" value="{index}"/></shape></scene>')
+    elif kind in (8, 9):  # an OBJ or PLY mesh, hostile or missing, shown by vertex colour
+        ext = "obj" if kind == 8 else "ply"
+        open(os.path.join(work, f"mesh{i}.{ext}"), "wb").write((obj_file if kind == 8 else ply_file)(rng))
+        name = rng.choice([f"mesh{i}.{ext}"] * 3 + [f"missing.{ext}"])
+        bsdf = rng.choice(['', '<bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance">'
+                               f'<string name="name" value="{rng.choice(["vertex_color", "face_weight", "face_nothing"])}"/>'
+                               '</texture></bsdf>'])
+        text = text.replace("</scene>", f'<shape type="{ext}"><string name="filename" value="{name}"/>{bsdf}</shape></scene>')
     elif kind == 6:  # a reference to nothing, or a duplicate id
         text = text.replace('<ref name="bsdf" id="white"/>', rng.choice(['<ref id="nothing"/>', '<bsdf type="diffuse" id="white"/>']), 1)
     else:  # bytes flipped

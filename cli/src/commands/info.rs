@@ -8,7 +8,7 @@ use prism_scene::geometry::{Bvh, BvhQuality};
 #[derive(Debug, Args)]
 #[command(after_help = "Example:\n  prism info scenes/cornell-bunny.gltf")]
 pub struct InfoArgs {
-    /// A .gltf or .glb file.
+    /// A .gltf or .glb file, or a Mitsuba 3 scene (.xml).
     pub scene: PathBuf,
     /// Which scene of the file (default: its default scene).
     #[arg(long, visible_alias = "scene", value_name = "N")]
@@ -95,10 +95,17 @@ pub fn run(args: &InfoArgs) -> Result<(), String> {
             )
         }
     );
+    // A Mitsuba scene lists what prism makes of its plugins where it is not the plugin
+    // itself (shapes it tessellates, instances it copies); a glTF file its features.
+    let (format, plain) = if crate::scene_file::is_mitsuba(&args.scene) {
+        ("Mitsuba        ", "every plugin as it is")
+    } else {
+        ("glTF           ", "core only")
+    };
     outln!(
-        "glTF           {}",
+        "{format}{}",
         if s.gltf_features.is_empty() {
-            "core only".into()
+            plain.into()
         } else {
             s.gltf_features.join(", ")
         }

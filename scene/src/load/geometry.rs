@@ -45,6 +45,9 @@ pub struct LoadedGeometry {
     pub colors: Vec<[Vec4; 3]>,
     /// The coefficient table that upsamples vertex colours (present with `colors`).
     pub color_table: Option<std::sync::Arc<prism_upsample::CoefficientTable>>,
+    /// Whether vertex colours blend as spectra between a triangle's corners (Mitsuba's
+    /// mesh attributes) rather than as RGB (glTF's `COLOR_0`, the default).
+    pub colors_blend_spectra: bool,
     /// Unit tangents at each triangle's vertices, world space, with glTF's handedness in
     /// w: `TANGENT` where the file gives it, else derived from the triangle's positions
     /// and texture coordinates (one tangent per triangle: a faceted frame on curved

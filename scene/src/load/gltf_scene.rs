@@ -177,6 +177,7 @@ impl Scene {
                 alpha,
                 colors: loaded.colors,
                 color_table: loaded.color_table,
+                colors_blend_spectra: loaded.colors_blend_spectra,
             },
             triangle_material,
             materials,

@@ -10,6 +10,7 @@
 //! glTF file is made in `load` (`Scene::from_loaded`).
 
 mod builder;
+mod corner_colors;
 mod departure;
 mod guide;
 #[cfg(feature = "gltf")]
@@ -109,6 +110,9 @@ pub struct VertexAttributes {
     pub colors: Vec<[glam::Vec4; 3]>,
     /// The coefficient table that turns vertex colours into spectra (needed with them).
     pub color_table: Option<Arc<prism_upsample::CoefficientTable>>,
+    /// Whether vertex colours blend as spectra (each corner's upsampled, then
+    /// interpolated: Mitsuba's mesh attributes) rather than as RGB (glTF's `COLOR_0`).
+    pub colors_blend_spectra: bool,
     /// Per material (parallel to the materials, or empty: every surface opaque), its
     /// alpha coverage, None where opaque. Rays pass through where it says so.
     pub alpha: Vec<Option<Arc<Alpha>>>,
@@ -722,7 +726,24 @@ impl Scene {
         mode: crate::bsdf::TransportMode,
     ) -> Bsdf<'_, N> {
         let tint = self.tint_table(hit).map(|table| {
-            crate::textures::reflectance_lanes(hit.color.truncate().to_array(), table, wavelengths)
+            let t = hit.triangle as usize;
+            match (
+                self.attributes.colors_blend_spectra,
+                self.attributes.colors.get(t),
+            ) {
+                (true, Some(corners)) => corner_colors::blended_tint(
+                    &self.triangles[t],
+                    corners,
+                    hit.p,
+                    table,
+                    wavelengths,
+                ),
+                _ => crate::textures::reflectance_lanes(
+                    hit.color.truncate().to_array(),
+                    table,
+                    wavelengths,
+                ),
+            }
         });
         let material = self.material(hit);
         if self.oriented_materials && material.oriented() {

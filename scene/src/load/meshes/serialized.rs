@@ -202,6 +202,7 @@ fn decode(data: &[u8], version: u16, index: usize) -> Result<TriangleMesh, LoadE
         uvs: uvs.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect(),
         triangles: faces,
         face_normals: flags & FACE_NORMALS != 0,
+        ..TriangleMesh::default()
     })
 }
 

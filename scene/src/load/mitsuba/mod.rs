@@ -42,16 +42,21 @@ mod values;
 mod bitmaps;
 mod bsdfs;
 mod files;
+mod instances;
+mod mesh_attribute;
+mod primitives;
 mod scene;
 mod sensors;
+mod shape_mesh;
 mod shapes;
 mod spectra;
 mod textures;
-mod uvs;
 mod wrappers;
 
 #[cfg(test)]
 mod scene_tests;
+#[cfg(test)]
+mod shapes_tests;
 #[cfg(test)]
 mod tests;
 

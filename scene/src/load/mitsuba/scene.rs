@@ -11,9 +11,12 @@ use std::sync::Arc;
 
 use super::bsdfs::key;
 use super::files::Files;
+use super::instances::{Groups, check_group};
+use super::mesh_attribute::{corner_colors, diffuse_reflectance};
 use super::parse::error;
 use super::sensors::{Film, camera, number};
-use super::shapes::triangles;
+use super::shape_mesh::ShapeMesh;
+use super::shapes::{feature, shape_mesh};
 use super::spectra::{Kind, spectrum};
 use super::textures::Context;
 use super::tree::{Class, Object};
@@ -55,12 +58,34 @@ pub fn load(
         ..LoadedGeometry::default()
     };
     let mut shared: HashMap<usize, usize> = HashMap::new();
+    let mut groups = Groups::default();
     let mut film = None;
     let mut max_depth = None;
     for child in &parsed.scene.children {
         let object = &child.object;
         match object.class {
-            Class::Shape => shape(object, options, &cx, &mut shared, &mut geometry)?,
+            Class::Shape => match object.kind.as_str() {
+                // A group is read where an instance places it.
+                "shapegroup" => check_group(object)?,
+                "instance" => {
+                    note(&mut geometry.gltf_features, "instance");
+                    let placed = groups.place(
+                        object,
+                        geometry.triangles.len(),
+                        &cx.files,
+                        &mut geometry.warnings,
+                    )?;
+                    for (member, mesh) in placed {
+                        note(&mut geometry.gltf_features, &member.kind);
+                        shape(&member, &mesh, &cx, &mut shared, &mut geometry)?;
+                    }
+                }
+                kind => {
+                    note(&mut geometry.gltf_features, kind);
+                    let mesh = shape_mesh(object, &cx.files, &mut geometry.warnings)?;
+                    shape(object, &mesh, &cx, &mut shared, &mut geometry)?;
+                }
+            },
             Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
             Class::Sensor => {
                 if geometry.cameras.is_empty() {
@@ -86,6 +111,14 @@ pub fn load(
             }
         }
     }
+    if !geometry.colors.is_empty() {
+        geometry.color_table = Some(upsampler.table().map_err(LoadError::Scene)?);
+        // Mitsuba upsamples each vertex's colour and interpolates the spectra.
+        geometry.colors_blend_spectra = true;
+        geometry
+            .gltf_features
+            .push("mesh attributes as vertex colours (blended as spectra)".into());
+    }
     let film = film.ok_or_else(|| error(&parsed.scene.at, "the scene has no sensor"))?;
     Ok(MitsubaScene {
         geometry,
@@ -94,16 +127,15 @@ pub fn load(
     })
 }
 
-/// Adds `shape`'s triangles, its material and, with an area emitter, its light.
+/// Adds `shape`'s triangles (`mesh`), its material and, with an area emitter, its light.
 fn shape(
     shape: &Object,
-    options: &ParseOptions,
+    mesh: &ShapeMesh,
     cx: &Context,
     shared: &mut HashMap<usize, usize>,
     out: &mut LoadedGeometry,
 ) -> Result<(), LoadError> {
     let upsampler = cx.upsampler;
-    let tris = triangles(shape, options.resolve)?;
     let mut bsdfs = shape.children_of(Class::Bsdf);
     let bsdf = bsdfs.next();
     if bsdfs.next().is_some() {
@@ -130,10 +162,26 @@ fn shape(
             ));
         }
     };
+    // A diffuse reflectance from a mesh attribute is the mesh's vertex colours over a
+    // reflectance of the texture's scale.
+    let attribute = match bsdf {
+        Some(b) => diffuse_reflectance(&b.object)?,
+        None => None,
+    };
+    let colors = match &attribute {
+        Some(a) => Some(corner_colors(mesh, a, &mut out.warnings)?),
+        None => None,
+    };
     // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
-    let (surface, alpha) = match bsdf {
-        Some(b) => super::wrappers::surface(&b.object, cx)?,
-        None => (
+    let (surface, alpha) = match (bsdf, &attribute) {
+        (_, Some(a)) => (
+            crate::materials::Material::Diffuse {
+                reflectance: crate::textures::SceneSpectrum::Constant(a.scale),
+            },
+            None,
+        ),
+        (Some(b), None) => super::wrappers::surface(&b.object, cx)?,
+        (None, None) => (
             crate::materials::Material::Diffuse {
                 reflectance: crate::textures::SceneSpectrum::Constant(0.5),
             },
@@ -163,13 +211,12 @@ fn shape(
         }
     };
     let first = out.triangles.len();
-    out.triangles.extend(tris);
-    super::uvs::add(shape, first, out)?;
+    let count = mesh.append(colors.as_deref(), out);
     out.instances.push(MeshInstance {
         node: name,
         material: Some(material),
         first,
-        count: out.triangles.len() - first,
+        count,
     });
     if emission.is_some() {
         out.lights.push(LightDesc::Area {
@@ -178,6 +225,15 @@ fn shape(
         });
     }
     Ok(())
+}
+
+/// Lists what shapes of plugin `kind` change about the render once ([`feature`]).
+fn note(features: &mut Vec<String>, kind: &str) {
+    if let Some(f) = feature(kind)
+        && !features.contains(&f)
+    {
+        features.push(f);
+    }
 }
 
 fn b_name(bsdf: Option<&Arc<Object>>, shape: &str) -> String {
