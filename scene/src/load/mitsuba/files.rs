@@ -1,6 +1,6 @@
 //! The files plugins name (images, meshes), found as Mitsuba's file resolver finds them:
-//! in the scene's `<path>` directories, the latest first, then next to the file that
-//! names them.
+//! in the scene's `<path>` directories, the latest first, then the scene file's directory,
+//! then (prism's addition) next to the included file that names them.
 
 use super::parse::error;
 use super::paths;
@@ -12,7 +12,7 @@ use crate::LoadError;
 pub(crate) struct Files<'a> {
     /// Reads a file by name (the caller's resolver).
     pub resolve: &'a dyn Fn(&str) -> std::io::Result<Vec<u8>>,
-    /// The `<path>` directories, the latest first.
+    /// The `<path>` directories, the latest first, then the scene file's directory.
     pub search: &'a [String],
 }
 

@@ -83,8 +83,9 @@ pub struct Parsed {
     pub scene: Object,
     /// Warnings, one line each, starting with `file:line:`.
     pub warnings: Vec<String>,
-    /// The `<path>` directories, the latest first: where the files plugins name (meshes,
-    /// images) are looked for before the directory of the file naming them.
+    /// The `<path>` directories, the latest first, then the scene file's directory: where
+    /// the files plugins name (meshes, images) are looked for before the directory of the
+    /// (included) file naming them, as Mitsuba's file resolver looks.
     pub search: Vec<String>,
 }
 

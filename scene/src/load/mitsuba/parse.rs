@@ -88,10 +88,14 @@ pub fn parse(text: &str, file: &str, options: &ParseOptions) -> Result<Parsed, L
         reader.element(&src, child, Parent::Object(&mut scene), 1, true)?;
     }
     let scene = reader.arena.finish(scene)?;
+    // Mitsuba's file resolver holds the scene file's directory behind the `<path>`s
+    // (`load_file` prepends it first): files named in an included file are found there.
+    let mut search = reader.search;
+    search.push(paths::directory(file).to_string());
     Ok(Parsed {
         scene,
         warnings: reader.warnings,
-        search: reader.search,
+        search,
     })
 }
 
