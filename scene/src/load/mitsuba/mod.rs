@@ -54,6 +54,8 @@ mod wrappers;
 mod scene_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod textures_tests;
 
 pub use parse::MAX_INCLUDE_DEPTH;
 pub use scene::{MitsubaScene, load};
