@@ -131,14 +131,19 @@ fn shape(
         }
     };
     // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
-    let (surface, alpha) = match bsdf {
+    let super::wrappers::Surface {
+        material: surface,
+        alpha,
+        perturbation,
+    } = match bsdf {
         Some(b) => super::wrappers::surface(&b.object, cx)?,
-        None => (
-            crate::materials::Material::Diffuse {
+        None => super::wrappers::Surface {
+            material: crate::materials::Material::Diffuse {
                 reflectance: crate::textures::SceneSpectrum::Constant(0.5),
             },
-            None,
-        ),
+            alpha: None,
+            perturbation: None,
+        },
     };
     let name = shape
         .id
@@ -154,6 +159,7 @@ fn shape(
                 upsampler,
             )?;
             desc.alpha = alpha;
+            desc.perturbation = perturbation.map(Arc::new);
             out.materials.push(desc);
             let index = out.materials.len() - 1;
             if let (Some(b), None) = (bsdf, &emission) {
