@@ -29,6 +29,8 @@ pub enum Bsdf<'a, const N: usize> {
     Plastic(Plastic<'a, N>),
     /// A polarizing filter or a wave plate.
     Sheet(Sheet<N>),
+    /// Another BSDF about a tilted normal (Mitsuba's normal and bump maps).
+    Perturbed(Box<super::perturbed::Perturbed<'a, N>>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -54,6 +56,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Conductor(b) => b.f(wo, wi),
             Bsdf::Plastic(b) => b.f(wo, wi),
             Bsdf::Sheet(_) => SampledSpectrum::splat(0.0),
+            Bsdf::Perturbed(b) => b.f(wo, wi),
         }
     }
 
@@ -77,6 +80,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Conductor(b) => b.pdf(wo, wi),
             Bsdf::Plastic(b) => b.pdf(wo, wi),
             Bsdf::Sheet(_) => 0.0,
+            Bsdf::Perturbed(b) => b.pdf(wo, wi),
         }
     }
 
@@ -92,6 +96,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Conductor(b) => b.sample(wo, u),
             Bsdf::Plastic(b) => b.sample(wo, uc, u),
             Bsdf::Sheet(b) => b.sample(wo),
+            Bsdf::Perturbed(b) => b.sample(wo, uc, u),
         }
     }
 
@@ -104,6 +109,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Conductor(b) => b.distribution.alpha_x.max(b.distribution.alpha_y) <= alpha,
             Bsdf::Transmissive(b) => b.is_narrow(alpha),
             Bsdf::Sheet(_) => true,
+            Bsdf::Perturbed(b) => b.inner.is_narrow(alpha),
             _ => false,
         }
     }
@@ -115,6 +121,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Conductor(b) => b.distribution.effectively_smooth(),
             Bsdf::Transmissive(b) => b.is_delta(),
             Bsdf::Sheet(_) => true,
+            Bsdf::Perturbed(b) => b.inner.is_delta(),
             _ => false,
         }
     }

@@ -15,6 +15,7 @@ mod fluorescent;
 mod layered;
 mod metallic_roughness;
 mod microfacet;
+mod perturbed;
 mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
@@ -39,6 +40,7 @@ pub use metallic_roughness::{
     DiffuseTransmission, Iridescence, MetallicRoughness, Specular, SpecularParts,
 };
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use perturbed::Perturbed;
 pub use plastic::{Plastic, PlasticCoating};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;

@@ -163,6 +163,17 @@ impl Scene {
             });
         }
         let normal_maps = normal_maps(&loaded, materials.len());
+        let perturbations = if loaded.materials.iter().any(|m| m.perturbation.is_some()) {
+            let mut list: Vec<_> = loaded
+                .materials
+                .iter()
+                .map(|m| m.perturbation.clone())
+                .collect();
+            list.resize(materials.len(), None);
+            list
+        } else {
+            Vec::new()
+        };
         let alpha = alpha_coverage(&loaded, &triangle_material, materials.len());
         let camera = loaded.camera(options.camera.as_deref())?;
         let media = media_of(&loaded, &materials)?;
@@ -175,6 +186,7 @@ impl Scene {
                 tangents: loaded.tangents,
                 normal_maps,
                 alpha,
+                perturbations,
                 colors: loaded.colors,
                 color_table: loaded.color_table,
                 colors_blend_spectra: loaded.colors_blend_spectra,

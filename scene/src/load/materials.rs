@@ -56,6 +56,9 @@ pub struct MaterialDesc {
     pub metallic_roughness_texture: Option<Arc<RgbTexture>>,
     /// The normal texture, which tilts shading normals (the mesh's tangents orient it).
     pub normal_texture: Option<Arc<NormalMap>>,
+    /// Mitsuba's normal or bump map around the surface, if any (see
+    /// [`crate::materials::Perturbation`]).
+    pub perturbation: Option<Arc<crate::materials::Perturbation>>,
     /// The emissive texture times emissiveFactor and the strength, as emission spectra
     /// (replaces `emission` where present; None when the factor is black).
     pub emissive_texture: Option<SceneSpectrum>,
@@ -114,6 +117,7 @@ impl MaterialDesc {
             base_color_texture: None,
             metallic_roughness_texture: None,
             normal_texture: None,
+            perturbation: None,
             emissive_texture: None,
             dispersion: 0.0,
             absorption: None,
@@ -514,6 +518,7 @@ pub(crate) fn material(
             .volume()
             .is_none_or(|v| v.thickness_factor() <= 0.0);
     let desc = MaterialDesc {
+        perturbation: None,
         transmission_texture,
         thin_walled,
         base_white: base_texture.is_none() && base[..3].iter().all(|&c| c == 1.0),

@@ -7,6 +7,7 @@ mod alpha;
 mod layers;
 mod material;
 mod normal_map;
+mod perturbation;
 
 pub(crate) use alpha::blend_number;
 pub use alpha::{Alpha, AlphaMode};
@@ -18,3 +19,4 @@ pub use material::Material;
 pub use normal_map::NormalMap;
 #[cfg(feature = "gltf")]
 pub(crate) use normal_map::triangle_tangent;
+pub use perturbation::{Perturbation, PerturbationInput, shadow_terminator};

@@ -15,6 +15,7 @@ mod departure;
 mod guide;
 #[cfg(feature = "gltf")]
 mod options;
+mod perturbed;
 mod time;
 
 pub use crate::bsdf::Bsdf;
@@ -116,6 +117,9 @@ pub struct VertexAttributes {
     /// Per material (parallel to the materials, or empty: every surface opaque), its
     /// alpha coverage, None where opaque. Rays pass through where it says so.
     pub alpha: Vec<Option<Arc<Alpha>>>,
+    /// Per material (parallel to the materials, or empty: none), Mitsuba's normal or bump
+    /// map around its BSDF ([`crate::materials::Perturbation`]).
+    pub perturbations: Vec<Option<Arc<crate::materials::Perturbation>>>,
 }
 
 impl VertexAttributes {
@@ -256,6 +260,13 @@ impl Scene {
             return Err(format!(
                 "{} materials' alpha for {} materials",
                 attributes.alpha.len(),
+                materials.len()
+            ));
+        }
+        let perturbations = attributes.perturbations.len();
+        if perturbations != 0 && perturbations != materials.len() {
+            return Err(format!(
+                "{perturbations} materials' normal or bump maps for {} materials",
                 materials.len()
             ));
         }
@@ -653,6 +664,11 @@ impl Scene {
         } else {
             self.normal_mapped(hit.triangle, b, shading_normal, normal, &tex)
         };
+        let shading_normal = if self.attributes.perturbations.is_empty() {
+            shading_normal
+        } else {
+            self.perturbed_normal(hit.triangle, shading_normal, normal, &tex, ray.direction)
+        };
         let color = self
             .attributes
             .colors
@@ -746,6 +762,9 @@ impl Scene {
             }
         });
         let material = self.material(hit);
+        if !self.attributes.perturbations.is_empty() && self.perturbation(hit).is_some() {
+            return self.bsdf_perturbed(hit, material.bsdf_at(&hit.tex, wavelengths, mode, tint));
+        }
         if self.oriented_materials && material.oriented() {
             return self.bsdf_in_tangent_frame(hit, material, wavelengths, mode, tint);
         }
@@ -775,6 +794,7 @@ impl Scene {
         if let Material::Diffuse { reflectance } = &self.materials[index as usize]
             && !reflectance.varies()
             && self.tint_table(hit).is_none()
+            && (self.attributes.perturbations.is_empty() || self.perturbation(hit).is_none())
             && let Some(r) = cache.reflectance(index, reflectance, wavelengths)
         {
             return Bsdf::Diffuse(crate::bsdf::Diffuse::new(r));
@@ -825,6 +845,7 @@ impl Scene {
         matches!(
             self.material(hit),
             Material::Diffuse { reflectance } if !reflectance.varies()
+                && (self.attributes.perturbations.is_empty() || self.perturbation(hit).is_none())
         )
     }
 

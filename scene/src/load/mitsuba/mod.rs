@@ -59,6 +59,8 @@ mod scene_tests;
 mod shapes_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod textures_tests;
 
 pub use parse::MAX_INCLUDE_DEPTH;
 pub use scene::{MitsubaScene, load};

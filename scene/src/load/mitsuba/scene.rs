@@ -173,20 +173,26 @@ fn shape(
         None => None,
     };
     // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
-    let (surface, alpha) = match (bsdf, &attribute) {
-        (_, Some(a)) => (
-            crate::materials::Material::Diffuse {
+    let super::wrappers::Surface {
+        material: surface,
+        alpha,
+        perturbation,
+    } = match (bsdf, &attribute) {
+        (_, Some(a)) => super::wrappers::Surface {
+            material: crate::materials::Material::Diffuse {
                 reflectance: crate::textures::SceneSpectrum::Constant(a.scale),
             },
-            None,
-        ),
+            alpha: None,
+            perturbation: None,
+        },
         (Some(b), None) => super::wrappers::surface(&b.object, cx)?,
-        (None, None) => (
-            crate::materials::Material::Diffuse {
+        (None, None) => super::wrappers::Surface {
+            material: crate::materials::Material::Diffuse {
                 reflectance: crate::textures::SceneSpectrum::Constant(0.5),
             },
-            None,
-        ),
+            alpha: None,
+            perturbation: None,
+        },
     };
     let name = shape
         .id
@@ -202,6 +208,7 @@ fn shape(
                 upsampler,
             )?;
             desc.alpha = alpha;
+            desc.perturbation = perturbation.map(Arc::new);
             out.materials.push(desc);
             let index = out.materials.len() - 1;
             if let (Some(b), None) = (bsdf, &emission) {
