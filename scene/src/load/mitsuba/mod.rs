@@ -40,11 +40,15 @@ mod values;
 // What the plugins mean: the tree turned into prism's loaded geometry, one file per
 // plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
 mod bsdfs;
+mod media;
 mod scene;
 mod sensors;
 mod shapes;
 mod spectra;
+mod volumes;
 
+#[cfg(test)]
+mod media_tests;
 #[cfg(test)]
 mod scene_tests;
 #[cfg(test)]

@@ -10,6 +10,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::bsdfs::{key, material};
+use super::media::{MediaBuilder, Reading, nested, null_boundary};
 use super::parse::error;
 use super::sensors::{Film, camera, number};
 use super::shapes::triangles;
@@ -48,16 +49,31 @@ pub fn load(
     let mut shared: HashMap<usize, usize> = HashMap::new();
     let mut film = None;
     let mut max_depth = None;
+    let mut media = MediaBuilder::default();
+    let mut integrator_object = None;
     for child in &parsed.scene.children {
         let object = &child.object;
         match object.class {
-            Class::Shape => shape(object, options, &upsampler, &mut shared, &mut geometry)?,
+            Class::Shape => shape(
+                object,
+                options,
+                &upsampler,
+                &mut shared,
+                &mut media,
+                &mut geometry,
+            )?,
             Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
             Class::Sensor => {
                 if geometry.cameras.is_empty() {
                     let (c, f) = camera(object)?;
                     geometry.cameras.push(c);
                     film = Some(f);
+                    let mut cx = Reading {
+                        upsampler: &upsampler,
+                        resolve: options.resolve,
+                        warnings: &mut geometry.warnings,
+                    };
+                    media.sensor(object, &mut cx)?;
                 } else {
                     geometry.warnings.push(format!(
                         "{}: a second sensor is not read (the first is)",
@@ -65,10 +81,19 @@ pub fn load(
                     ));
                 }
             }
-            Class::Integrator => max_depth = integrator(object, &mut geometry.warnings)?,
-            // Objects defined at the top for reference (BSDFs, textures) are read where
-            // they are used.
-            Class::Bsdf | Class::Texture | Class::Spectrum | Class::Rgb => {}
+            Class::Integrator => {
+                max_depth = integrator(object, &mut geometry.warnings)?;
+                integrator_object = Some(object);
+            }
+            // Objects defined at the top for reference (BSDFs, textures, media) are read
+            // where they are used.
+            Class::Bsdf
+            | Class::Texture
+            | Class::Spectrum
+            | Class::Rgb
+            | Class::Medium
+            | Class::Phase
+            | Class::Volume => {}
             other => {
                 return Err(error(
                     &object.at,
@@ -78,6 +103,10 @@ pub fn load(
         }
     }
     let film = film.ok_or_else(|| error(&parsed.scene.at, "the scene has no sensor"))?;
+    geometry.media = media.finish(
+        integrator_object.map(|o| o.as_ref()),
+        &mut geometry.warnings,
+    )?;
     Ok(MitsubaScene {
         geometry,
         film,
@@ -91,9 +120,18 @@ fn shape(
     options: &ParseOptions,
     upsampler: &Upsampler,
     shared: &mut HashMap<usize, usize>,
+    media: &mut MediaBuilder,
     out: &mut LoadedGeometry,
 ) -> Result<(), LoadError> {
     let tris = triangles(shape, options.resolve)?;
+    let sides = media.shape_sides(
+        shape,
+        &mut Reading {
+            upsampler,
+            resolve: options.resolve,
+            warnings: &mut out.warnings,
+        },
+    )?;
     let mut bsdfs = shape.children_of(Class::Bsdf);
     let bsdf = bsdfs.next();
     if bsdfs.next().is_some() {
@@ -122,6 +160,7 @@ fn shape(
     };
     // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
     let surface = match bsdf {
+        Some(b) if b.object.kind == "null" => null_boundary(&b.object)?,
         Some(b) => material(&b.object, upsampler)?,
         None => crate::materials::Material::Diffuse {
             reflectance: crate::textures::SceneSpectrum::Constant(0.5),
@@ -131,8 +170,11 @@ fn shape(
         .id
         .clone()
         .unwrap_or_else(|| format!("shape {}", out.instances.len()));
+    // Shapes share their BSDF's material unless they emit or bound media of their own.
     let material = match (bsdf, &emission) {
-        (Some(b), None) if shared.contains_key(&key(&b.object)) => shared[&key(&b.object)],
+        (Some(b), None) if sides.is_none() && shared.contains_key(&key(&b.object)) => {
+            shared[&key(&b.object)]
+        }
         _ => {
             out.materials.push(MaterialDesc::surface(
                 b_name(bsdf.map(|b| &b.object), &name),
@@ -141,9 +183,10 @@ fn shape(
                 upsampler,
             )?);
             let index = out.materials.len() - 1;
-            if let (Some(b), None) = (bsdf, &emission) {
+            if let (Some(b), None, None) = (bsdf, &emission, sides) {
                 shared.insert(key(&b.object), index);
             }
+            media.set_sides(index, sides);
             index
         }
     };
@@ -194,6 +237,8 @@ fn emitter(
 /// The integrator's `max_depth` as prism's bounces, warning where prism's path tracer
 /// differs from the one asked for.
 fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<u32>, LoadError> {
+    // The integrator a `moment` or `aov` wrapper runs is the one that renders.
+    let integrator = nested(integrator);
     match integrator.kind.as_str() {
         "path" | "volpath" | "volpathmis" => {}
         other => warnings.push(format!(
