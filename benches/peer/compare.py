@@ -11,6 +11,11 @@
   python3 benches/peer/compare.py box --peer-reference ref-box-256.exr --narrow-peers  # peers as without AVX-512
   python3 benches/peer/compare.py box bunny specular glossy caustic media textured --width 128 \
       --variants llvm_ad_spectral,scalar_spectral --peer-reference-dir refs --seeds 4   # the scene kinds
+  python3 benches/peer/compare.py scenes/mitsuba/bsdfs-plastic.xml --peer-reference-dir refs  # a Mitsuba file
+
+A SCENE is a comparison scene's name or a Mitsuba scene file (.xml), which both renderers
+read as it stands (benches/peer/mitsuba_xml.py on Mitsuba's side): its film's size and its
+integrator's depth, --spp samples; --width and --depth do not apply to it.
 
 Several scenes print one JSON object each and then a Markdown table of the time-to-equal-error
 ratios and paths/s per scene, with the CPU model (on stderr).
@@ -42,7 +47,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from peers import SCENES, script as peer_script  # noqa: E402
+from peers import SCENES, check_scene, is_xml, scene_name, scene_path, script as peer_script  # noqa: E402
 from mitsuba_reference import variance_path  # noqa: E402
 
 
@@ -104,8 +109,8 @@ def cpu():
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("scenes", nargs="+", choices=SCENES, metavar="SCENE",
-                    help=f"one or more of {', '.join(SCENES)}")
+    ap.add_argument("scenes", nargs="+", type=check_scene, metavar="SCENE",
+                    help=f"one or more of {', '.join(SCENES)}, or Mitsuba scene files (.xml)")
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--width", type=int, default=256)
     ap.add_argument("--depth", type=int, default=-1,
@@ -149,7 +154,8 @@ def main():
     for scene in a.scenes:
         reference = a.peer_reference
         if a.peer_reference_dir:
-            reference = os.path.join(a.peer_reference_dir, f"ref-{scene}-{a.width}.exr")
+            size = "file" if is_xml(scene) else a.width
+            reference = os.path.join(a.peer_reference_dir, f"ref-{scene_name(scene)}-{size}.exr")
         results.append(compare(scene, a, reference))
         print(json.dumps(results[-1]), flush=True)
     if len(results) > 1 or a.table:
@@ -161,7 +167,7 @@ def table(results):
     variants = [k for k in results[0] if isinstance(results[0][k], dict) and "prism_speed_ratio" in results[0][k]]
     head = "| scene | " + " | ".join(f"vs {v}" for v in variants) + " | prism paths/s | " + \
         " | ".join(f"{v} paths/s" for v in variants) + " |"
-    rows = [f"{results[0]['cpu']}, {results[0]['width']}x{results[0]['width']}, {results[0]['spp']} spp", "",
+    rows = [f"{results[0]['cpu']}, {results[0]['width']}x{results[0]['height']}, {results[0]['spp']} spp", "",
             head, "|" + "---|" * (2 + 2 * len(variants))]
     for r in results:
         ratio = lambda v: f"{r[v]['prism_efficiency_ratio']:.2f}x" if "prism_efficiency_ratio" in r[v] else \
@@ -177,8 +183,11 @@ def compare(scene, a, peer_reference):
     out = tempfile.mkdtemp(prefix="prism-peer-")
     prism = os.path.join(ROOT, "target", "release", "prism")
     prism_exr = os.path.join(out, "prism.exr")
-    cmd = [prism, "render", os.path.join(ROOT, "scenes", SCENES[scene]), "--spp", str(a.spp),
-           "--width", str(a.width), "--height", str(a.width), "-o", prism_exr, "--stats"] + a.prism_args.split()
+    size = [] if is_xml(scene) else ["--width", str(a.width), "--height", str(a.width)]
+    cmd = [prism, "render", scene_path(scene), "--spp", str(a.spp), *size,
+           "-o", prism_exr, "--stats"] + a.prism_args.split()
+    if a.depth >= 1 and is_xml(scene):
+        sys.exit(f"{scene}: a Mitsuba file says its own depth (--depth does not apply)")
     if a.depth >= 1:
         # Mitsuba's max_depth counts segments (1: emitters seen directly); prism's
         # --max-depth counts bounces (0: the same). Equal numbers would give prism one
@@ -189,7 +198,7 @@ def compare(scene, a, peer_reference):
 
     def run_peer(variant, exr, seed):
         peer = subprocess.run([sys.executable, peer_script(scene, a.narrow_peers), variant,
-                               scene, str(a.spp), "--depth", str(a.depth), "--width", str(a.width), "--out", exr,
+                               scene, str(a.spp), "--depth", str(a.depth), *size[:2], "--out", exr,
                                "--seed", str(seed + 1)],
                               check=True, capture_output=True, text=True)
         return json.loads(peer.stdout.strip().splitlines()[-1])
@@ -207,8 +216,10 @@ def compare(scene, a, peer_reference):
     median = lambda runs: float(np.median([r["seconds"] for r in runs]))
     prism_stats = dict(prism_runs[0])
     prism_stats["seconds"] = median(prism_runs)
-    prism_stats["paths_per_second"] = a.width * a.width * a.spp / prism_stats["seconds"]
-    result = {"scene": scene, "spp": a.spp, "width": a.width, "depth": a.depth, "cpu": cpu(),
+    pixels = prism_stats["width"] * prism_stats["height"]
+    prism_stats["paths_per_second"] = pixels * a.spp / prism_stats["seconds"]
+    result = {"scene": scene_name(scene), "spp": a.spp, "width": prism_stats["width"],
+              "height": prism_stats["height"], "depth": a.depth, "cpu": cpu(),
               "peers": "imitating a host without AVX-512" if a.narrow_peers else "native",
               "prism": {k: prism_stats[k] for k in ("seconds", "paths_per_second", "peak_memory_bytes", "splits", "reuse")}}
     if a.repeats > 1:
@@ -217,7 +228,7 @@ def compare(scene, a, peer_reference):
     images = {name: runs[0] for name, runs in seeded.items()}
     for variant in variants:
         seconds = median(peer_runs[variant])
-        pps = a.width * a.width * a.spp / seconds
+        pps = pixels * a.spp / seconds
         result[variant] = {"seconds": seconds, "paths_per_second": pps,
                            "prism_speed_ratio": prism_stats["paths_per_second"] / pps}
         if a.repeats > 1:
@@ -228,7 +239,7 @@ def compare(scene, a, peer_reference):
         reference = peer_reference
         if not os.path.exists(reference):
             subprocess.run([sys.executable, os.path.join(ROOT, "benches", "peer", "mitsuba_reference.py"), scene,
-                            "--width", str(a.width), "--spp", str(a.peer_reference_spp), "--depth", str(a.depth),
+                            *size[:2], "--spp", str(a.peer_reference_spp), "--depth", str(a.depth),
                             "--out", reference], check=True, capture_output=True)
     if reference is None and a.reference_spp:
         reference = os.path.join(out, "reference.exr")
@@ -254,7 +265,7 @@ def compare(scene, a, peer_reference):
                 sys.exit(f"{scene}: the reference's noise ({noise:.3g}) is not below every renderer's error "
                          "against it: render it with more samples (--peer-reference-spp)")
         if a.prism_reference_dir:
-            own = os.path.join(a.prism_reference_dir, f"prism-ref-{scene}-{a.width}.exr")
+            own = os.path.join(a.prism_reference_dir, f"prism-ref-{scene_name(scene)}-{result['width']}.exr")
             if not os.path.exists(own):
                 own_cmd = [c for c in cmd if c != "--stats"]
                 own_cmd[own_cmd.index("--spp") + 1] = str(a.peer_reference_spp)

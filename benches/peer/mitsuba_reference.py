@@ -19,12 +19,12 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from peers import SCENES, script as peer_script  # noqa: E402
+from peers import check_scene, is_xml, script as peer_script  # noqa: E402
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("scene", choices=SCENES)
+    ap.add_argument("scene", type=check_scene, help="a comparison scene, or a Mitsuba .xml file")
     ap.add_argument("--width", type=int, default=256)
     ap.add_argument("--spp", type=int, default=8192)
     ap.add_argument("--pass-spp", type=int, default=256)
@@ -39,8 +39,9 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(passes):
             exr = os.path.join(tmp, "pass.exr")
+            size = [] if is_xml(a.scene) else ["--width", str(a.width)]
             subprocess.run([sys.executable, peer_script(a.scene), a.variant,
-                            a.scene, str(a.pass_spp), "--depth", str(a.depth), "--width", str(a.width),
+                            a.scene, str(a.pass_spp), "--depth", str(a.depth), *size,
                             "--seed", str(1000 + k), "--out", exr], check=True, capture_output=True)
             img = np.array(mi.Bitmap(exr), dtype=np.float64)[..., :3]
             total = img if total is None else total + img

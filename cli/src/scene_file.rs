@@ -17,6 +17,29 @@ pub fn load(path: &Path, scene: Option<usize>) -> Result<LoadedGeometry, String>
     load_with(path, scene, Upsampling::Exact)
 }
 
+/// What a scene file asks of the render where the command line does not say: a Mitsuba
+/// scene's film size, sampler's count and integrator's depth.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FileDefaults {
+    /// The film's width and height.
+    pub size: Option<(u32, u32)>,
+    /// Samples per pixel.
+    pub spp: Option<u64>,
+    /// Bounces.
+    pub max_depth: Option<u32>,
+}
+
+impl FileDefaults {
+    /// What the Mitsuba scene's film, sampler and integrator ask for.
+    pub fn of_mitsuba(scene: &MitsubaScene) -> Self {
+        FileDefaults {
+            size: Some((scene.film.width, scene.film.height)),
+            spp: scene.film.spp,
+            max_depth: scene.max_depth,
+        }
+    }
+}
+
 /// Whether `path` names a Mitsuba scene (`.xml`).
 pub fn is_mitsuba(path: &Path) -> bool {
     path.extension()
@@ -37,15 +60,24 @@ pub fn load_mitsuba(path: &Path, defines: &[String]) -> Result<MitsubaScene, Str
         .collect::<Result<Vec<_>, _>>()?;
     let text = String::from_utf8(crate::output::read_file(path)?)
         .map_err(|_| format!("'{}': not UTF-8 text", path.display()))?;
+    load_mitsuba_text(&text, &path.display().to_string(), &defines)
+}
+
+/// Loads the Mitsuba 3 scene `text` as if it were the file `file` (errors name it; the
+/// files it names resolve relative to its directory), with `defines`.
+pub fn load_mitsuba_text(
+    text: &str,
+    file: &str,
+    defines: &[(String, String)],
+) -> Result<MitsubaScene, String> {
     // The loader joins the names a file gives to that file's directory.
     let resolve = |name: &str| std::fs::read(name);
-    let file = path.display().to_string();
     let options = ParseOptions {
-        defines: &defines,
+        defines,
         resolve: &resolve,
     };
-    let scene = mitsuba::load(&text, &file, &options, &LoadOptions::default())
-        .map_err(|e| e.to_string())?;
+    let scene =
+        mitsuba::load(text, file, &options, &LoadOptions::default()).map_err(|e| e.to_string())?;
     for warning in &scene.geometry.warnings {
         eprintln!("prism: warning: {warning}");
     }

@@ -131,6 +131,7 @@ pub use io::denoised::{NOISY_LAYER, replace_rgb_exr};
 pub use io::image::{DisplaySettings, encode_png, encode_png_rgb, encode_polarization_png};
 #[cfg(feature = "exr")]
 pub use io::image::{ExrMetadata, encode_exr};
+pub use io::ztest::{MITSUBA_PASS_SHARE, MITSUBA_SIGNIFICANCE, ZTest, z_test};
 pub use plan::estimators::{Estimators, TracerKind};
 pub use render::{RenderStats, Renderer, render, render_into};
 pub use settings::{

@@ -38,6 +38,8 @@ fn _prism(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(upsample::upsample, m)?)?;
     m.add_function(wrap_pyfunction!(upsample::upsample_spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(scene::load, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::load_mitsuba_xml, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     Ok(())
 }

@@ -7,12 +7,13 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
-use clap::Parser;
+use clap::{CommandFactory, Parser};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
+use prism_cli::commands::render::Failure;
 use prism_cli::commands::render::{RenderArgs, Rendered, denoised_image, stats_json, write_render};
 use prism_integrator::Film;
-use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyList, PyTuple};
 
@@ -87,12 +88,12 @@ pub struct Render {
 /// pixel and raises KeyboardInterrupt whose second argument is the `Render` of what was
 /// done.
 #[pyfunction]
-#[pyo3(signature = (scene, spp = 16, width = Some(64), height = Some(64), seed = 0, threads = None, progress = None, **settings))]
+#[pyo3(signature = (scene, spp = None, width = None, height = None, seed = 0, threads = None, progress = None, **settings))]
 #[allow(clippy::too_many_arguments)]
 pub fn render(
     py: Python<'_>,
     scene: &Scene,
-    spp: i64,
+    spp: Option<i64>,
     width: Option<i64>,
     height: Option<i64>,
     seed: i64,
@@ -100,17 +101,25 @@ pub fn render(
     progress: Option<&Bound<'_, PyAny>>,
     settings: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Render> {
-    if spp < 1 {
+    // A Mitsuba scene's film and sampler say the size and samples where the call does not;
+    // other scenes render 64 x 64 at 16 spp unless asked otherwise.
+    let from_file = scene.defaults.size.is_some();
+    let spp = spp.or((!from_file).then_some(16));
+    let (width, height) = match (width, height) {
+        (None, None) if !from_file => (Some(64), Some(64)),
+        other => other,
+    };
+    if let Some(spp) = spp
+        && spp < 1
+    {
         return Err(PyValueError::new_err(format!(
             "spp {spp}: expected at least 1"
         )));
     }
-    let mut line = vec![
-        "--spp".to_string(),
-        spp.to_string(),
-        "--seed".into(),
-        seed.to_string(),
-    ];
+    let mut line = vec!["--seed".to_string(), seed.to_string()];
+    if let Some(spp) = spp {
+        line.extend(["--spp".to_string(), spp.to_string()]);
+    }
     for (flag, value) in [
         ("--width", width),
         ("--height", height),
@@ -144,6 +153,16 @@ pub fn render(
                     "'{name}' is not a setting of prism.render (files are written by Render.save)"
                 )));
             }
+            let flag = flag_of(&name);
+            let known = Line::command()
+                .get_arguments()
+                .any(|a| a.get_long().is_some_and(|l| format!("--{l}") == flag));
+            if !known {
+                // As Python says it of any function's unknown keyword.
+                return Err(PyTypeError::new_err(format!(
+                    "prism.render() got an unexpected keyword argument '{name}'"
+                )));
+            }
             flags_of(&name, &value, &mut line)?;
         }
     }
@@ -151,12 +170,13 @@ pub fn render(
     let args = Line::try_parse_from(&line)
         .map_err(|e| PyValueError::new_err(one_line(&e.render().to_string())))?
         .args;
-    let loaded = scene.loaded.clone();
+    let loaded = (scene.loaded.clone(), scene.defaults);
     let cancel = Arc::new(AtomicBool::new(false));
     let done = Arc::new(AtomicU64::new(0));
     let mut interrupt: Option<PyErr> = None;
     let mut reported = 0u64;
-    let total = spp as u64;
+    // The CLI renders 64 spp where neither the call nor the file says.
+    let total = spp.map_or(scene.defaults.spp.unwrap_or(64), |s| s as u64);
     let result = py.detach(|| {
         std::thread::scope(|s| {
             // The worker wakes this thread when it is done, so that a render returns as
@@ -199,7 +219,8 @@ pub fn render(
     });
     let rendered = match result {
         Ok(Ok(rendered)) => rendered,
-        Ok(Err(message)) => return Err(SceneError::new_err(message)),
+        Ok(Err(Failure::Setting(message))) => return Err(PyValueError::new_err(message)),
+        Ok(Err(Failure::Scene(message))) => return Err(SceneError::new_err(message)),
         Err(panic) => {
             let why = panic
                 .downcast_ref::<String>()

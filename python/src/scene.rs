@@ -1,11 +1,13 @@
-//! `prism.load` and `prism.Scene`: a glTF scene (or a TOML overlay naming one) read as the
-//! command line reads it, whose cameras, materials and lights can be listed.
+//! `prism.load`, `prism.load_dict` and `prism.Scene`: a glTF scene (or a TOML overlay naming
+//! one) or a Mitsuba 3 scene read as the command line reads it, whose cameras, materials and
+//! lights can be listed.
 
 use std::path::PathBuf;
 
+use prism_cli::scene_file::FileDefaults;
 use prism_scene::load::{LightDesc, LoadedGeometry, Upsampling};
 use prism_scene::spectral::Overlay;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde_json::{Map, Value};
@@ -19,6 +21,10 @@ use crate::spectrum::{Kind, as_spectrum};
 #[pyclass(module = "prism")]
 pub struct Scene {
     pub loaded: LoadedGeometry,
+    /// What the file asks of a render (a Mitsuba scene's film, sampler and depth).
+    pub defaults: FileDefaults,
+    /// Whether the scene is a Mitsuba scene (which edits do not apply to).
+    mitsuba: bool,
     pub path: PathBuf,
     pub index: Option<usize>,
     /// What Python replaced, applied over the file as an overlay is.
@@ -28,6 +34,12 @@ pub struct Scene {
 impl Scene {
     /// Reads the file again with `edits`; on an error the scene stays as it was.
     fn reload(&mut self, py: Python<'_>, edits: Overlay) -> PyResult<()> {
+        if self.mitsuba {
+            return Err(SceneError::new_err(format!(
+                "'{}': set_material, set_light and set_environment edit glTF scenes; edit a Mitsuba scene's file or dict",
+                self.path.display()
+            )));
+        }
         let (path, index) = (self.path.clone(), self.index);
         let loaded = py
             .detach(|| {
@@ -95,21 +107,105 @@ fn to_json(value: &Bound<'_, PyAny>) -> PyResult<Value> {
     Ok(Value::Array(samples))
 }
 
-/// Loads a .gltf or .glb file, or a .toml overlay naming one (`scene`: which of the file's
-/// scenes, default its own default). A file that cannot be read or is not a scene raises
-/// `prism.SceneError` naming it; unsupported features of a file are warnings on stderr.
+/// Loads a .gltf or .glb file, a .toml overlay naming one (`scene`: which of the file's
+/// scenes, default its own default), or a Mitsuba 3 scene (.xml), whose parameters
+/// (`<default>`s and `$name`s) the keywords set as `mi.load_file` and `mitsuba -D` do. A
+/// file that cannot be read or is not a scene raises `prism.SceneError` naming it;
+/// unsupported features of a file are warnings on stderr.
 #[pyfunction]
-#[pyo3(signature = (path, scene = None))]
-pub fn load(py: Python<'_>, path: PathBuf, scene: Option<usize>) -> PyResult<Scene> {
-    let loaded = py
-        .detach(|| prism_cli::scene_file::load(&path, scene))
+#[pyo3(signature = (path, scene = None, **parameters))]
+pub fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    scene: Option<usize>,
+    parameters: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Scene> {
+    let defines = defines(parameters)?;
+    if !prism_cli::scene_file::is_mitsuba(&path) {
+        if let Some((name, _)) = defines.first() {
+            return Err(PyTypeError::new_err(format!(
+                "prism.load() got the keyword argument '{name}': parameters are a Mitsuba scene's (.xml)"
+            )));
+        }
+        let loaded = py
+            .detach(|| prism_cli::scene_file::load(&path, scene))
+            .map_err(SceneError::new_err)?;
+        return Ok(Scene {
+            loaded,
+            defaults: FileDefaults::default(),
+            mitsuba: false,
+            path,
+            index: scene,
+            edits: Overlay::default(),
+        });
+    }
+    let file = path.display().to_string();
+    let text = std::fs::read(&path)
+        .map_err(|e| SceneError::new_err(format!("'{file}': {e}")))
+        .and_then(|bytes| {
+            String::from_utf8(bytes)
+                .map_err(|_| SceneError::new_err(format!("'{file}': not UTF-8 text")))
+        })?;
+    mitsuba_scene(py, &text, &file, &defines, path.clone())
+}
+
+/// Loads a Mitsuba 3 scene given as its XML text (`prism.load_dict` writes a dict as
+/// XML): files it names resolve relative to `directory`.
+#[pyfunction]
+#[pyo3(signature = (text, directory, **parameters))]
+pub fn load_mitsuba_xml(
+    py: Python<'_>,
+    text: &str,
+    directory: PathBuf,
+    parameters: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Scene> {
+    let defines = defines(parameters)?;
+    let path = directory.join("<dict>");
+    mitsuba_scene(
+        py,
+        text,
+        &path.display().to_string(),
+        &defines,
+        path.clone(),
+    )
+}
+
+fn mitsuba_scene(
+    py: Python<'_>,
+    text: &str,
+    file: &str,
+    defines: &[(String, String)],
+    path: PathBuf,
+) -> PyResult<Scene> {
+    let scene = py
+        .detach(|| prism_cli::scene_file::load_mitsuba_text(text, file, defines))
         .map_err(SceneError::new_err)?;
     Ok(Scene {
-        loaded,
+        defaults: FileDefaults::of_mitsuba(&scene),
+        loaded: scene.geometry,
+        mitsuba: true,
         path,
-        index: scene,
+        index: None,
         edits: Overlay::default(),
     })
+}
+
+/// Keyword parameters as `-D` definitions: booleans as Mitsuba writes them (`true`,
+/// `false`), anything else its `str()`.
+fn defines(parameters: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
+    let Some(parameters) = parameters else {
+        return Ok(Vec::new());
+    };
+    parameters
+        .iter()
+        .map(|(k, v)| {
+            let value = match v.cast::<PyBool>() {
+                Ok(b) => if b.is_true() { "true" } else { "false" }.to_string(),
+                Err(_) => v.str()?.to_string(),
+            };
+            Ok((k.extract::<String>()?, value))
+        })
+        .collect()
 }
 
 #[pymethods]

@@ -329,12 +329,80 @@ def test_bad_settings_are_value_errors():
     scene = prism.load(SCENES / "cornell-box.gltf")
     with pytest.raises(ValueError, match="spp"):
         prism.render(scene, spp=-1)
-    with pytest.raises(ValueError, match="no_such_setting"):
+    # An unknown keyword is Python's TypeError, in Python's words, not a command line tip.
+    with pytest.raises(TypeError, match="unexpected keyword argument 'no_such_setting'") as e:
         prism.render(scene, spp=1, no_such_setting=3)
+    assert "tip" not in str(e.value) and "--" not in str(e.value)
     with pytest.raises(ValueError, match="output"):
         prism.render(scene, spp=1, output="x.png")
-    with pytest.raises(prism.SceneError, match="wavelengths"):
+    # A bad value of a known setting is a ValueError, the scene being fine.
+    with pytest.raises(ValueError, match="wavelengths") as e:
         prism.render(scene, spp=1, width=4, height=4, wavelengths=3)
+    assert not isinstance(e.value, prism.SceneError)
+
+
+def test_version_is_the_packages():
+    import importlib.metadata
+
+    assert prism.__version__ == importlib.metadata.version("prism-spectral")
+
+
+MITSUBA_BOX = SCENES / "mitsuba" / "cornell-box.xml"
+
+
+def test_a_mitsuba_scene_loads_with_parameters_and_renders_as_the_command_line(tmp_path):
+    # The file's film (256 x 256) and sampler count stand where the call is silent.
+    scene = prism.load(MITSUBA_BOX)
+    assert "Scene(" in repr(scene) and scene.lights
+    image = prism.render(scene, spp=2, width=16, height=16, seed=3)
+    ours = tmp_path / "python.exr"
+    image.save(ours)
+    theirs = tmp_path / "cli.exr"
+    subprocess.run([prism_bin(), "render", str(MITSUBA_BOX), "--spp", "2", "--width", "16",
+                    "--height", "16", "--seed", "3", "-o", str(theirs), "--quiet"], check=True)
+    assert ours.read_bytes() == theirs.read_bytes()
+    # Keywords are the file's parameters, as mi.load_file's are; a glTF has none.
+    xml = tmp_path / "param.xml"
+    xml.write_text(MITSUBA_BOX.read_text().replace('value="256"', 'value="$res"').replace(
+        '<scene version="3.0.0">', '<scene version="3.0.0"><default name="res" value="256"/>'))
+    small = prism.render(prism.load(xml, res=8), spp=1)
+    assert small.rgb.shape == (8, 8, 3)
+    with pytest.raises(TypeError, match="'res'"):
+        prism.load(SCENES / "cornell-box.gltf", res=8)
+    with pytest.raises(prism.SceneError, match="set_material"):
+        scene.set_material("x", {"reflectance": 0.5})
+
+
+def test_load_dict_reads_mitsubas_dict_form():
+    # The same scene as a dict, as a Mitsuba user's script writes it: renders the XML's image.
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": 4},
+        "sensor": {
+            "type": "perspective",
+            "fov": 45.0,
+            "to_world": [[-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, -1, 4], [0, 0, 0, 1]],
+            "film": {"type": "hdrfilm", "width": 12, "height": 10, "rfilter": {"type": "box"}},
+            "sampler": {"type": "independent", "sample_count": 3},
+        },
+        "grey": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.5, 0.4, 0.3]}},
+        "floor": {"type": "rectangle", "bsdf": {"type": "ref", "id": "grey"}},
+        "light": {
+            "type": "rectangle",
+            "to_world": [[0.2, 0, 0, 0], [0, 0.2, 0, 0], [0, 0, -1, 2], [0, 0, 0, 1]],
+            "emitter": {"type": "area", "radiance": {"type": "spectrum", "value": [(400, 5.0), (700, 10.0)]}},
+        },
+    }
+    scene = prism.load_dict(d)
+    image = prism.render(scene, seed=1)
+    assert image.rgb.shape == (10, 12, 3) and image.stats["spp"] == 3
+    assert np.isfinite(image.rgb).all() and image.rgb.mean() > 0
+    with pytest.raises(ValueError, match="scene"):
+        prism.load_dict({"type": "diffuse"})
+    with pytest.raises(ValueError, match="'teapot'"):
+        prism.load_dict({"type": "scene", "x": {"type": "teapot"}})
+    with pytest.raises(prism.SceneError):
+        prism.load_dict({"type": "scene", "s": {"type": "obj", "filename": "nope.obj"}})
 
 
 # The documents' Python snippets run as written, from a directory where scenes/ is the
@@ -354,7 +422,8 @@ def python_blocks(path):
     return blocks
 
 
-@pytest.mark.parametrize("document", ["README.md", "docs/guide/python.md", "docs/guide/denoising.md"])
+@pytest.mark.parametrize("document", ["README.md", "docs/guide/python.md", "docs/guide/denoising.md",
+                                      "docs/guide/from-mitsuba.md"])
 def test_documented_snippets_run(document, tmp_path, monkeypatch):
     blocks = python_blocks(ROOT / document)
     assert blocks, f"{document} has no python block"

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Writes scenes/mitsuba/bsdfs-<name>.xml: Mitsuba's Cornell box (mi.cornell_box(), as
-make_mitsuba_scenes.py writes it) with its two cubes given the BSDFs under test, and renders
-each with Mitsuba 3's scalar_spectral variant into scenes/mitsuba/references/
-bsdfs-<name>-32.exr (32 x 32, 16384 spp), the references cli/tests/mitsuba_bsdfs.rs
-compares prism's renders with.
+make_mitsuba_scenes.py writes it) at 32 x 32 with its two cubes given the BSDFs under test,
+and renders each with Mitsuba 3's scalar_spectral variant into the references
+cli/tests/mitsuba_ztests.rs z-tests prism's renders against
+(scenes/mitsuba/references/bsdfs-<name>-ref.exr and -var.exr, by make_mitsuba_ztest_refs.py).
 
 roughplastic is left out: prism's rough coating keeps the energy Mitsuba's loses, and
 that box rendered 3.5% brighter in prism; prism refuses the plugin.
@@ -16,6 +16,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_mitsuba_scenes as base  # noqa: E402  (sets the scalar_spectral variant)
+import make_mitsuba_ztest_refs as refs  # noqa: E402
 
 for kind in ("roughconductor", "roughdielectric", "plastic", "roughplastic"):
     base.CLASSES[kind] = "bsdf"
@@ -54,6 +55,7 @@ def scene(name):
     small, large = SCENES[name]
     d["small-box"]["bsdf"] = small
     d["large-box"]["bsdf"] = large
+    d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = 32
     return d
 
 
@@ -67,7 +69,7 @@ def main():
                     "scenes/tools/make_mitsuba_bsdfs.py -->\n")
             f.write(base.scene_xml(scene(name)))
         print(f"wrote {path}")
-        base.reference(path, f"bsdfs-{name}", size=32, spp=16384)
+        refs.main([path])
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
 //! The film's files: EXR and PNG images, accumulation files that resume and merge renders,
-//! image comparison, and a denoised image's EXR.
+//! image comparison (and Mitsuba's per-pixel z-test), and a denoised image's EXR.
 
 #[cfg(feature = "exr")]
 pub(crate) mod accumulation;
@@ -8,3 +8,4 @@ pub(crate) mod compare;
 pub(crate) mod denoised;
 pub(crate) mod image;
 pub(crate) mod png;
+pub(crate) mod ztest;

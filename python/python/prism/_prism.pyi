@@ -79,8 +79,13 @@ class Scene:
     def set_environment(self, environment: Any) -> None:
         """Replaces the environment: a spectrum, a number or {"image": ..., "rotation": ...}."""
 
-def load(path: Union[str, PathLike[str]], scene: Optional[int] = None) -> Scene:
-    """Loads a .gltf, .glb or .toml overlay; raises SceneError naming the file."""
+__version__: str
+
+def load(path: Union[str, PathLike[str]], scene: Optional[int] = None, **parameters: Any) -> Scene:
+    """Loads a .gltf, .glb, .toml overlay or Mitsuba 3 .xml (keywords: its parameters, as mi.load_file's); raises SceneError naming the file."""
+
+def load_mitsuba_xml(text: str, directory: Union[str, PathLike[str]], **parameters: Any) -> Scene:
+    """Loads a Mitsuba 3 scene's XML text; files it names resolve relative to directory."""
 
 class Render:
     """A finished render."""
@@ -118,12 +123,12 @@ class Render:
 
 def render(
     scene: Scene,
-    spp: int = 16,
-    width: Optional[int] = 64,
-    height: Optional[int] = 64,
+    spp: Optional[int] = None,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
     seed: int = 0,
     threads: Optional[int] = None,
     progress: Union[bool, Callable[[int, int], Any], None] = None,
     **settings: Any,
 ) -> Render:
-    """Renders scene with prism render's settings as keywords (max_depth=8, bands=16, ...); progress=True shows the progress line, a callable gets (done, total) samples per pixel."""
+    """Renders scene with prism render's settings as keywords (max_depth=8, bands=16, ...); a Mitsuba scene's film and sampler give the size and spp the call does not, other scenes render 64 x 64 at 16 spp; progress=True shows the progress line, a callable gets (done, total) samples per pixel."""

@@ -405,7 +405,8 @@ fn alpha_coverage(
                 AlphaMode::Mask { cutoff } => a.factor >= cutoff,
                 AlphaMode::Blend => a.factor >= 1.0,
             };
-            let transparent = a.texture.is_some() || vertex_alpha[m] || !uniformly_opaque;
+            let transparent =
+                a.texture.is_some() || a.opacity.is_some() || vertex_alpha[m] || !uniformly_opaque;
             transparent.then(|| Arc::new(a.clone()))
         })
         .collect();

@@ -673,6 +673,7 @@ fn alpha(
         mode,
         factor,
         texture,
+        opacity: None,
     }))
 }
 

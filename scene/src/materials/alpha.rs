@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
-use crate::textures::{RgbTexture, TexCoords};
+use crate::textures::{FloatTexture, RgbTexture, TexCoords};
 
 /// How alpha decides whether a ray meets the surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,15 +32,19 @@ pub struct Alpha {
     /// The base colour texture's alpha channel (all three channels hold it), times the
     /// factor.
     pub texture: Option<Arc<RgbTexture>>,
+    /// An opacity that varies over the surface and replaces the factor and the texture
+    /// (Mitsuba's `mask`), if any.
+    pub opacity: Option<Arc<FloatTexture>>,
 }
 
 impl Alpha {
     /// The alpha at `at` (texels unfiltered: coverage is decided at a point) with vertex
     /// alpha `vertex`.
     pub fn at(&self, at: &TexCoords, vertex: f32) -> f32 {
-        let a = match &self.texture {
-            Some(t) => t.sample(at.set(t.set()).0)[0],
-            None => self.factor,
+        let a = match (&self.opacity, &self.texture) {
+            (Some(o), _) => o.value(at.uv[0]),
+            (None, Some(t)) => t.sample(at.set(t.set()).0)[0],
+            (None, None) => self.factor,
         };
         a * vertex
     }

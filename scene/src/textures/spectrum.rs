@@ -36,6 +36,10 @@ pub enum SceneSpectrum {
     /// A colour texture, upsampled per lookup. Without a texture coordinate (`at`,
     /// `evaluate`) it is its mean colour's spectrum.
     Texture(Arc<super::SpectralTexture>),
+    /// A spectrum varying over the surface as Mitsuba's textures do (bitmaps upsampled
+    /// texel by texel, checkerboards), read at the first texture coordinate set without
+    /// footprint filtering. Without a texture coordinate it is its mean.
+    Pattern(Arc<super::Pattern>),
 }
 
 impl SceneSpectrum {
@@ -75,6 +79,7 @@ impl SceneSpectrum {
     ) -> SampledSpectrum<N> {
         match self {
             SceneSpectrum::Texture(t) => t.at(at, wavelengths),
+            SceneSpectrum::Pattern(p) => p.at(at.into().uv[0], wavelengths),
             _ => self.at(wavelengths),
         }
     }
@@ -83,8 +88,15 @@ impl SceneSpectrum {
     pub fn tex_coord_set(&self) -> Option<usize> {
         match self {
             SceneSpectrum::Texture(t) => Some(t.set()),
+            SceneSpectrum::Pattern(_) => Some(0),
             _ => None,
         }
+    }
+
+    /// Whether it varies over a surface (a texture or a pattern): a hit's value then
+    /// depends on where it is, and cannot be cached per material.
+    pub fn varies(&self) -> bool {
+        matches!(self, SceneSpectrum::Texture(_) | SceneSpectrum::Pattern(_))
     }
 
     /// A named spectrum in the form the scene samples fastest: tables become 1 nm dense
@@ -147,6 +159,7 @@ impl SceneSpectrum {
             SceneSpectrum::Scaled(s, _) => s.describe(),
             SceneSpectrum::Texture(t) if t.emits() => "emissive texture (upsampled RGB)".into(),
             SceneSpectrum::Texture(_) => "texture".into(),
+            SceneSpectrum::Pattern(_) => "Mitsuba texture".into(),
         }
     }
 
@@ -179,6 +192,7 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Sellmeier(s) => s.evaluate(lambda_nm),
             SceneSpectrum::Scaled(s, k) => s.evaluate(lambda_nm) * k,
             SceneSpectrum::Texture(t) => t.evaluate(lambda_nm),
+            SceneSpectrum::Pattern(p) => p.evaluate(lambda_nm),
         }
     }
 
@@ -194,6 +208,7 @@ impl Spectrum for SceneSpectrum {
             SceneSpectrum::Sellmeier(s) => s.max_value(),
             SceneSpectrum::Scaled(s, k) => s.max_value() * k,
             SceneSpectrum::Texture(t) => t.max_value(),
+            SceneSpectrum::Pattern(p) => p.max_value(),
         }
     }
 }

@@ -26,7 +26,7 @@ pub enum Wrap {
 
 impl Wrap {
     /// The texel index for integer coordinate `i` of a side of `n` texels.
-    fn texel(self, i: i64, n: u32) -> usize {
+    pub(crate) fn texel(self, i: i64, n: u32) -> usize {
         let n = i64::from(n);
         // Inside the texture every mode is the identity; the wrap's division (an i64
         // remainder, two per filtered lookup) is left to coordinates outside it.

@@ -771,7 +771,7 @@ impl Scene {
     ) -> Bsdf<'_, N> {
         let index = self.triangle_material[hit.triangle as usize];
         if let Material::Diffuse { reflectance } = &self.materials[index as usize]
-            && !matches!(reflectance, SceneSpectrum::Texture(_))
+            && !reflectance.varies()
             && self.tint_table(hit).is_none()
             && let Some(r) = cache.reflectance(index, reflectance, wavelengths)
         {
@@ -822,7 +822,7 @@ impl Scene {
     pub fn reflects_alike(&self, hit: &Hit) -> bool {
         matches!(
             self.material(hit),
-            Material::Diffuse { reflectance } if !matches!(reflectance, SceneSpectrum::Texture(_))
+            Material::Diffuse { reflectance } if !reflectance.varies()
         )
     }
 

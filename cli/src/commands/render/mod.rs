@@ -40,6 +40,31 @@ pub struct Rendered {
     pub started: Instant,
 }
 
+/// Why a render failed: its settings (a bad flag, or flags that do not go together), or
+/// its scene (it cannot be read, or the render of it failed). Python raises `ValueError`
+/// for the first and `prism.SceneError` for the second; the command line prints either.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Failure {
+    /// A bad setting.
+    Setting(String),
+    /// A scene that cannot be loaded or rendered.
+    Scene(String),
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Failure::Setting(m) | Failure::Scene(m) => f.write_str(m),
+        }
+    }
+}
+
+impl From<Failure> for String {
+    fn from(failure: Failure) -> String {
+        failure.to_string()
+    }
+}
+
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let cancel = Arc::new(AtomicBool::new(false));
     session::stop_on_signals(&cancel)?;
@@ -89,19 +114,23 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
 /// `done`; writes nothing (checkpoints aside).
 pub fn render(
     args: &RenderArgs,
-    loaded: Option<prism_scene::load::LoadedGeometry>,
+    loaded: Option<(
+        prism_scene::load::LoadedGeometry,
+        crate::scene_file::FileDefaults,
+    )>,
     cancel: &Arc<AtomicBool>,
     done: &Arc<std::sync::atomic::AtomicU64>,
-) -> Result<Rendered, String> {
+) -> Result<Rendered, Failure> {
+    let setting = |e: String| Failure::Setting(e);
     // The flags that need no scene are checked before it is loaded.
-    let space = RgbSpaceId::from_name(&args.space).map_err(|e| e.to_string())?;
+    let space = RgbSpaceId::from_name(&args.space).map_err(|e| setting(e.to_string()))?;
     let lambda_sampler =
-        LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| e.to_string())?;
-    let filter = Filter::from_name(&args.filter).map_err(|e| e.to_string())?;
-    check_outputs(&args.outputs)?;
-    let samples_only = settings::samples_only(args)?;
+        LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| setting(e.to_string()))?;
+    let filter = Filter::from_name(&args.filter).map_err(|e| setting(e.to_string()))?;
+    check_outputs(&args.outputs).map_err(setting)?;
+    let samples_only = settings::samples_only(args).map_err(setting)?;
     let started = Instant::now();
-    let (scene, camera, defaults) = scene::prepare(args, loaded)?;
+    let (scene, camera, defaults) = scene::prepare(args, loaded).map_err(Failure::Scene)?;
     let (width, height) = match (args.width, args.height, defaults.size) {
         (None, None, Some(size)) => size,
         _ => scene::image_size(args.width, args.height, scene.camera().aspect_ratio),
@@ -119,26 +148,29 @@ pub fn render(
             filter,
         },
         camera,
-    )?;
+    )
+    .map_err(setting)?;
     if args.denoise {
         // Before the render, not after it: a missing library is said at once.
-        crate::denoise::find_library()?;
+        crate::denoise::find_library().map_err(setting)?;
     }
     let white_balance = args
         .white_balance
         .as_deref()
         .map(|spec| settings::white_balance(spec, space))
-        .transpose()?;
-    settings::check_film_memory(width, height, settings.aovs)?;
+        .transpose()
+        .map_err(setting)?;
+    settings::check_film_memory(width, height, settings.aovs).map_err(setting)?;
     let range = settings.samples.clone();
     let fingerprint = checkpoint::fingerprint(args, width, height, settings.aovs);
     let film = match &args.resume {
         None => Film::for_settings(&settings),
-        Some(path) => checkpoint::resume(path, &fingerprint, &range)?,
+        Some(path) => checkpoint::resume(path, &fingerprint, &range).map_err(Failure::Scene)?,
     };
-    let mut options = settings::session_options(args, fingerprint.clone())?;
+    let mut options = settings::session_options(args, fingerprint.clone()).map_err(setting)?;
     options.done = done.clone();
-    let outcome = session::run(&scene, &settings, range.clone(), film, &options, cancel)?;
+    let outcome = session::run(&scene, &settings, range.clone(), film, &options, cancel)
+        .map_err(Failure::Scene)?;
     Ok(Rendered {
         outcome,
         settings,

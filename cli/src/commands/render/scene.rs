@@ -14,6 +14,7 @@ use prism_scene::world::{DEFAULT_ENVIRONMENT, Environment, Scene, SceneOptions, 
 use prism_spectrum::Readable;
 
 use super::args::RenderArgs;
+use crate::scene_file::FileDefaults;
 
 /// The scene `prism render` renders without a SCENE argument: the repository's spectral
 /// effects stage (`scenes/effects.gltf`, one file with its buffer embedded): dispersion,
@@ -25,10 +26,10 @@ const DEFAULT_GLTF: &[u8] = include_bytes!("../../../../scenes/effects.gltf");
 /// show of it, or where it adds light.
 pub(super) fn prepare(
     args: &RenderArgs,
-    loaded: Option<LoadedGeometry>,
+    loaded: Option<(LoadedGeometry, FileDefaults)>,
 ) -> Result<(Scene, Option<CameraResponse>, FileDefaults), String> {
     let (loaded, defaults) = match loaded {
-        Some(loaded) => (loaded, FileDefaults::default()),
+        Some(loaded) => loaded,
         None => load(args)?,
     };
     let quality = match args.bvh.as_str() {
@@ -89,25 +90,12 @@ pub(super) fn prepare(
     Ok((scene, camera, defaults))
 }
 
-/// What a scene file asks of the render where the command line does not say: a Mitsuba
-/// scene's film size, sampler's count and integrator's depth.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct FileDefaults {
-    pub size: Option<(u32, u32)>,
-    pub spp: Option<u64>,
-    pub max_depth: Option<u32>,
-}
-
 fn load(args: &RenderArgs) -> Result<(LoadedGeometry, FileDefaults), String> {
     if let Some(path) = args.scene.as_deref()
         && crate::scene_file::is_mitsuba(path)
     {
         let scene = crate::scene_file::load_mitsuba(path, &args.defines)?;
-        let defaults = FileDefaults {
-            size: Some((scene.film.width, scene.film.height)),
-            spp: scene.film.spp,
-            max_depth: scene.max_depth,
-        };
+        let defaults = FileDefaults::of_mitsuba(&scene);
         return Ok((scene.geometry, defaults));
     }
     if !args.defines.is_empty() {

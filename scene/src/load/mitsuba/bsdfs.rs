@@ -13,6 +13,7 @@ use std::sync::Arc;
 
 use super::parse::error;
 use super::spectra::{Kind, spectrum};
+use super::textures::{self, Context};
 use super::tree::{Class, Object, SpectrumValue, Value};
 use crate::LoadError;
 use crate::load::Upsampler;
@@ -59,12 +60,13 @@ const NAMED_METALS: [(&str, &str); 4] = [
 ];
 
 /// The material of `bsdf`.
-pub(crate) fn material(bsdf: &Object, upsampler: &Upsampler) -> Result<Material, LoadError> {
+pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadError> {
+    let upsampler = cx.upsampler;
     match bsdf.kind.as_str() {
         "diffuse" => {
             only(bsdf, &["reflectance"])?;
             Ok(Material::Diffuse {
-                reflectance: spectrum(bsdf, "reflectance", Kind::Albedo, 0.5, upsampler)?,
+                reflectance: textures::spectrum(bsdf, "reflectance", Kind::Albedo, 0.5, cx)?,
             })
         }
         // prism's surfaces reflect on both sides, so `twosided` is its one BSDF.
@@ -74,7 +76,7 @@ pub(crate) fn material(bsdf: &Object, upsampler: &Upsampler) -> Result<Material,
                 .iter()
                 .filter(|c| c.object.class == Class::Bsdf);
             match (inner.next(), inner.next()) {
-                (Some(one), None) => material(&one.object, upsampler),
+                (Some(one), None) => material(&one.object, cx),
                 (Some(_), Some(_)) => Err(error(
                     &bsdf.at,
                     "twosided with a different BSDF on each side is not read yet",
@@ -160,7 +162,13 @@ pub(crate) fn material(bsdf: &Object, upsampler: &Upsampler) -> Result<Material,
             };
             let roughness = if rough { roughness(bsdf)? } else { 0.0 };
             Ok(Material::Plastic {
-                reflectance: spectrum(bsdf, "diffuse_reflectance", Kind::Albedo, 0.5, upsampler)?,
+                reflectance: textures::spectrum(
+                    bsdf,
+                    "diffuse_reflectance",
+                    Kind::Albedo,
+                    0.5,
+                    cx,
+                )?,
                 nonlinear,
                 coating: Arc::new(crate::bsdf::PlasticCoating::new(
                     eta as f32,
@@ -436,7 +444,14 @@ mod tests {
         let load = LoadOptions::default();
         let upsampler = Upsampler::new(load.upsampling, load.table.clone()).unwrap();
         let bsdf = &parsed.scene.children[0].object;
-        material(bsdf, &upsampler).map_err(|e| e.to_string())
+        let cx = Context {
+            upsampler: &upsampler,
+            files: crate::load::mitsuba::files::Files {
+                resolve: &none,
+                search: &[],
+            },
+        };
+        material(bsdf, &cx).map_err(|e| e.to_string())
     }
 
     fn constant(s: &SceneSpectrum) -> f64 {

@@ -21,6 +21,7 @@ use std::sync::Arc;
 use prism_spectrum::Spectrum;
 use prism_spectrum::spectra::DenselySampled;
 
+use super::files::Files;
 use super::parse::error;
 use super::sensors::number;
 use super::tree::{Class, Object, Value};
@@ -49,7 +50,8 @@ pub(crate) struct MediaBuilder {
 /// What reading a medium needs.
 pub(crate) struct Reading<'a> {
     pub upsampler: &'a Upsampler,
-    pub resolve: &'a dyn Fn(&str) -> std::io::Result<Vec<u8>>,
+    /// Where the files volumes name are found.
+    pub files: Files<'a>,
     pub warnings: &'a mut Vec<String>,
 }
 
@@ -230,8 +232,8 @@ fn medium(m: &Object, cx: &mut Reading) -> Result<Medium, LoadError> {
         return Err(error(&m.at, format!("scale {scale} must be at least 0")));
     }
     let phase = phase(m)?;
-    let sigma_t = volume(m, "sigma_t", 1.0, cx.upsampler, cx.resolve, cx.warnings)?;
-    let albedo = volume(m, "albedo", 0.75, cx.upsampler, cx.resolve, cx.warnings)?;
+    let sigma_t = volume(m, "sigma_t", 1.0, cx.upsampler, cx.files, cx.warnings)?;
+    let albedo = volume(m, "albedo", 0.75, cx.upsampler, cx.files, cx.warnings)?;
     let built = |e: String| error(&m.at, format!("{}: {e}", m.kind));
     // The extinction where the density is 1, and what makes it vary.
     let (extinction, density) = match sigma_t {

@@ -39,13 +39,18 @@ mod values;
 
 // What the plugins mean: the tree turned into prism's loaded geometry, one file per
 // plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
+mod bitmaps;
 mod bsdfs;
+mod files;
 mod media;
 mod scene;
 mod sensors;
 mod shapes;
 mod spectra;
+mod textures;
+mod uvs;
 mod volumes;
+mod wrappers;
 
 #[cfg(test)]
 mod media_tests;
@@ -77,6 +82,9 @@ pub struct Parsed {
     pub scene: Object,
     /// Warnings, one line each, starting with `file:line:`.
     pub warnings: Vec<String>,
+    /// The `<path>` directories, the latest first: where the files plugins name (meshes,
+    /// images) are looked for before the directory of the file naming them.
+    pub search: Vec<String>,
 }
 
 /// Parses the text of a Mitsuba scene file. `file` is the name errors and warnings give

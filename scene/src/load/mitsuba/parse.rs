@@ -91,6 +91,7 @@ pub fn parse(text: &str, file: &str, options: &ParseOptions) -> Result<Parsed, L
     Ok(Parsed {
         scene,
         warnings: reader.warnings,
+        search: reader.search,
     })
 }
 

@@ -9,12 +9,14 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::bsdfs::{key, material};
+use super::bsdfs::key;
+use super::files::Files;
 use super::media::{MediaBuilder, Reading, nested, null_boundary};
 use super::parse::error;
 use super::sensors::{Film, camera, number};
 use super::shapes::triangles;
 use super::spectra::{Kind, spectrum};
+use super::textures::Context;
 use super::tree::{Class, Object};
 use super::{ParseOptions, parse};
 use crate::LoadError;
@@ -42,6 +44,13 @@ pub fn load(
 ) -> Result<MitsubaScene, LoadError> {
     let parsed = parse(text, file, options)?;
     let upsampler = Upsampler::new(load.upsampling, load.table.clone())?;
+    let cx = Context {
+        upsampler: &upsampler,
+        files: Files {
+            resolve: options.resolve,
+            search: &parsed.search,
+        },
+    };
     let mut geometry = LoadedGeometry {
         warnings: parsed.warnings,
         ..LoadedGeometry::default()
@@ -57,7 +66,7 @@ pub fn load(
             Class::Shape => shape(
                 object,
                 options,
-                &upsampler,
+                &cx,
                 &mut shared,
                 &mut media,
                 &mut geometry,
@@ -68,12 +77,12 @@ pub fn load(
                     let (c, f) = camera(object)?;
                     geometry.cameras.push(c);
                     film = Some(f);
-                    let mut cx = Reading {
+                    let mut reading = Reading {
                         upsampler: &upsampler,
-                        resolve: options.resolve,
+                        files: cx.files,
                         warnings: &mut geometry.warnings,
                     };
-                    media.sensor(object, &mut cx)?;
+                    media.sensor(object, &mut reading)?;
                 } else {
                     geometry.warnings.push(format!(
                         "{}: a second sensor is not read (the first is)",
@@ -118,17 +127,18 @@ pub fn load(
 fn shape(
     shape: &Object,
     options: &ParseOptions,
-    upsampler: &Upsampler,
+    cx: &Context,
     shared: &mut HashMap<usize, usize>,
     media: &mut MediaBuilder,
     out: &mut LoadedGeometry,
 ) -> Result<(), LoadError> {
+    let upsampler = cx.upsampler;
     let tris = triangles(shape, options.resolve)?;
     let sides = media.shape_sides(
         shape,
         &mut Reading {
             upsampler,
-            resolve: options.resolve,
+            files: cx.files,
             warnings: &mut out.warnings,
         },
     )?;
@@ -159,12 +169,15 @@ fn shape(
         }
     };
     // Mitsuba's default BSDF is a diffuse one of reflectance 0.5.
-    let surface = match bsdf {
-        Some(b) if b.object.kind == "null" => null_boundary(&b.object)?,
-        Some(b) => material(&b.object, upsampler)?,
-        None => crate::materials::Material::Diffuse {
-            reflectance: crate::textures::SceneSpectrum::Constant(0.5),
-        },
+    let (surface, alpha) = match bsdf {
+        Some(b) if b.object.kind == "null" => (null_boundary(&b.object)?, None),
+        Some(b) => super::wrappers::surface(&b.object, cx)?,
+        None => (
+            crate::materials::Material::Diffuse {
+                reflectance: crate::textures::SceneSpectrum::Constant(0.5),
+            },
+            None,
+        ),
     };
     let name = shape
         .id
@@ -176,12 +189,14 @@ fn shape(
             shared[&key(&b.object)]
         }
         _ => {
-            out.materials.push(MaterialDesc::surface(
+            let mut desc = MaterialDesc::surface(
                 b_name(bsdf.map(|b| &b.object), &name),
                 surface,
                 emission.clone(),
                 upsampler,
-            )?);
+            )?;
+            desc.alpha = alpha;
+            out.materials.push(desc);
             let index = out.materials.len() - 1;
             if let (Some(b), None, None) = (bsdf, &emission, sides) {
                 shared.insert(key(&b.object), index);
@@ -192,6 +207,7 @@ fn shape(
     };
     let first = out.triangles.len();
     out.triangles.extend(tris);
+    super::uvs::add(shape, first, out)?;
     out.instances.push(MeshInstance {
         node: name,
         material: Some(material),

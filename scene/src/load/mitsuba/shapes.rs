@@ -51,7 +51,7 @@ pub(crate) fn transform(object: &Object, name: &str) -> Result<DMat4, LoadError>
 }
 
 /// Mitsuba's `rectangle`: [-1, 1]^2 in the z = 0 plane, facing +z.
-fn rectangle() -> Vec<[Vec3; 3]> {
+pub(crate) fn rectangle() -> Vec<[Vec3; 3]> {
     let c = |x: f32, y: f32| Vec3::new(x, y, 0.0);
     vec![
         [c(-1.0, -1.0), c(1.0, -1.0), c(1.0, 1.0)],
@@ -60,7 +60,7 @@ fn rectangle() -> Vec<[Vec3; 3]> {
 }
 
 /// Mitsuba's `cube`: [-1, 1]^3, facing outwards.
-fn cube() -> Vec<[Vec3; 3]> {
+pub(crate) fn cube() -> Vec<[Vec3; 3]> {
     let mut out = Vec::with_capacity(12);
     // Each face: its outward axis and two axes spanning it (u x v = the normal).
     for (n, u, v) in [

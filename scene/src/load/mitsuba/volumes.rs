@@ -17,6 +17,7 @@
 
 use glam::{DMat4, DVec3, Vec3};
 
+use super::files::Files;
 use super::parse::error;
 use super::shapes::{string, transform};
 use super::spectra::{Kind, spectrum};
@@ -52,14 +53,14 @@ pub(crate) fn volume(
     name: &str,
     default: f64,
     upsampler: &Upsampler,
-    resolve: &dyn Fn(&str) -> std::io::Result<Vec<u8>>,
+    files: Files,
     warnings: &mut Vec<String>,
 ) -> Result<Volume, LoadError> {
     if let Some(child) = medium.child(name) {
         let v = &child.object;
         return match (v.class, v.kind.as_str()) {
             (Class::Volume, "constvolume") => constant_volume(v, upsampler),
-            (Class::Volume, "gridvolume" | "grid") => grid_volume(v, upsampler, resolve, warnings),
+            (Class::Volume, "gridvolume" | "grid") => grid_volume(v, upsampler, files, warnings),
             (Class::Volume, other) => Err(error(
                 &v.at,
                 format!("volume '{other}' is not read yet (constvolume and gridvolume are)"),
@@ -117,7 +118,7 @@ fn constant_volume(v: &Object, upsampler: &Upsampler) -> Result<Volume, LoadErro
 fn grid_volume(
     v: &Object,
     upsampler: &Upsampler,
-    resolve: &dyn Fn(&str) -> std::io::Result<Vec<u8>>,
+    files: Files,
     warnings: &mut Vec<String>,
 ) -> Result<Volume, LoadError> {
     known(
@@ -167,8 +168,7 @@ fn grid_volume(
         ));
     }
     let file = string(v, "filename")?;
-    let path = super::paths::join(super::paths::directory(&v.at.file), &file);
-    let bytes = resolve(&path).map_err(|e| error(&v.at, format!("{file}: {e}")))?;
+    let bytes = files.read(&file, &v.at)?;
     let vol = parse_vol(&bytes).map_err(|e| error(&v.at, format!("{file}: {e}")))?;
     let (lo, hi) = if boolean(v, "use_grid_bbox")? {
         (vol.min.as_dvec3(), vol.max.as_dvec3())
