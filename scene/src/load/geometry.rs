@@ -68,6 +68,10 @@ pub struct LoadedGeometry {
     pub light_schedules: Vec<(usize, crate::world::Schedule)>,
     /// The scene-wide spectral description (the root's `PRISM_spectral`).
     pub spectral: SpectralScene,
+    /// Media the file places itself, by material (Mitsuba's shapes' `interior` and
+    /// `exterior`, its sensor's medium): when set, the scene's media are these, and the
+    /// materials' and `spectral`'s media are not read.
+    pub media: Option<crate::medium::Media>,
     /// What the caller should tell the user about the file: one line each, such as an
     /// extension that prism ignores.
     pub warnings: Vec<String>,

@@ -223,6 +223,9 @@ fn media_of(
     loaded: &LoadedGeometry,
     materials: &[Material],
 ) -> Result<Option<crate::medium::Media>, crate::LoadError> {
+    if let Some(media) = &loaded.media {
+        return Ok((!media.is_empty()).then(|| media.clone()));
+    }
     let mut media = Vec::new();
     let mut inside = vec![None; loaded.materials.len()];
     for (m, desc) in loaded.materials.iter().enumerate() {

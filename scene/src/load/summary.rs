@@ -114,6 +114,16 @@ impl LoadedGeometry {
                 .as_ref()
                 .map(|m| format!("world (fog): {}", m.describe())),
         );
+        // Media the file places by surface (Mitsuba's), listed by their index.
+        if let Some(placed) = &self.media {
+            media.extend(
+                placed
+                    .all()
+                    .iter()
+                    .enumerate()
+                    .map(|(i, m)| format!("medium {i}: {}", m.describe())),
+            );
+        }
         let dyed = self
             .materials
             .iter()

@@ -1,9 +1,11 @@
 //! A scalar field on a regular grid of voxels (a smoke's density, a flame's temperature),
 //! looked up trilinearly, and the coarse grid of its maxima that tracking steps through.
 //!
-//! Values sit at voxel centres and are blended trilinearly, clamped to the nearest voxel
-//! at the grid's faces, and the field is 0 outside its box (as Mitsuba 3's `gridvolume`
-//! with trilinear filtering and clamped wrapping). The majorant grid follows pbrt-v4
+//! Values sit at voxel centres and are blended trilinearly (or taken from the nearest
+//! voxel: [`Filter`]), clamped to the nearest voxel at the grid's faces, and the field is 0
+//! outside its box (as Mitsuba 3's `gridvolume` with clamped wrapping inside the box a
+//! heterogeneous medium clips to); [`Grid::lookup_clamped`] extends the faces' values
+//! outwards instead, as Mitsuba's clamped wrapping does everywhere. The majorant grid follows pbrt-v4
 //! (*PBR* 4th ed. §11.4.3, `MajorantGrid`): a coarse grid over the same box whose every
 //! cell bounds the field over the cell, so that tracking through a wisp of smoke in a big
 //! box draws distances against the wisp's own density, not the densest voxel's.
@@ -12,6 +14,16 @@ use glam::{UVec3, Vec3};
 
 /// The most cells a majorant grid has along an axis.
 const MAJORANT_RESOLUTION: u32 = 16;
+
+/// How a grid blends its voxels between their centres (Mitsuba's `filter_type`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Filter {
+    /// Trilinear between the eight nearest voxel centres.
+    #[default]
+    Trilinear,
+    /// The value of the voxel the point is in.
+    Nearest,
+}
 
 /// A scalar field on a regular grid over an axis-aligned box.
 #[derive(Debug, Clone)]
@@ -22,6 +34,17 @@ pub struct Grid {
     /// Values, x fastest then y then z.
     values: Vec<f32>,
     majorants: Majorants,
+    filter: Filter,
+}
+
+/// The voxels that blend into the field at a point and their weights (which sum to 1):
+/// eight for trilinear filtering, one (the rest weightless) for the nearest voxel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stencil {
+    /// Indices into the voxels, x fastest then y then z.
+    pub voxels: [u32; 8],
+    /// Each voxel's weight.
+    pub weights: [f32; 8],
 }
 
 /// The maxima of a grid's field over the cells of a coarse grid on the same box.
@@ -82,6 +105,7 @@ impl Grid {
                 resolution: UVec3::ONE,
                 values: vec![0.0],
             },
+            filter: Filter::Trilinear,
         };
         grid.majorants = grid.build_majorants(MAJORANT_RESOLUTION);
         Ok(grid)
@@ -93,6 +117,18 @@ impl Grid {
     pub fn with_majorant_cells(mut self, cells: u32) -> Self {
         self.majorants = self.build_majorants(cells.max(1));
         self
+    }
+
+    /// The same grid blending its voxels by `filter`. The majorant grid bounds both
+    /// filters (each cell's maximum spans every voxel either can reach from it).
+    pub fn with_filter(mut self, filter: Filter) -> Self {
+        self.filter = filter;
+        self
+    }
+
+    /// How the grid blends its voxels.
+    pub fn filter(&self) -> Filter {
+        self.filter
     }
 
     /// The box the field is defined on.
@@ -137,19 +173,59 @@ impl Grid {
         Ok(self)
     }
 
+    /// Voxel `index` (x fastest then y then z), as [`Stencil::voxels`] names it.
+    #[inline]
+    pub(crate) fn value(&self, index: u32) -> f32 {
+        self.values[index as usize]
+    }
+
     #[inline]
     fn voxel(&self, x: u32, y: u32, z: u32) -> f32 {
         let r = self.resolution;
         self.values[((z * r.y + y) * r.x + x) as usize]
     }
 
-    /// The field at `p`: trilinear between voxel centres, 0 outside the box (and for a
-    /// point that is not finite).
+    /// The field at `p`: blended by the grid's filter, 0 outside the box (and for a point
+    /// that is not finite).
     #[inline]
     pub fn lookup(&self, p: Vec3) -> f32 {
         let unit = (p - self.min) / (self.max - self.min);
         if !(unit.cmpge(Vec3::ZERO).all() && unit.cmple(Vec3::ONE).all()) {
             return 0.0;
+        }
+        self.at_unit(unit)
+    }
+
+    /// The field at `p` with `p` clamped into the box: outside it, the value at the
+    /// nearest point of the box's faces (Mitsuba's clamped wrapping; a point that is not
+    /// finite reads the box's lowest corner).
+    #[inline]
+    pub fn lookup_clamped(&self, p: Vec3) -> f32 {
+        self.at_unit(self.clamped_unit(p))
+    }
+
+    /// `p` in the box's unit cube, clamped into it (NaN to 0).
+    #[inline]
+    pub(crate) fn clamped_unit(&self, p: Vec3) -> Vec3 {
+        let unit = (p - self.min) / (self.max - self.min);
+        // f32::max returns the other operand for NaN.
+        unit.max(Vec3::ZERO).min(Vec3::ONE)
+    }
+
+    /// `p` in the box's unit cube, if it is in the box (None for a point that is not
+    /// finite).
+    #[inline]
+    pub(crate) fn unit_inside(&self, p: Vec3) -> Option<Vec3> {
+        let unit = (p - self.min) / (self.max - self.min);
+        (unit.cmpge(Vec3::ZERO).all() && unit.cmple(Vec3::ONE).all()).then_some(unit)
+    }
+
+    /// The field at `unit`, a point of the box's unit cube.
+    #[inline]
+    fn at_unit(&self, unit: Vec3) -> f32 {
+        if self.filter == Filter::Nearest {
+            let i = self.nearest(unit);
+            return self.voxel(i.x, i.y, i.z);
         }
         let r = self.resolution.as_vec3();
         let s = (unit * r - 0.5).clamp(Vec3::ZERO, r - 1.0);
@@ -179,6 +255,56 @@ impl Grid {
             f.x,
         );
         lerp(lerp(x00, x10, f.y), lerp(x01, x11, f.y), f.z)
+    }
+
+    /// The voxel `unit` is in.
+    #[inline]
+    fn nearest(&self, unit: Vec3) -> UVec3 {
+        (unit * self.resolution.as_vec3())
+            .floor()
+            .max(Vec3::ZERO)
+            .as_uvec3()
+            .min(self.resolution - 1)
+    }
+
+    /// The voxels and weights the grid's filter blends at `unit` (a point of the box's
+    /// unit cube), as [`Grid::lookup`] blends them: for grids that hold more than one
+    /// number per voxel beside this one (spectra: `SpectralGrid`).
+    #[inline]
+    pub fn stencil(&self, unit: Vec3) -> Stencil {
+        let r = self.resolution;
+        let index = |v: UVec3| (v.z * r.y + v.y) * r.x + v.x;
+        if self.filter == Filter::Nearest {
+            let mut weights = [0.0; 8];
+            weights[0] = 1.0;
+            return Stencil {
+                voxels: [index(self.nearest(unit)); 8],
+                weights,
+            };
+        }
+        let rf = r.as_vec3();
+        let s = (unit * rf - 0.5).clamp(Vec3::ZERO, rf - 1.0);
+        let base = s.floor();
+        let f = s - base;
+        let i0 = base.as_uvec3();
+        let i1 = (i0 + 1).min(r - 1);
+        let mut voxels = [0; 8];
+        let mut weights = [0.0; 8];
+        for k in 0..8 {
+            let pick = |bit: usize, lo: u32, hi: u32, t: f32| {
+                if k >> bit & 1 == 1 {
+                    (hi, t)
+                } else {
+                    (lo, 1.0 - t)
+                }
+            };
+            let (x, wx) = pick(0, i0.x, i1.x, f.x);
+            let (y, wy) = pick(1, i0.y, i1.y, f.y);
+            let (z, wz) = pick(2, i0.z, i1.z, f.z);
+            voxels[k] = index(UVec3::new(x, y, z));
+            weights[k] = wx * wy * wz;
+        }
+        Stencil { voxels, weights }
     }
 
     /// The coarse grid of maxima: each cell the largest voxel whose trilinear reach (the

@@ -8,7 +8,9 @@
 //!
 //! Where media are: a material may bound one (the medium inside its closed surface:
 //! [`Media::inside`]), and the scene may be filled by one (fog: [`Media::world`]), which is
-//! what a ray is in outside every boundary and where the camera starts.
+//! what a ray is in outside every boundary and where the camera starts. Mitsuba's scenes
+//! place media the other way, by what each surface has on either side
+//! ([`Media::with_sides`]).
 //!
 //! Distances are drawn by tracking against a majorant ([`track`]), the null-scattering
 //! formulation of Miller, Georgiev and Jarosz (SIGGRAPH 2019), which the integrator's
@@ -17,17 +19,19 @@
 mod fluorescence;
 mod grid;
 mod phase;
+mod spectral_grid;
 pub mod track;
 #[cfg(feature = "vdb")]
 mod vdb;
 mod vol;
 
 pub use fluorescence::Fluorescence;
-pub use grid::{Grid, Span};
+pub use grid::{Filter, Grid, Span, Stencil};
 pub use phase::{MAX_ABS_G, Phase, PhaseSample};
+pub use spectral_grid::SpectralGrid;
 #[cfg(feature = "vdb")]
 pub use vdb::read_vdb;
-pub use vol::{read_vol, write_vol};
+pub use vol::{VolFile, parse_vol, read_vol, write_vol};
 
 use std::sync::Arc;
 
@@ -43,9 +47,11 @@ pub struct Medium {
     sigma_s: SceneSpectrum,
     phase: Phase,
     emission: Option<SceneSpectrum>,
-    /// The density that scales sigma_a, sigma_s and the emission at each point (None:
-    /// 1 everywhere).
-    density: Option<Arc<Grid>>,
+    /// The density that scales sigma_a, sigma_s and the emission at each point.
+    density: Density,
+    /// Where the single-scattering albedo varies in space: sigma_s is that share of the
+    /// extinction at each point, the rest absorbed (None: sigma_s's share everywhere).
+    albedo: Option<Arc<Albedo>>,
     /// A fluorescent dye: its absorption joins sigma_a, and what it absorbs it re-emits at
     /// longer wavelengths (None: no dye).
     fluorescence: Option<Arc<Fluorescence>>,
@@ -56,6 +62,43 @@ pub struct Medium {
     /// where tracking stops, so it must stop somewhere even where the medium barely
     /// absorbs or scatters.
     emissive_floor: f32,
+}
+
+/// What scales a medium's coefficients from point to point.
+#[derive(Debug, Clone)]
+enum Density {
+    /// 1 everywhere: a homogeneous medium.
+    Uniform,
+    /// One number per voxel, alike at every wavelength.
+    Grid(Arc<Grid>),
+    /// A spectrum per voxel (Mitsuba's RGB grids).
+    Spectral(Arc<SpectralGrid>),
+}
+
+/// A single-scattering albedo that varies in space (Mitsuba's `albedo` given as a
+/// volume). Outside its box it keeps the value at the box's nearest face, as Mitsuba's
+/// clamped grids do.
+#[derive(Debug, Clone)]
+pub enum Albedo {
+    /// One number per voxel, alike at every wavelength.
+    Grid(Grid),
+    /// A spectrum per voxel.
+    Spectral(SpectralGrid),
+}
+
+impl Albedo {
+    /// The albedo at `p` for `wavelengths`.
+    #[inline]
+    fn at<const N: usize>(
+        &self,
+        p: glam::Vec3,
+        wavelengths: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        match self {
+            Albedo::Grid(g) => SampledSpectrum::splat(g.lookup_clamped(p)),
+            Albedo::Spectral(g) => g.lookup_clamped(p, wavelengths),
+        }
+    }
 }
 
 /// The coefficients of a medium at a point, at a package's wavelengths.
@@ -112,7 +155,8 @@ impl Medium {
             phase,
             emission,
             emissive_floor,
-            density: None,
+            density: Density::Uniform,
+            albedo: None,
             temperature: None,
             fluorescence: None,
         })
@@ -150,13 +194,73 @@ impl Medium {
     /// The same medium with its coefficients (and emission) scaled at each point by
     /// `density`'s field there: a heterogeneous medium, 0 outside the grid's box.
     pub fn with_density(mut self, density: Grid) -> Self {
-        self.density = Some(Arc::new(density));
+        self.density = Density::Grid(Arc::new(density));
         self
     }
 
-    /// The density grid, if the medium is heterogeneous.
+    /// The same medium with its coefficients (and emission) scaled at each point and
+    /// wavelength by `density`'s spectrum there, 0 outside the grid's box: Mitsuba's
+    /// extinction given as a grid of colours.
+    pub fn with_spectral_density(mut self, density: SpectralGrid) -> Self {
+        self.density = Density::Spectral(Arc::new(density));
+        self
+    }
+
+    /// The same medium scattering `albedo`'s share of its extinction at each point (the
+    /// rest absorbed), whatever sigma_a and sigma_s share it as: Mitsuba's `albedo` given
+    /// as a volume. An albedo above 1 (a blend of Mitsuba's RGB grids can reach one)
+    /// scatters more than the medium extinguishes, as in Mitsuba; sigma_a is then
+    /// negative there, and sigma_a + sigma_s the extinction still.
+    pub fn with_albedo(mut self, albedo: Albedo) -> Self {
+        self.albedo = Some(Arc::new(albedo));
+        self
+    }
+
+    /// The density grid, if the medium's density is one number per voxel.
     pub fn density(&self) -> Option<&Grid> {
-        self.density.as_deref()
+        match &self.density {
+            Density::Grid(g) => Some(g),
+            _ => None,
+        }
+    }
+
+    /// The density grid of spectra, if the medium's density is one.
+    pub fn spectral_density(&self) -> Option<&SpectralGrid> {
+        match &self.density {
+            Density::Spectral(g) => Some(g),
+            _ => None,
+        }
+    }
+
+    /// The albedo that varies in space, if any.
+    pub fn albedo(&self) -> Option<&Albedo> {
+        self.albedo.as_deref()
+    }
+
+    /// The stretches of the ray `origin + t direction`, `t` in [0, `t_max`], over which
+    /// the density is at most a bound, in order, each handed to `visit` until it returns
+    /// false: the whole ray with bound 1 in a homogeneous medium, else the density grid's
+    /// cells ([`Grid::spans`]); nothing outside a grid's box, where the density is 0.
+    #[inline]
+    pub fn spans(
+        &self,
+        origin: glam::Vec3,
+        direction: glam::Vec3,
+        t_max: f32,
+        mut visit: impl FnMut(Span) -> bool,
+    ) {
+        match &self.density {
+            Density::Uniform => {
+                visit(Span {
+                    t0: 0.0,
+                    t1: t_max,
+                    bound: 1.0,
+                });
+            }
+            Density::Grid(g) => g.spans(origin, direction, t_max, visit),
+            // A spectrum of the grid is at most its scale (a sigmoid is at most 1).
+            Density::Spectral(g) => g.scales().spans(origin, direction, t_max, visit),
+        }
     }
 
     /// The phase function.
@@ -186,13 +290,16 @@ impl Medium {
             Phase::HenyeyGreenstein { g } => format!("Henyey-Greenstein g {g}"),
             Phase::Rayleigh => "Rayleigh".into(),
         };
+        let grid =
+            |r: glam::UVec3, what: &str| format!("{what}grid {}x{}x{}, {phase}", r.x, r.y, r.z);
         let mut parts = vec![match &self.density {
-            None => format!("homogeneous, {phase}"),
-            Some(g) => {
-                let r = g.resolution();
-                format!("grid {}x{}x{}, {phase}", r.x, r.y, r.z)
-            }
+            Density::Uniform => format!("homogeneous, {phase}"),
+            Density::Grid(g) => grid(g.resolution(), ""),
+            Density::Spectral(g) => grid(g.scales().resolution(), "spectral "),
         }];
+        if self.albedo.is_some() {
+            parts.push("albedo varying".into());
+        }
         if self.emission.is_some() {
             parts.push("emissive".into());
         }
@@ -217,7 +324,9 @@ impl Medium {
     /// form instead of ratio tracking's estimate, which in such a medium is all or nothing
     /// (a track-length estimator: a collision zeroes it).
     pub fn transmittance_in_closed_form(&self) -> bool {
-        self.density.is_none() && self.emission.is_none() && self.fluorescence.is_none()
+        matches!(self.density, Density::Uniform)
+            && self.emission.is_none()
+            && self.fluorescence.is_none()
     }
 
     /// The extinction sigma_a + sigma_s per lane where the density is 1.
@@ -258,8 +367,8 @@ impl Medium {
         wavelengths: &SampledWavelengths<N>,
     ) -> MediumPoint<N> {
         let mut point = match &self.density {
-            None => *base,
-            Some(grid) => {
+            Density::Uniform => *base,
+            Density::Grid(grid) => {
                 let d = grid.lookup(p);
                 MediumPoint {
                     sigma_a: base.sigma_a * d,
@@ -268,7 +377,21 @@ impl Medium {
                     sigma_fo: base.sigma_fo * d,
                 }
             }
+            Density::Spectral(grid) => {
+                let d = grid.lookup(p, wavelengths);
+                MediumPoint {
+                    sigma_a: base.sigma_a * d,
+                    sigma_s: base.sigma_s * d,
+                    emission: base.emission * d,
+                    sigma_fo: base.sigma_fo * d,
+                }
+            }
         };
+        if let Some(albedo) = &self.albedo {
+            let extinction = point.sigma_a + point.sigma_s;
+            point.sigma_s = extinction * albedo.at(p, wavelengths);
+            point.sigma_a = extinction - point.sigma_s;
+        }
         if let Some(grid) = &self.temperature {
             let kelvin = f64::from(grid.lookup(p));
             if kelvin > 0.0 && !point.sigma_a.is_black() {
@@ -317,6 +440,21 @@ pub struct Media {
     inside: Vec<Option<u32>>,
     /// The medium filling the world outside every boundary (fog), if any.
     world: Option<u32>,
+    /// Mitsuba's model, where crossing a surface sets the medium rather than entering or
+    /// leaving a nested volume: per material, the media either side of its surfaces
+    /// (None: crossing them leaves the medium as it is). None: prism's nested volumes.
+    sides: Option<Vec<Option<Sides>>>,
+}
+
+/// The media either side of a boundary where crossing it sets the medium (Mitsuba's
+/// shapes' `interior` and `exterior`): against the surface's outward normal a path is in
+/// `inside` after it, along it in `outside`; None is vacuum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Sides {
+    /// The medium behind the surface (its `interior`).
+    pub inside: Option<u32>,
+    /// The medium in front of it (its `exterior`).
+    pub outside: Option<u32>,
 }
 
 impl Media {
@@ -345,7 +483,33 @@ impl Media {
             media,
             inside,
             world,
+            sides: None,
         })
+    }
+
+    /// Media placed as Mitsuba places them (its "volpath" integrator, and
+    /// `SurfaceInteraction::target_medium`): a path starts in `world` (the sensor's
+    /// medium) and crossing a surface of material `m` puts it in `sides[m]`'s medium on
+    /// the side it goes to; crossing a material without sides (the list may be shorter
+    /// than the materials) changes nothing. Unlike nested volumes, overlapping shapes
+    /// leave a path in whatever the last surface it crossed says. Indices must name media
+    /// in the list.
+    pub fn with_sides(
+        media: Vec<Medium>,
+        sides: Vec<Option<Sides>>,
+        world: Option<u32>,
+    ) -> Result<Self, String> {
+        let count = media.len();
+        for (m, s) in sides.iter().enumerate() {
+            for i in s.iter().flat_map(|s| [s.inside, s.outside]).flatten() {
+                if i as usize >= count {
+                    return Err(format!("material {m} borders medium {i}, of {count}"));
+                }
+            }
+        }
+        let mut media = Self::new(media, Vec::new(), world)?;
+        media.sides = Some(sides);
+        Ok(media)
     }
 
     /// Whether the scene has any medium.
@@ -376,6 +540,20 @@ impl Media {
     /// Whether material `material` bounds a medium.
     pub fn bounds_medium(&self, material: u32) -> bool {
         self.inside(material).is_some()
+    }
+
+    /// Whether crossing a surface sets the medium (Mitsuba's model, [`Media::with_sides`])
+    /// rather than entering or leaving a nested volume.
+    pub fn crossing_sets(&self) -> bool {
+        self.sides.is_some()
+    }
+
+    /// Where crossing sets the medium, the media either side of material `material`'s
+    /// surfaces (None: crossing them changes nothing, or the volumes nest).
+    pub fn sides(&self, material: u32) -> Option<Sides> {
+        self.sides
+            .as_ref()
+            .and_then(|s| s.get(material as usize).copied().flatten())
     }
 
     /// The medium outside every boundary, if any.

@@ -70,7 +70,7 @@ pub fn sample_majorant_at<const N: usize>(
     // The majorant transmittance since the last collision, and whether `collide` stopped.
     let mut t_maj = SampledSpectrum::splat(1.0);
     let mut stopped = false;
-    let mut span = |span: Span| -> bool {
+    let span = |span: Span| -> bool {
         let sigma_maj = medium.majorant_over(base, span.bound);
         if sigma_maj[0] <= 0.0 {
             t_maj *= transmittance(&sigma_maj, span.t1 - span.t0);
@@ -103,16 +103,7 @@ pub fn sample_majorant_at<const N: usize>(
             t_min = if t > t_min { t } else { next_after(t_min) };
         }
     };
-    match medium.density() {
-        None => {
-            span(Span {
-                t0: 0.0,
-                t1: t_max,
-                bound: 1.0,
-            });
-        }
-        Some(grid) => grid.spans(origin, direction, t_max, span),
-    }
+    medium.spans(origin, direction, t_max, span);
     if stopped {
         SampledSpectrum::splat(1.0)
     } else {

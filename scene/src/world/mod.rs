@@ -442,9 +442,28 @@ impl Scene {
 
     /// Whether `hit` is on a boundary of a volume, one that paths crossing it enter or
     /// leave (an interface, a dielectric, a glTF transmission that is not thin-walled):
-    /// the medium within is [`Scene::medium_inside`], vacuum if none.
+    /// the medium within is [`Scene::medium_inside`], vacuum if none. Where crossing
+    /// sets the medium ([`crate::medium::Media::with_sides`]), the surfaces with media on
+    /// their sides, whatever their material.
     pub fn bounds_volume(&self, hit: &Hit) -> bool {
+        if self.media.crossing_sets() {
+            return self.media.sides(self.material_index(hit)).is_some();
+        }
         self.material(hit).can_hold_medium()
+    }
+
+    /// Where crossing sets the medium ([`crate::medium::Media::with_sides`]), the medium a
+    /// path is in after crossing the surface at `hit` towards `direction`: the inside's
+    /// against the geometric normal, the outside's along it (Mitsuba's
+    /// `SurfaceInteraction::target_medium`); None where volumes nest instead or the
+    /// surface has no media on its sides.
+    pub fn medium_beyond(&self, hit: &Hit, direction: glam::Vec3) -> Option<Option<u32>> {
+        let sides = self.media.sides(self.material_index(hit))?;
+        Some(if direction.dot(hit.normal) > 0.0 {
+            sides.outside
+        } else {
+            sides.inside
+        })
     }
 
     /// Whether `hit` is on an interface: a boundary of a medium that light crosses

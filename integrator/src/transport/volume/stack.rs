@@ -1,6 +1,8 @@
 //! Which medium a path is in: the world's (fog, or vacuum), and on top of it the medium of
 //! each volume boundary it has entered and not yet left, so that a medium inside a glass
-//! inside fog is left for the fog again.
+//! inside fog is left for the fog again. In scenes whose surfaces say what lies on either
+//! side (Mitsuba's, `Media::with_sides`) there is no nesting: crossing a surface sets the
+//! medium, and the stack keeps one entry.
 
 use glam::Vec3;
 use prism_scene::world::{Hit, Scene};
@@ -34,7 +36,9 @@ impl MediumStack {
     /// has none.
     pub(crate) fn around_camera(scene: &Scene) -> Self {
         let mut stack = Self::new(scene.media().world());
-        if scene.media().is_empty() {
+        // Where surfaces set the medium, the camera's is the one the scene gives it (the
+        // world's: Mitsuba's sensor medium), as Mitsuba starts its paths.
+        if scene.media().is_empty() || scene.media().crossing_sets() {
             return stack;
         }
         let origin = scene
@@ -80,10 +84,15 @@ impl MediumStack {
 
     /// Crosses the volume boundary `hit` (where [`Scene::bounds_volume`]) towards unit
     /// `direction`: against the outward geometric normal it enters the boundary's
-    /// medium, along it it leaves the innermost one.
+    /// medium, along it it leaves the innermost one; where the surface says what lies on
+    /// the side the path goes to ([`Scene::medium_beyond`]), that is the medium.
     #[inline]
     pub(crate) fn cross(&mut self, scene: &Scene, hit: &Hit, direction: Vec3) {
-        if direction.dot(hit.normal) < 0.0 {
+        if let Some(beyond) = scene.medium_beyond(hit, direction) {
+            self.entries[self.len - 1] = beyond;
+        } else if scene.media().crossing_sets() {
+            // A surface with nothing on its sides changes nothing.
+        } else if direction.dot(hit.normal) < 0.0 {
             let inside = scene.medium_inside(hit);
             if self.len < DEPTH {
                 self.len += 1;

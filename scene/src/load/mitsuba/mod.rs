@@ -43,6 +43,7 @@ mod bitmaps;
 mod bsdfs;
 mod files;
 mod instances;
+mod media;
 mod mesh_attribute;
 mod primitives;
 mod scene;
@@ -51,8 +52,11 @@ mod shape_mesh;
 mod shapes;
 mod spectra;
 mod textures;
+mod volumes;
 mod wrappers;
 
+#[cfg(test)]
+mod media_tests;
 #[cfg(test)]
 mod scene_tests;
 #[cfg(test)]

@@ -12,6 +12,7 @@ use std::sync::Arc;
 use super::bsdfs::key;
 use super::files::Files;
 use super::instances::{Groups, check_group};
+use super::media::{MediaBuilder, Reading, nested, null_boundary};
 use super::mesh_attribute::{corner_colors, diffuse_reflectance};
 use super::parse::error;
 use super::sensors::{Film, camera, number};
@@ -61,6 +62,8 @@ pub fn load(
     let mut groups = Groups::default();
     let mut film = None;
     let mut max_depth = None;
+    let mut media = MediaBuilder::default();
+    let mut integrator_object = None;
     for child in &parsed.scene.children {
         let object = &child.object;
         match object.class {
@@ -77,13 +80,13 @@ pub fn load(
                     )?;
                     for (member, mesh) in placed {
                         note(&mut geometry.gltf_features, &member.kind);
-                        shape(&member, &mesh, &cx, &mut shared, &mut geometry)?;
+                        shape(&member, &mesh, &cx, &mut shared, &mut media, &mut geometry)?;
                     }
                 }
                 kind => {
                     note(&mut geometry.gltf_features, kind);
                     let mesh = shape_mesh(object, &cx.files, &mut geometry.warnings)?;
-                    shape(object, &mesh, &cx, &mut shared, &mut geometry)?;
+                    shape(object, &mesh, &cx, &mut shared, &mut media, &mut geometry)?;
                 }
             },
             Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
@@ -92,6 +95,12 @@ pub fn load(
                     let (c, f) = camera(object)?;
                     geometry.cameras.push(c);
                     film = Some(f);
+                    let mut reading = Reading {
+                        upsampler: &upsampler,
+                        files: cx.files,
+                        warnings: &mut geometry.warnings,
+                    };
+                    media.sensor(object, &mut reading)?;
                 } else {
                     geometry.warnings.push(format!(
                         "{}: a second sensor is not read (the first is)",
@@ -99,10 +108,19 @@ pub fn load(
                     ));
                 }
             }
-            Class::Integrator => max_depth = integrator(object, &mut geometry.warnings)?,
-            // Objects defined at the top for reference (BSDFs, textures) are read where
-            // they are used.
-            Class::Bsdf | Class::Texture | Class::Spectrum | Class::Rgb => {}
+            Class::Integrator => {
+                max_depth = integrator(object, &mut geometry.warnings)?;
+                integrator_object = Some(object);
+            }
+            // Objects defined at the top for reference (BSDFs, textures, media) are read
+            // where they are used.
+            Class::Bsdf
+            | Class::Texture
+            | Class::Spectrum
+            | Class::Rgb
+            | Class::Medium
+            | Class::Phase
+            | Class::Volume => {}
             other => {
                 return Err(error(
                     &object.at,
@@ -120,6 +138,10 @@ pub fn load(
             .push("mesh attributes as vertex colours (blended as spectra)".into());
     }
     let film = film.ok_or_else(|| error(&parsed.scene.at, "the scene has no sensor"))?;
+    geometry.media = media.finish(
+        integrator_object.map(|o| o.as_ref()),
+        &mut geometry.warnings,
+    )?;
     Ok(MitsubaScene {
         geometry,
         film,
@@ -133,9 +155,18 @@ fn shape(
     mesh: &ShapeMesh,
     cx: &Context,
     shared: &mut HashMap<usize, usize>,
+    media: &mut MediaBuilder,
     out: &mut LoadedGeometry,
 ) -> Result<(), LoadError> {
     let upsampler = cx.upsampler;
+    let sides = media.shape_sides(
+        shape,
+        &mut Reading {
+            upsampler,
+            files: cx.files,
+            warnings: &mut out.warnings,
+        },
+    )?;
     let mut bsdfs = shape.children_of(Class::Bsdf);
     let bsdf = bsdfs.next();
     if bsdfs.next().is_some() {
@@ -178,6 +209,11 @@ fn shape(
         alpha,
         perturbation,
     } = match (bsdf, &attribute) {
+        (Some(b), None) if b.object.kind == "null" => super::wrappers::Surface {
+            material: null_boundary(&b.object)?,
+            alpha: None,
+            perturbation: None,
+        },
         (_, Some(a)) => super::wrappers::Surface {
             material: crate::materials::Material::Diffuse {
                 reflectance: crate::textures::SceneSpectrum::Constant(a.scale),
@@ -198,8 +234,11 @@ fn shape(
         .id
         .clone()
         .unwrap_or_else(|| format!("shape {}", out.instances.len()));
+    // Shapes share their BSDF's material unless they emit or bound media of their own.
     let material = match (bsdf, &emission) {
-        (Some(b), None) if shared.contains_key(&key(&b.object)) => shared[&key(&b.object)],
+        (Some(b), None) if sides.is_none() && shared.contains_key(&key(&b.object)) => {
+            shared[&key(&b.object)]
+        }
         _ => {
             let mut desc = MaterialDesc::surface(
                 b_name(bsdf.map(|b| &b.object), &name),
@@ -211,9 +250,10 @@ fn shape(
             desc.perturbation = perturbation.map(Arc::new);
             out.materials.push(desc);
             let index = out.materials.len() - 1;
-            if let (Some(b), None) = (bsdf, &emission) {
+            if let (Some(b), None, None) = (bsdf, &emission, sides) {
                 shared.insert(key(&b.object), index);
             }
+            media.set_sides(index, sides);
             index
         }
     };
@@ -273,6 +313,8 @@ fn emitter(
 /// The integrator's `max_depth` as prism's bounces, warning where prism's path tracer
 /// differs from the one asked for.
 fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<u32>, LoadError> {
+    // The integrator a `moment` or `aov` wrapper runs is the one that renders.
+    let integrator = nested(integrator);
     match integrator.kind.as_str() {
         "path" | "volpath" | "volpathmis" => {}
         other => warnings.push(format!(
