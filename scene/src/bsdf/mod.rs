@@ -40,7 +40,7 @@ pub use metallic_roughness::{
     DiffuseTransmission, Iridescence, MetallicRoughness, Specular, SpecularParts,
 };
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
-pub use perturbed::Perturbed;
+pub use perturbed::{Perturbed, shadow_terminator};
 pub use plastic::{Plastic, PlasticCoating};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;

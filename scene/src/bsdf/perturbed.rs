@@ -26,7 +26,7 @@ impl<const N: usize> Perturbed<'_, N> {
         if cos * wi.z <= 0.0 {
             return 0.0;
         }
-        crate::materials::shadow_terminator(self.n.z, cos)
+        shadow_terminator(self.n.z, cos)
     }
 
     /// f(wo, wi).
@@ -52,9 +52,22 @@ impl<const N: usize> Perturbed<'_, N> {
         match self.weight(sample.wi) {
             0.0 => None,
             g => {
-                sample.f = sample.f * g;
+                sample.f *= g;
                 Some(sample)
             }
         }
     }
+}
+
+/// Estevez et al.'s shadowing term for a tilted normal whose cosine to the shading
+/// normal is `cos_tilt`, at a direction of cosine `cos` to the shading normal: 1 for
+/// no tilt, falling towards 0 at grazing directions (Mitsuba's `eval_shadow_terminator`).
+pub fn shadow_terminator(cos_tilt: f32, cos: f32) -> f32 {
+    let tan2 = |c: f32| {
+        let c2 = c * c;
+        (1.0 - c2).max(0.0) / c2
+    };
+    let alpha2 = (0.125 * tan2(cos_tilt)).min(1.0);
+    let g = 2.0 / (1.0 + (1.0 + alpha2 * tan2(cos)).sqrt());
+    if g.is_finite() { g } else { 0.0 }
 }

@@ -19,4 +19,4 @@ pub use material::Material;
 pub use normal_map::NormalMap;
 #[cfg(feature = "gltf")]
 pub(crate) use normal_map::triangle_tangent;
-pub use perturbation::{Perturbation, PerturbationInput, shadow_terminator};
+pub use perturbation::{Perturbation, PerturbationInput};

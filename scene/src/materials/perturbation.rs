@@ -94,19 +94,6 @@ impl Perturbation {
     }
 }
 
-/// Estevez et al.'s shadowing term for a tilted normal whose cosine to the shading
-/// normal is `cos_tilt`, at a direction of cosine `cos` to the shading normal: 1 for
-/// no tilt, falling towards 0 at grazing directions (Mitsuba's `eval_shadow_terminator`).
-pub fn shadow_terminator(cos_tilt: f32, cos: f32) -> f32 {
-    let tan2 = |c: f32| {
-        let c2 = c * c;
-        (1.0 - c2).max(0.0) / c2
-    };
-    let alpha2 = (0.125 * tan2(cos_tilt)).min(1.0);
-    let g = 2.0 / (1.0 + (1.0 + alpha2 * tan2(cos)).sqrt());
-    if g.is_finite() { g } else { 0.0 }
-}
-
 #[cfg(test)]
 mod tests {
     use glam::Affine2;
@@ -171,6 +158,7 @@ mod tests {
         let n = bump.normal(&input(Vec2::new(0.5, 0.5)));
         let expected = Vec3::new(-0.5, 0.0, 1.0).normalize();
         assert!((n - expected).length() < 1e-6, "{n}");
+        use crate::bsdf::shadow_terminator;
         assert_eq!(shadow_terminator(1.0, 0.2), 1.0);
         assert!(shadow_terminator(0.8, 0.1) < shadow_terminator(0.8, 0.9));
         assert!(shadow_terminator(0.8, 0.0).is_finite());
