@@ -86,7 +86,14 @@ def last_line(text):
     return lines[-1] if lines else ""
 
 
-def run_scene(scene, mode, polarized, out_dir):
+def short(message, data_dir):
+    """An error line without the program's prefix and with paths relative to the data."""
+    message = message.removeprefix("prism: error: ")
+    return message.replace(os.path.join(os.path.abspath(data_dir), ""), "").replace(
+        os.path.join(data_dir, ""), "")
+
+
+def run_scene(scene, mode, polarized, out_dir, data_dir):
     folder = os.path.basename(os.path.dirname(scene))
     name = os.path.splitext(os.path.basename(scene))[0]
     integrator = name.rsplit("_", 1)[-1]
@@ -109,7 +116,7 @@ def run_scene(scene, mode, polarized, out_dir):
     warnings = [line for line in render.stderr.splitlines() if "warning" in line]
     row["warnings"] = warnings
     if render.returncode != 0:
-        row.update(status="not loaded", reason=last_line(render.stderr))
+        row.update(status="not loaded", reason=short(last_line(render.stderr), data_dir))
         return row
     compare = subprocess.run([prism_binary(), "compare", out, ref, "--variance", var, "--spp",
                               str(spp), "--json"], capture_output=True, text=True)
@@ -168,7 +175,7 @@ def main():
     cpu = cpu_model()
     rows = []
     for scene in scenes:
-        row = run_scene(scene, mode, args.polarized, out_dir)
+        row = run_scene(scene, mode, args.polarized, out_dir, args.data_dir)
         rows.append(row)
         print(f"{row['status']:<12} {row['folder']}/{row['scene']}"
               + (f" ({row['seconds']} s)" if "seconds" in row else "")
