@@ -54,14 +54,15 @@ fn blocks(text: &str, lang: &str) -> Vec<Vec<String>> {
 /// A command's arguments made small and pointed at `dir` for what it writes (and reads of
 /// what an earlier command wrote).
 fn small(args: &[&str], dir: &Path) -> Vec<String> {
-    let ranges = args.contains(&"--sample-range");
+    // Only renders get a small sample count; ranges and other commands keep what they say.
+    let keeps_spp = args.contains(&"--sample-range") || args.first() != Some(&"render");
     let mut out: Vec<String> = Vec::new();
     let mut i = 0;
     while i < args.len() {
         let (arg, value) = (args[i], args.get(i + 1).copied());
         match (arg, value) {
             ("--width", Some(_)) | ("--height", Some(_)) => i += 2,
-            ("--spp", Some(_)) if !ranges => i += 2,
+            ("--spp", Some(_)) if !keeps_spp => i += 2,
             ("-o" | "--polarization-png", Some(v)) => {
                 out.push(arg.to_string());
                 out.push(dir.join(v).to_string_lossy().into_owned());
@@ -79,7 +80,7 @@ fn small(args: &[&str], dir: &Path) -> Vec<String> {
     }
     if out.first().is_some_and(|c| c == "render") {
         out.extend(["--width", "12", "--height", "8", "-q"].map(String::from));
-        if !ranges {
+        if !keeps_spp {
             out.extend(["--spp", "2"].map(String::from));
         }
     }
