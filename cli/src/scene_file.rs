@@ -3,7 +3,8 @@
 
 use std::path::Path;
 
-use prism_scene::load::mitsuba::{self, MitsubaScene, ParseOptions};
+use prism_integrator::Filter;
+use prism_scene::load::mitsuba::{self, MitsubaScene, ParseOptions, PixelFilter};
 use prism_scene::load::{LoadOptions, LoadedGeometry, Upsampling, load_scene};
 use prism_scene::spectral::Overlay;
 
@@ -18,7 +19,7 @@ pub fn load(path: &Path, scene: Option<usize>) -> Result<LoadedGeometry, String>
 }
 
 /// What a scene file asks of the render where the command line does not say: a Mitsuba
-/// scene's film size, sampler's count and integrator's depth.
+/// scene's film size and filter, sampler's count and integrator's depth.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FileDefaults {
     /// The film's width and height.
@@ -27,6 +28,8 @@ pub struct FileDefaults {
     pub spp: Option<u64>,
     /// Bounces.
     pub max_depth: Option<u32>,
+    /// The film's pixel filter.
+    pub filter: Option<Filter>,
 }
 
 impl FileDefaults {
@@ -36,7 +39,25 @@ impl FileDefaults {
             size: Some((scene.film.width, scene.film.height)),
             spp: scene.film.spp,
             max_depth: scene.max_depth,
+            filter: Some(pixel_filter(scene.film.filter)),
         }
+    }
+}
+
+/// prism's filter for a Mitsuba film's: Mitsuba's Gaussian reaches 4 standard deviations.
+fn pixel_filter(filter: PixelFilter) -> Filter {
+    match filter {
+        PixelFilter::Box => Filter::Box,
+        PixelFilter::Gaussian { stddev } => Filter::Gaussian {
+            radius: 4.0 * stddev,
+            sigma: stddev,
+        },
+        PixelFilter::Tent { radius } => Filter::Tent { radius },
+        // A filter this version does not know: Mitsuba's default.
+        _ => Filter::Gaussian {
+            radius: 2.0,
+            sigma: 0.5,
+        },
     }
 }
 

@@ -33,6 +33,11 @@ pub enum Filter {
         /// Half-width of the support, pixels.
         radius: f32,
     },
+    /// A tent: 1 - |x| / radius (Mitsuba's `tent`, pbrt's triangle filter).
+    Tent {
+        /// Half-width of the support, pixels.
+        radius: f32,
+    },
 }
 
 impl Filter {
@@ -79,13 +84,16 @@ impl Filter {
                 let t = std::f64::consts::PI * (x / r + 1.0);
                 0.35875 - 0.48829 * t.cos() + 0.14128 * (2.0 * t).cos() - 0.01168 * (3.0 * t).cos()
             }
+            Filter::Tent { radius } => (1.0 - x.abs() / f64::from(radius)).max(0.0),
         }
     }
 
     fn radius(&self) -> f32 {
         match *self {
             Filter::Box => 0.5,
-            Filter::Gaussian { radius, .. } | Filter::BlackmanHarris { radius } => radius,
+            Filter::Gaussian { radius, .. }
+            | Filter::BlackmanHarris { radius }
+            | Filter::Tent { radius } => radius,
         }
     }
 }
@@ -162,6 +170,7 @@ mod tests {
             Filter::Box,
             Filter::from_name("gaussian").unwrap(),
             Filter::from_name("blackman-harris").unwrap(),
+            Filter::Tent { radius: 1.0 },
         ] {
             let sampler = FilterSampler::new(filter).unwrap();
             let r = f64::from(filter.radius());

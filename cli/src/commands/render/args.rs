@@ -61,9 +61,10 @@ pub struct RenderArgs {
     /// Hero wavelength sampler: uniform, visible, response or spd.
     #[arg(long, default_value = "visible")]
     pub lambda_sampler: String,
-    /// Pixel filter: box, gaussian or blackman-harris.
-    #[arg(long, default_value = "box")]
-    pub filter: String,
+    /// Pixel filter: box, gaussian or blackman-harris [default: the Mitsuba scene's
+    /// rfilter, else box].
+    #[arg(long)]
+    pub filter: Option<String>,
     /// Spectral output: EXR outputs also get this many bands of spectral radiance (the
     /// spectral OpenEXR layout), over --spectral-range.
     #[arg(long, value_name = "N")]

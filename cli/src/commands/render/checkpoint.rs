@@ -16,6 +16,7 @@ pub(super) fn fingerprint(
     width: u32,
     height: u32,
     aovs: prism_integrator::Aovs,
+    filter: &str,
 ) -> String {
     let bands = args
         .spectral_bands
@@ -30,7 +31,7 @@ pub(super) fn fingerprint(
         args.max_depth,
         args.wavelengths,
         args.lambda_sampler,
-        args.filter,
+        filter,
         args.clamp,
         args.environment.as_ref().map(|e| format!(
             "{e}@{}deg*{}",

@@ -126,7 +126,12 @@ pub fn render(
     let space = RgbSpaceId::from_name(&args.space).map_err(|e| setting(e.to_string()))?;
     let lambda_sampler =
         LambdaSampler::from_name(&args.lambda_sampler).map_err(|e| setting(e.to_string()))?;
-    let filter = Filter::from_name(&args.filter).map_err(|e| setting(e.to_string()))?;
+    let chosen_filter = args
+        .filter
+        .as_deref()
+        .map(Filter::from_name)
+        .transpose()
+        .map_err(|e| setting(e.to_string()))?;
     check_outputs(&args.outputs).map_err(setting)?;
     let samples_only = settings::samples_only(args).map_err(setting)?;
     let started = Instant::now();
@@ -145,7 +150,7 @@ pub fn render(
                 .unwrap_or(0..args.spp.or(defaults.spp).unwrap_or(64)),
             max_depth: args.max_depth.or(defaults.max_depth),
             lambda_sampler,
-            filter,
+            filter: chosen_filter.or(defaults.filter).unwrap_or_default(),
         },
         camera,
     )
@@ -162,7 +167,13 @@ pub fn render(
         .map_err(setting)?;
     settings::check_film_memory(width, height, settings.aovs).map_err(setting)?;
     let range = settings.samples.clone();
-    let fingerprint = checkpoint::fingerprint(args, width, height, settings.aovs);
+    // The filter as the command line named it, or the scene file's.
+    let filter_name = match (&args.filter, defaults.filter) {
+        (Some(name), _) => name.clone(),
+        (None, Some(filter)) => format!("{filter:?}"),
+        (None, None) => "box".to_string(),
+    };
+    let fingerprint = checkpoint::fingerprint(args, width, height, settings.aovs, &filter_name);
     let film = match &args.resume {
         None => Film::for_settings(&settings),
         Some(path) => checkpoint::resume(path, &fingerprint, &range).map_err(Failure::Scene)?,

@@ -52,6 +52,7 @@ mod shape_mesh;
 mod shapes;
 mod spectra;
 mod textures;
+mod unread;
 mod volumes;
 mod wrappers;
 
@@ -59,6 +60,8 @@ mod wrappers;
 mod media_tests;
 #[cfg(test)]
 mod scene_tests;
+#[cfg(test)]
+mod sensors_tests;
 #[cfg(test)]
 mod shapes_tests;
 #[cfg(test)]
@@ -68,8 +71,8 @@ mod textures_tests;
 
 pub use parse::MAX_INCLUDE_DEPTH;
 pub use scene::{MitsubaScene, load};
-pub use sensors::Film;
-pub use tree::{Child, Class, Location, Object, Property, SpectrumValue, Value};
+pub use sensors::{Film, PixelFilter};
+pub use tree::{Child, Class, Location, Object, Property, Read, SpectrumValue, Value};
 
 use crate::LoadError;
 

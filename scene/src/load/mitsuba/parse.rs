@@ -334,6 +334,7 @@ impl Reader<'_> {
             name: name.to_string(),
             value,
             at: at.clone(),
+            read: Default::default(),
         };
         let value_of = |what: &str, read: &dyn Fn(&str) -> Result<Value, String>| {
             attrs.check(&["name", "value"], tag, &at)?;

@@ -20,7 +20,8 @@ use super::shape_mesh::ShapeMesh;
 use super::shapes::{feature, shape_mesh};
 use super::spectra::{Kind, spectrum};
 use super::textures::Context;
-use super::tree::{Class, Object};
+use super::tree::{Class, Object, Value};
+use super::unread::unread_parameters;
 use super::{ParseOptions, parse};
 use crate::LoadError;
 use crate::lights::Environment;
@@ -92,7 +93,7 @@ pub fn load(
             Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
             Class::Sensor => {
                 if geometry.cameras.is_empty() {
-                    let (c, f) = camera(object)?;
+                    let (c, f) = camera(object, &mut geometry.warnings)?;
                     geometry.cameras.push(c);
                     film = Some(f);
                     let mut reading = Reading {
@@ -142,6 +143,7 @@ pub fn load(
         integrator_object.map(|o| o.as_ref()),
         &mut geometry.warnings,
     )?;
+    geometry.warnings.extend(unread_parameters(&parsed.scene));
     Ok(MitsubaScene {
         geometry,
         film,
@@ -311,12 +313,32 @@ fn emitter(
 }
 
 /// The integrator's `max_depth` as prism's bounces, warning where prism's path tracer
-/// differs from the one asked for.
+/// differs from the one asked for. Every integrator prism maps here estimates the same
+/// image with its own path tracer: `direct` is a path of one bounce, and `ptracer`'s
+/// light paths reach the same expectation as camera paths.
 fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<u32>, LoadError> {
     // The integrator a `moment` or `aov` wrapper runs is the one that renders.
     let integrator = nested(integrator);
+    if let Some(p) = integrator.property("hide_emitters")
+        && p.value != Value::Boolean(false)
+    {
+        return Err(error(
+            &p.at,
+            "hide_emitters is not read yet (prism's camera sees emitters)",
+        ));
+    }
+    // Mitsuba's own sampling choices: prism's estimator reaches the same image.
+    for name in [
+        "rr_depth",
+        "emitter_samples",
+        "bsdf_samples",
+        "samples_per_pass",
+    ] {
+        let _ = integrator.property(name);
+    }
     match integrator.kind.as_str() {
-        "path" | "volpath" | "volpathmis" => {}
+        "path" | "volpath" | "volpathmis" | "ptracer" => {}
+        "direct" => return Ok(Some(1)),
         other => warnings.push(format!(
             "{}: integrator '{other}' renders with prism's path tracer",
             integrator.at

@@ -4,6 +4,7 @@
 
 use std::fmt;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Where something is: the file (as the caller named it, or as an include joined it) and
 /// its 1-based line.
@@ -121,9 +122,20 @@ pub struct Object {
 }
 
 impl Object {
-    /// The first property of that name.
+    /// The first property of that name, marked as read ([`Object::unread`]).
     pub fn property(&self, name: &str) -> Option<&Property> {
-        self.properties.iter().find(|p| p.name == name)
+        let found = self.properties.iter().find(|p| p.name == name);
+        if let Some(p) = found {
+            p.read.0.store(true, Ordering::Relaxed);
+        }
+        found
+    }
+
+    /// The properties no reader has asked for by name ([`Object::property`]).
+    pub fn unread(&self) -> impl Iterator<Item = &Property> {
+        self.properties
+            .iter()
+            .filter(|p| !p.read.0.load(Ordering::Relaxed))
     }
 
     /// The first child of that name.
@@ -150,6 +162,19 @@ pub struct Property {
     pub value: Value,
     /// Where the property's tag is.
     pub at: Location,
+    /// Whether a reader has asked for it, so that what prism ignores can be said.
+    pub read: Read,
+}
+
+/// Whether a property has been read: set through a shared reference, because the tree
+/// is read through `Arc`s.
+#[derive(Debug, Default)]
+pub struct Read(AtomicBool);
+
+impl Clone for Read {
+    fn clone(&self) -> Self {
+        Read(AtomicBool::new(self.0.load(Ordering::Relaxed)))
+    }
 }
 
 /// A nested object or a resolved `<ref>`.
