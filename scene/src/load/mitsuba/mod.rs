@@ -41,6 +41,7 @@ mod values;
 // plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
 mod bitmaps;
 mod bsdfs;
+mod conductors;
 mod files;
 mod instances;
 mod media;
