@@ -165,6 +165,8 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
                 )),
             })
         }
+        "principled" => super::principled::principled(bsdf, cx),
+        "principledthin" => super::principled::principled_thin(bsdf, cx),
         other => Err(error(
             &bsdf.at,
             format!(

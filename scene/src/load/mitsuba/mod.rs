@@ -47,6 +47,7 @@ mod instances;
 mod media;
 mod mesh_attribute;
 mod primitives;
+mod principled;
 mod scene;
 mod sensors;
 mod shape_mesh;
