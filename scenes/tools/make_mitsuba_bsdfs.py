@@ -18,8 +18,15 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_mitsuba_scenes as base  # noqa: E402  (sets the scalar_spectral variant)
 import make_mitsuba_ztest_refs as refs  # noqa: E402
 
-for kind in ("roughconductor", "roughdielectric", "plastic", "roughplastic"):
+for kind in ("roughconductor", "roughdielectric", "plastic", "roughplastic", "principled",
+             "principledthin"):
     base.CLASSES[kind] = "bsdf"
+base.CLASSES["checkerboard"] = "texture"
+
+
+def checker(a, b):
+    return {"type": "checkerboard", "color0": a, "color1": b}
+
 
 # (small cube, large cube) per scene.
 SCENES = {
@@ -46,6 +53,23 @@ SCENES = {
     "plastic": (
         {"type": "plastic", "diffuse_reflectance": {"type": "rgb", "value": [0.2, 0.4, 0.8]}},
         {"type": "plastic", "int_ior": "bk7", "nonlinear": True},
+    ),
+    # Every lobe of Mitsuba's principled BSDF, parameters textured as the render suite's
+    # test_texturedprincipled scenes (without anisotropy: Mitsuba's shapes give prism no
+    # tangents to orient it by).
+    "principled": (
+        {"type": "principled", "base_color": {"type": "rgb", "value": [0.2, 0.8, 0.1]},
+         "roughness": 0.3, "metallic": checker(0.7, 0.1), "clearcoat": checker(0.9, 0.1),
+         "sheen": checker(0.2, 0.9), "specular": 0.7},
+        {"type": "principled", "base_color": {"type": "rgb", "value": [0.3, 0.6, 0.8]},
+         "roughness": 0.2, "spec_trans": checker(0.7, 0.1), "flatness": 0.4, "eta": 1.4},
+    ),
+    "principledthin": (
+        {"type": "principledthin", "base_color": {"type": "rgb", "value": [0.7, 0.1, 0.1]},
+         "spec_trans": checker(0.2, 0.8), "diff_trans": checker(0.4, 1.4),
+         "sheen": checker(0.1, 0.8), "eta": 1.33},
+        {"type": "principledthin", "base_color": {"type": "rgb", "value": [0.8, 0.7, 0.3]},
+         "roughness": 0.25, "spec_trans": 0.5, "spec_tint": 0.4},
     ),
 }
 

@@ -31,6 +31,10 @@ pub enum Bsdf<'a, const N: usize> {
     Sheet(Sheet<N>),
     /// Another BSDF about a tilted normal (Mitsuba's normal and bump maps).
     Perturbed(Box<super::perturbed::Perturbed<'a, N>>),
+    /// Mitsuba's `principled`.
+    Principled(Box<super::Principled<N>>),
+    /// Mitsuba's `principledthin`.
+    PrincipledThin(Box<super::PrincipledThin<N>>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -57,6 +61,8 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Plastic(b) => b.f(wo, wi),
             Bsdf::Sheet(_) => SampledSpectrum::splat(0.0),
             Bsdf::Perturbed(b) => b.f(wo, wi),
+            Bsdf::Principled(b) => b.f(wo, wi),
+            Bsdf::PrincipledThin(b) => b.f(wo, wi),
         }
     }
 
@@ -81,6 +87,8 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Plastic(b) => b.pdf(wo, wi),
             Bsdf::Sheet(_) => 0.0,
             Bsdf::Perturbed(b) => b.pdf(wo, wi),
+            Bsdf::Principled(b) => b.pdf(wo, wi),
+            Bsdf::PrincipledThin(b) => b.pdf(wo, wi),
         }
     }
 
@@ -97,6 +105,8 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Plastic(b) => b.sample(wo, uc, u),
             Bsdf::Sheet(b) => b.sample(wo),
             Bsdf::Perturbed(b) => b.sample(wo, uc, u),
+            Bsdf::Principled(b) => b.sample(wo, uc, u),
+            Bsdf::PrincipledThin(b) => b.sample(wo, uc, u),
         }
     }
 

@@ -101,6 +101,10 @@ pub enum Material {
         /// The delay in waves (0.25: a quarter-wave plate) per wavelength.
         retardance: SceneSpectrum,
     },
+    /// Mitsuba's `principled` (Burley's principled BSDF as Mitsuba defines it).
+    Principled(Arc<super::PrincipledDesc>),
+    /// Mitsuba's `principledthin` (its thin-sheet form).
+    PrincipledThin(Arc<super::PrincipledThinDesc>),
     /// The boundary of a medium that light crosses unchanged (no reflection, no bending):
     /// what is inside it is the medium's, not a surface's. The volumetric path tracer
     /// passes through it; anything else sees an ideal clear sheet.
@@ -138,6 +142,8 @@ impl Material {
                 | Material::Interface
         ) || self.transmission().is_some()
             || self.diffuse_transmission().is_some()
+            || matches!(self, Material::Principled(d) if d.transmissive())
+            || matches!(self, Material::PrincipledThin(d) if d.transmissive())
     }
 
     /// Whether the index of refraction varies with wavelength (dispersion) where light
@@ -226,6 +232,8 @@ impl Material {
                     || iridescence.as_ref().is_some_and(|i| i.textured())
                     || layers.as_ref().is_some_and(|l| l.textured())
             }
+            Material::Principled(d) => d.textured(),
+            Material::PrincipledThin(d) => d.textured(),
             _ => false,
         }
     }
@@ -238,6 +246,8 @@ impl Material {
                 layers: Some(l), ..
             } => l.oriented(),
             Material::Polarizer { .. } | Material::Retarder { .. } => true,
+            Material::Principled(d) => d.anisotropic(),
+            Material::PrincipledThin(d) => d.anisotropic(),
             _ => false,
         }
     }
@@ -418,6 +428,8 @@ impl Material {
                     transmittance: SampledSpectrum::splat(1.0),
                 })
             }
+            Material::Principled(d) => d.bsdf(at, wavelengths, mode, tint, frame),
+            Material::PrincipledThin(d) => d.bsdf(at, wavelengths, tint, frame),
             // A clear sheet: a retarder that delays nothing.
             Material::Interface => Bsdf::Sheet(Sheet {
                 element: SheetElement::Retarder([0.0; N]),

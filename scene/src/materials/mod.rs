@@ -8,6 +8,7 @@ mod layers;
 mod material;
 mod normal_map;
 mod perturbation;
+mod principled;
 
 pub(crate) use alpha::blend_number;
 pub use alpha::{Alpha, AlphaMode};
@@ -20,3 +21,4 @@ pub use normal_map::NormalMap;
 #[cfg(feature = "gltf")]
 pub(crate) use normal_map::triangle_tangent;
 pub use perturbation::{Perturbation, PerturbationInput};
+pub use principled::{PrincipledDesc, PrincipledThinDesc};

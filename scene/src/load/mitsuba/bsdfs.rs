@@ -48,17 +48,6 @@ pub(crate) const NAMED_IORS: [(&str, f64); 23] = [
     ("diamond", 2.419),
 ];
 
-/// Mitsuba's conductor presets prism has measured data for, with prism's name
-/// (`prism_spectrum::optics::named_metal`). prism's tables are Johnson and Christy's
-/// (Rakic's for aluminium), Mitsuba's PBRT's (Luxpop/Palik): the same metals, not the
-/// same measurements.
-const NAMED_METALS: [(&str, &str); 4] = [
-    ("Au", "gold"),
-    ("Ag", "silver"),
-    ("Cu", "copper"),
-    ("Al", "aluminium"),
-];
-
 /// The material of `bsdf`.
 pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadError> {
     let upsampler = cx.upsampler;
@@ -176,6 +165,8 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
                 )),
             })
         }
+        "principled" => super::principled::principled(bsdf, cx),
+        "principledthin" => super::principled::principled_thin(bsdf, cx),
         other => Err(error(
             &bsdf.at,
             format!(
@@ -289,8 +280,9 @@ pub(crate) fn named_ior(name: &str) -> Option<f64> {
         .map(|(_, v)| *v)
 }
 
-/// eta and k of a conductor: a named `material`, Mitsuba's default "none" (eta 0, k 1:
-/// a mirror reflecting everything), or `eta` and `k` given.
+/// eta and k of a conductor: a named `material` (Mitsuba's data, `conductors.rs`),
+/// Mitsuba's default "none" (eta 0, k 1: a mirror reflecting everything), or `eta` and
+/// `k` given.
 fn conductor_index(
     bsdf: &Object,
     upsampler: &Upsampler,
@@ -326,28 +318,17 @@ fn conductor_index(
             format!("{}: give either eta and k or material, not both", bsdf.kind),
         ));
     }
-    let prism_name = NAMED_METALS
-        .iter()
-        .find(|(m, _)| *m == material)
-        .map(|(_, p)| *p)
-        .ok_or_else(|| {
-            let names: Vec<&str> = NAMED_METALS.iter().map(|(m, _)| *m).collect();
-            error(
-                &bsdf.at,
-                format!(
-                    "{}: material '{material}' is not read yet (prism has data for {} and \
-                     'none'; give eta and k instead)",
-                    bsdf.kind,
-                    names.join(", ")
-                ),
-            )
-        })?;
-    let metal = prism_spectrum::optics::named_metal(prism_name)
-        .map_err(|e| error(&bsdf.at, format!("{}: {e}", bsdf.kind)))?;
-    Ok((
-        SceneSpectrum::Table(Arc::new(metal.eta)),
-        SceneSpectrum::Table(Arc::new(metal.k)),
-    ))
+    super::conductors::preset(material).ok_or_else(|| {
+        error(
+            &bsdf.at,
+            format!(
+                "{}: no material preset '{material}' (Mitsuba's are {} and 'none'; or \
+                 give eta and k)",
+                bsdf.kind,
+                super::conductors::names().join(", ")
+            ),
+        )
+    })
 }
 
 /// prism's roughness, sqrt(alpha), of a rough plugin: GGX only, isotropic.
@@ -547,9 +528,22 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        let e = read(r#"<bsdf type="conductor"><string name="material" value="Cr"/></bsdf>"#)
+        // Every preset Mitsuba ships, a-C and Cr among them; names are Mitsuba's files'.
+        for name in ["Cr", "a-C", "Ni_palik"] {
+            let xml = format!(
+                r#"<bsdf type="roughconductor"><string name="distribution" value="ggx"/><string name="material" value="{name}"/></bsdf>"#
+            );
+            assert!(
+                matches!(read(&xml), Ok(Material::Conductor { .. })),
+                "{name}"
+            );
+        }
+        let e = read(r#"<bsdf type="conductor"><string name="material" value="gold"/></bsdf>"#)
             .unwrap_err();
-        assert!(e.contains("material 'Cr' is not read yet"), "{e}");
+        assert!(
+            e.contains("no material preset 'gold'") && e.contains("a-C"),
+            "{e}"
+        );
         let e = read(r#"<bsdf type="conductor"><rgb name="eta" value="0.2, 0.9, 1.1"/><rgb name="k" value="3, 2, 2"/></bsdf>"#).unwrap_err();
         assert!(e.contains("RGB colour is not read yet"), "{e}");
         let e = read(r#"<bsdf type="conductor"><float name="roughness" value="0.2"/></bsdf>"#)

@@ -41,11 +41,13 @@ mod values;
 // plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
 mod bitmaps;
 mod bsdfs;
+mod conductors;
 mod files;
 mod instances;
 mod media;
 mod mesh_attribute;
 mod primitives;
+mod principled;
 mod scene;
 mod sensors;
 mod shape_mesh;
