@@ -270,7 +270,7 @@ fn angle(emitter: &Object, name: &str) -> Result<Option<f64>, LoadError> {
 }
 
 /// An error for a property or nested object of `emitter` outside `known`.
-fn only(emitter: &Object, known: &[&str]) -> Result<(), LoadError> {
+pub(crate) fn only(emitter: &Object, known: &[&str]) -> Result<(), LoadError> {
     for p in &emitter.properties {
         if !known.contains(&p.name.as_str()) {
             return Err(error(

@@ -259,3 +259,45 @@ fn emitters_prism_does_not_follow_are_errors_with_their_line() {
         assert!(e.contains(expected) && e.contains("t.xml:"), "{e}");
     }
 }
+
+/// An area emitter's bitmap radiance is the bitmap as Mitsuba reads any texture: the
+/// same spectra as the bitmap gives a diffuse reflectance (no D65), varying over the shape.
+#[test]
+fn an_area_emitters_bitmap_radiance_is_the_bitmaps_reflectance_spectrum() {
+    let png = std::fs::read(format!(
+        "{}/../scenes/mitsuba/textures/colours.png",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let s = read(
+        &format!(
+            r#"<scene version="3.0.0">{SENSOR}<shape type="rectangle">
+                <bsdf type="diffuse"><texture name="reflectance" type="bitmap">
+                    <string name="filename" value="c.png"/></texture></bsdf>
+                <emitter type="area"><texture name="radiance" type="bitmap">
+                    <string name="filename" value="c.png"/></texture></emitter>
+               </shape></scene>"#
+        ),
+        HashMap::from([("c.png", png)]),
+    )
+    .unwrap();
+    let spectral = s.geometry.materials[0].spectral.as_ref().unwrap();
+    let radiance = spectral.emission.as_ref().unwrap();
+    let reflectance = match spectral.surface.as_ref().unwrap() {
+        crate::materials::Material::Diffuse { reflectance } => reflectance,
+        other => panic!("{other:?}"),
+    };
+    let w = SampledWavelengths::new([450.0, 550.0, 650.0, 700.0], [0.01; 4]).unwrap();
+    let mut values = Vec::new();
+    for uv in [
+        Vec2::new(0.1, 0.1),
+        Vec2::new(0.5, 0.3),
+        Vec2::new(0.9, 0.7),
+    ] {
+        let (e, r) = (radiance.at_uv(uv, &w), reflectance.at_uv(uv, &w));
+        assert_eq!(e.0, r.0);
+        values.push(e.0);
+    }
+    assert!(values[0] != values[1] && values[1] != values[2]);
+    assert!(matches!(s.geometry.lights[0], LightDesc::Area { .. }));
+}

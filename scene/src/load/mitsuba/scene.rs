@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::bsdfs::key;
-use super::emitters::{emission, emitter};
+use super::emitters::{emission, emitter, only};
 use super::files::Files;
 use super::instances::{Groups, check_group};
 use super::media::{MediaBuilder, Reading, nested, null_boundary};
@@ -19,6 +19,7 @@ use super::parse::error;
 use super::sensors::{Film, camera, number};
 use super::shape_mesh::ShapeMesh;
 use super::shapes::{feature, shape_mesh};
+use super::spectra::Kind;
 use super::textures::Context;
 use super::tree::{Class, Object};
 use super::{ParseOptions, parse};
@@ -178,7 +179,7 @@ fn shape(
     }
     let emission = match emitter {
         None => None,
-        Some(e) if e.object.kind == "area" => Some(emission(&e.object, "radiance", upsampler)?),
+        Some(e) if e.object.kind == "area" => Some(area_radiance(&e.object, cx)?),
         Some(e) => {
             return Err(error(
                 &e.object.at,
@@ -265,6 +266,20 @@ fn shape(
         });
     }
     Ok(())
+}
+
+/// An `area` emitter's `radiance`. A nested texture is read as Mitsuba reads any texture:
+/// Mitsuba's textures do not know they emit, so a colour bitmap's texels upsample as
+/// reflectances (clamped to [0, 1], no D65: `upsample_spectral` in
+/// src/textures/bitmap.cpp) and that spectrum is the radiance.
+fn area_radiance(area: &Object, cx: &Context) -> Result<crate::textures::SceneSpectrum, LoadError> {
+    only(area, &["radiance"])?;
+    match area.child("radiance") {
+        Some(c) if c.object.class == Class::Texture => {
+            super::textures::spectrum(area, "radiance", Kind::Albedo, 1.0, cx)
+        }
+        _ => emission(area, "radiance", cx.upsampler),
+    }
 }
 
 /// Lists what shapes of plugin `kind` change about the render once ([`feature`]).
