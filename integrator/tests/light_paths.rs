@@ -18,7 +18,7 @@ use glam::{Mat4, Vec3};
 use prism_integrator::{Film, Filter, LambdaSampler, RenderSettings, render};
 use prism_scene::camera::{ApertureShape, ApertureSize, Camera, Projection, ThinLens};
 use prism_scene::geometry::BvhQuality;
-use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum, SpotFalloff};
 use prism_spectrum::optics::named_glass;
 use sky::sunny_sky;
 
@@ -181,6 +181,7 @@ fn a_spot_light_in_a_mirror_lights_the_floor_as_its_image_does() {
         cos_inner: 0.1f32.cos(),
         cos_outer: 0.45f32.cos(),
         intensity: SceneSpectrum::Constant(2.0),
+        falloff: SpotFalloff::Smooth,
     });
 }
 

@@ -15,7 +15,7 @@ use glam::Vec3;
 use prism_integrator::{ExrMetadata, Film, LambdaSampler, RenderSettings, encode_exr, render};
 use prism_sampling::wavelength::PackageScheme;
 use prism_scene::geometry::BvhQuality;
-use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum};
+use prism_scene::world::{Light, Material, Scene, SceneParts, SceneSpectrum, SpotFalloff};
 use prism_spectrum::color::RgbSpaceId;
 use prism_spectrum::colorimetry::{Observer, emission_xyz};
 use prism_spectrum::spectra::{Constant, Gaussian};
@@ -177,6 +177,7 @@ fn spot_light_direct_lighting_follows_its_cone() {
         cos_inner: inner.cos() as f32,
         cos_outer: outer.cos() as f32,
         intensity: SceneSpectrum::Constant(2.0),
+        falloff: SpotFalloff::Smooth,
     };
     for off in [0.0, 0.2, 0.35, 0.42, 0.49, 0.6] {
         let film = floor_render(vec![spot(inner, outer, off)], None, LambdaSampler::Visible);

@@ -43,7 +43,8 @@ pub enum Light {
         /// Radiant intensity.
         intensity: SceneSpectrum,
     },
-    /// A spot light: a point light with glTF's smooth cone falloff.
+    /// A spot light: a point light whose intensity falls off between an inner and an
+    /// outer cone as `falloff` says.
     Spot {
         /// Position.
         position: Vec3,
@@ -55,6 +56,8 @@ pub enum Light {
         cos_outer: f32,
         /// Radiant intensity on the axis.
         intensity: SceneSpectrum,
+        /// How the intensity falls off between the cones.
+        falloff: SpotFalloff,
     },
     /// A distant light travelling along `direction` with irradiance `irradiance`
     /// (W m^-2 nm^-1) on a surface facing it.
@@ -211,12 +214,42 @@ pub(crate) fn solid_angle_sampled(p: Vec3, shape: &TriangleShape) -> Option<f32>
     SOLID_ANGLE_SAMPLING.contains(&omega).then_some(omega)
 }
 
+/// How a spot light's intensity falls off from its inner cone (full) to its outer cone
+/// (none).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum SpotFalloff {
+    /// glTF's (KHR_lights_punctual): a squared linear ramp in cos.
+    #[default]
+    Smooth,
+    /// Mitsuba 3's `spot` (`falloff_curve` in src/emitters/spot.cpp): linear in the angle
+    /// from the axis, (outer - angle) / (outer - inner), and none at the outer angle itself.
+    LinearAngle,
+}
+
+/// The falloff of a spot light at cos `cos` off its axis.
+fn spot_falloff(cos: f32, cos_inner: f32, cos_outer: f32, falloff: SpotFalloff) -> f32 {
+    match falloff {
+        SpotFalloff::Smooth => smooth_falloff(cos, cos_inner, cos_outer),
+        SpotFalloff::LinearAngle => {
+            if cos >= cos_inner {
+                1.0
+            } else if cos > cos_outer {
+                let (inner, outer) = (cos_inner.acos(), cos_outer.acos());
+                ((outer - cos.clamp(-1.0, 1.0).acos()) / (outer - inner)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        }
+    }
+}
+
 /// The glTF spot light falloff (KHR_lights_punctual): a squared linear ramp in cos between
 /// the outer and inner cone.
 /// The ramp's width is not floored at 1e-3 as the extension's sample code does (that
 /// only guards a division by zero, and would dim every spot narrower than ~2.5 degrees
 /// to a fraction of its intensity).
-fn spot_falloff(cos: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+fn smooth_falloff(cos: f32, cos_inner: f32, cos_outer: f32) -> f32 {
     let width = cos_inner - cos_outer;
     if width <= 0.0 {
         return f32::from(u8::from(cos >= cos_outer));
@@ -510,12 +543,13 @@ impl Lights {
                 cos_inner,
                 cos_outer,
                 intensity,
+                falloff,
             } => {
                 let to = *position - p;
                 let d2 = to.length_squared();
                 let distance = d2.sqrt();
                 let wi = to / distance;
-                let falloff = spot_falloff(-wi.dot(*direction), *cos_inner, *cos_outer);
+                let falloff = spot_falloff(-wi.dot(*direction), *cos_inner, *cos_outer, *falloff);
                 LightSample {
                     light: index as u32,
                     wi,
@@ -645,10 +679,11 @@ impl Lights {
                 cos_inner,
                 cos_outer,
                 intensity,
+                falloff,
             } => {
                 let local = uniform_cone(u_direction, *cos_outer);
                 let w = around(*direction, local);
-                let falloff = spot_falloff(local.z, *cos_inner, *cos_outer);
+                let falloff = spot_falloff(local.z, *cos_inner, *cos_outer, *falloff);
                 (
                     Ray::new(*position, w, f32::INFINITY),
                     intensity.at(wavelengths) * (falloff / (uniform_cone_pdf(*cos_outer) * pmf)),
@@ -773,5 +808,32 @@ pub(crate) fn light_spectrum<'a>(
         | Light::Directional { irradiance: s, .. }
         | Light::Environment { radiance: s } => s,
         Light::EnvironmentMap { map } => map.mean(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{SpotFalloff, spot_falloff};
+
+    /// Mitsuba's falloff is linear in the angle between beam and cutoff, full within the
+    /// beam and none from the cutoff on; glTF's is a squared ramp in cos.
+    #[test]
+    fn spot_falloffs_are_mitsubas_and_gltfs() {
+        let (beam, cutoff) = (15f32.to_radians(), 20f32.to_radians());
+        let at = |deg: f32, f| spot_falloff(deg.to_radians().cos(), beam.cos(), cutoff.cos(), f);
+        let linear = SpotFalloff::LinearAngle;
+        assert_eq!(at(0.0, linear), 1.0);
+        assert_eq!(at(15.0, linear), 1.0);
+        assert!((at(17.5, linear) - 0.5).abs() < 1e-3);
+        assert!((at(19.0, linear) - 0.2).abs() < 1e-3);
+        assert_eq!(at(20.0, linear), 0.0);
+        assert_eq!(at(40.0, linear), 0.0);
+        let t: f32 = (17.5f32.to_radians().cos() - cutoff.cos()) / (beam.cos() - cutoff.cos());
+        assert!((at(17.5, SpotFalloff::Smooth) - t * t).abs() < 1e-6);
+        // A beam as wide as the cutoff: a hard edge.
+        let hard =
+            |deg: f32| spot_falloff(deg.to_radians().cos(), cutoff.cos(), cutoff.cos(), linear);
+        assert_eq!(hard(19.9), 1.0);
+        assert_eq!(hard(20.1), 0.0);
     }
 }

@@ -13,7 +13,7 @@ pub use emission_cache::EmissionCache;
 pub use environment::{
     DEFAULT_ENVIRONMENT, Environment, EnvironmentMap, grey_environment, unit_d65,
 };
-pub use light::{CausticTarget, EmissionSample, Light, LightSample, Lights};
+pub use light::{CausticTarget, EmissionSample, Light, LightSample, Lights, SpotFalloff};
 
 /// The former name of [`CausticTarget`].
 #[deprecated(note = "renamed CausticTarget: where light paths aim")]

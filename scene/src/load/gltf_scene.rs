@@ -329,12 +329,14 @@ impl SceneLights {
                     outer,
                     spectrum,
                     scale,
+                    falloff,
                 } => lights.push(Light::Spot {
                     position: *position,
                     direction: *direction,
                     cos_inner: inner.cos(),
                     cos_outer: outer.cos(),
                     intensity: scaled(spectrum, *scale),
+                    falloff: *falloff,
                 }),
                 LightDesc::Directional {
                     direction,

@@ -50,6 +50,8 @@ pub enum LightDesc {
         spectrum: SceneSpectrum,
         /// Factor making the spectrum radiant intensity on the axis.
         scale: f64,
+        /// How the intensity falls off between the cones.
+        falloff: crate::lights::SpotFalloff,
     },
     /// A directional light arriving along -`direction`... with spectral irradiance
     /// (W m^-2 nm^-1) the spectrum times `scale`.
@@ -156,6 +158,7 @@ pub(crate) fn punctual(
                 outer: outer_cone_angle,
                 spectrum,
                 scale,
+                falloff: crate::lights::SpotFalloff::Smooth,
             }
         }
     })

@@ -11,17 +11,19 @@
 //! the zenith; u runs left to right with the image's centre column looking along +x and
 //! the column at u = 3/4 along +z. A direction's polar angle theta (from +y) is pi v, its
 //! azimuth phi = 2 pi (u - 1/2) measured from +x towards +z. Mitsuba 3's `envmap` puts -z
-//! at u = 0: the same image in Mitsuba is this one turned by 90 degrees.
+//! at u = 0 and interpolates its texels otherwise: a map made by
+//! [`EnvironmentMap::mitsuba`] reads the image as Mitsuba does (`latlong`).
 
 use std::f32::consts::PI;
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 use prism_sampling::distribution::PiecewiseConstant2D;
 use prism_spectrum::spectra::DenselySampled;
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 use prism_upsample::{CoefficientTable, FitContext, RgbKind, RgbSpectrum};
 
+use super::latlong::MitsubaLatLong;
 use crate::textures::{SceneSpectrum, illuminant_spectrum};
 
 /// Rec. 709 luminance weights of linear sRGB.
@@ -41,6 +43,9 @@ pub struct EnvironmentMap {
     texels: Vec<[f32; 3]>,
     /// (sin, cos) of the rotation about +y.
     rotation: (f32, f32),
+    /// Mitsuba's frame, texel grid and spectra instead of the rotation and this
+    /// convention's (a Mitsuba scene's `envmap`).
+    mitsuba: Option<Box<MitsubaLatLong>>,
     table: Arc<CoefficientTable>,
     context: Arc<FitContext>,
     illuminant: Arc<DenselySampled>,
@@ -101,6 +106,7 @@ impl EnvironmentMap {
             height,
             texels,
             rotation: (rotation_degrees.to_radians() as f32).sin_cos(),
+            mitsuba: None,
             table,
             context,
             illuminant,
@@ -108,6 +114,34 @@ impl EnvironmentMap {
             compensated: None,
             mean: SceneSpectrum::Rgb(Arc::new(mean)),
         };
+        (map.distribution, map.compensated) = map.sampling_distributions();
+        Ok(map)
+    }
+
+    /// A map of `width` x `height` linear sRGB texels (rows from the top) read as Mitsuba
+    /// 3's `envmap` reads its image: in the frame `to_world` (a rotation or mirror; the
+    /// linear part of the emitter's `to_world`), with Mitsuba's direction mapping, texel
+    /// grid and spectra (see `latlong`), each texel scaled by `scale`. RGB (1, 1, 1) emits
+    /// `upsampling`'s illuminant, as [`EnvironmentMap::new`]'s. Errors as `new` does, and
+    /// for a frame that scales or shears.
+    pub fn mitsuba(
+        width: u32,
+        height: u32,
+        texels: Vec<[f32; 3]>,
+        to_world: Mat3,
+        scale: f64,
+        upsampling: (Arc<CoefficientTable>, Arc<FitContext>, Arc<DenselySampled>),
+    ) -> Result<Self, String> {
+        let mut map = Self::new(width, height, texels, 0.0, scale, upsampling)?;
+        map.mitsuba = Some(Box::new(MitsubaLatLong::new(
+            to_world,
+            width,
+            height,
+            &map.texels,
+            &map.table,
+            &map.context,
+        )?));
+        // The sampling densities follow the lookups, which have changed.
         (map.distribution, map.compensated) = map.sampling_distributions();
         Ok(map)
     }
@@ -136,6 +170,10 @@ impl EnvironmentMap {
     /// The image coordinates in [0, 1]^2 of unit world direction `d` ((0, 0) for a
     /// direction that is not finite).
     pub fn uv(&self, d: Vec3) -> Vec2 {
+        if let Some(m) = &self.mitsuba {
+            let uv = m.uv(d);
+            return if uv.is_finite() { uv } else { Vec2::ZERO };
+        }
         let d = self.to_local(d);
         let u = 0.5 + d.z.atan2(d.x) / (2.0 * PI);
         let v = d.y.clamp(-1.0, 1.0).acos() / PI;
@@ -146,6 +184,9 @@ impl EnvironmentMap {
     /// The unit world direction of image coordinates `uv`, and sin(theta) there.
     pub fn direction(&self, uv: Vec2) -> (Vec3, f32) {
         let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        if let Some(m) = &self.mitsuba {
+            return m.direction(uv);
+        }
         let (sin_theta, cos_theta) = (PI * uv.y).sin_cos();
         let (sin_phi, cos_phi) = (2.0 * PI * (uv.x - 0.5)).sin_cos();
         let local = Vec3::new(sin_theta * cos_phi, cos_theta, sin_theta * sin_phi);
@@ -161,8 +202,14 @@ impl EnvironmentMap {
     /// Linear RGB at `uv`, bilinear between texel centres (u wraps around, v clamps at the
     /// poles).
     pub fn rgb(&self, uv: Vec2) -> [f32; 3] {
-        let x = (uv.x * self.width as f32 - 0.5).clamp(-1e9, 1e9);
-        let y = (uv.y * self.height as f32 - 0.5).clamp(-1e9, 1e9);
+        let (x, y) = match &self.mitsuba {
+            Some(m) => m.grid(uv).into(),
+            None => (
+                uv.x * self.width as f32 - 0.5,
+                uv.y * self.height as f32 - 0.5,
+            ),
+        };
+        let (x, y) = (x.clamp(-1e9, 1e9), y.clamp(-1e9, 1e9));
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
@@ -203,6 +250,10 @@ impl EnvironmentMap {
         wavelengths: &SampledWavelengths<N>,
         white: &[f32; N],
     ) -> SampledSpectrum<N> {
+        if let Some(m) = &self.mitsuba {
+            let shape = m.shape(uv, wavelengths.lambdas());
+            return SampledSpectrum(std::array::from_fn(|k| (shape[k] * white[k]).min(f32::MAX)));
+        }
         let rgb = self.rgb(uv);
         if rgb == [0.0; 3] {
             return SampledSpectrum::splat(0.0);

@@ -2,6 +2,7 @@
 //! environment image ([`EnvironmentMap`]), and the convention that makes a number or an
 //! RGB texel mean what an emissive colour means.
 
+mod latlong;
 mod map;
 
 pub use map::EnvironmentMap;

@@ -38,10 +38,11 @@ mod tree;
 mod values;
 
 // What the plugins mean: the tree turned into prism's loaded geometry, one file per
-// plugin family (Mitsuba's folders: shapes, bsdfs, emitters in `scene`, sensors).
+// plugin family (Mitsuba's folders: shapes, bsdfs, emitters, sensors).
 mod bitmaps;
 mod bsdfs;
 mod conductors;
+mod emitters;
 mod files;
 mod instances;
 mod media;
@@ -58,6 +59,8 @@ mod unread;
 mod volumes;
 mod wrappers;
 
+#[cfg(test)]
+mod emitters_tests;
 #[cfg(test)]
 mod media_tests;
 #[cfg(test)]

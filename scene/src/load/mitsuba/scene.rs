@@ -10,6 +10,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::bsdfs::key;
+use super::emitters::{emission, emitter, only};
 use super::files::Files;
 use super::instances::{Groups, check_group};
 use super::media::{MediaBuilder, Reading, nested, null_boundary};
@@ -18,13 +19,12 @@ use super::parse::error;
 use super::sensors::{Film, camera, number};
 use super::shape_mesh::ShapeMesh;
 use super::shapes::{feature, shape_mesh};
-use super::spectra::{Kind, spectrum};
+use super::spectra::Kind;
 use super::textures::Context;
 use super::tree::{Class, Object, Value};
 use super::unread::unread_parameters;
 use super::{ParseOptions, parse};
 use crate::LoadError;
-use crate::lights::Environment;
 use crate::load::{LightDesc, LoadOptions, LoadedGeometry, MaterialDesc, MeshInstance, Upsampler};
 
 /// A Mitsuba scene read for prism.
@@ -90,7 +90,7 @@ pub fn load(
                     shape(object, &mesh, &cx, &mut shared, &mut media, &mut geometry)?;
                 }
             },
-            Class::Emitter => emitter(object, &upsampler, &mut geometry)?,
+            Class::Emitter => emitter(object, &cx, &mut geometry)?,
             Class::Sensor => {
                 if geometry.cameras.is_empty() {
                     let (c, f) = camera(object, &mut geometry.warnings)?;
@@ -181,13 +181,7 @@ fn shape(
     }
     let emission = match emitter {
         None => None,
-        Some(e) if e.object.kind == "area" => Some(spectrum(
-            &e.object,
-            "radiance",
-            Kind::Illuminant,
-            1.0,
-            upsampler,
-        )?),
+        Some(e) if e.object.kind == "area" => Some(area_radiance(&e.object, cx)?),
         Some(e) => {
             return Err(error(
                 &e.object.at,
@@ -276,6 +270,20 @@ fn shape(
     Ok(())
 }
 
+/// An `area` emitter's `radiance`. A nested texture is read as Mitsuba reads any texture:
+/// Mitsuba's textures do not know they emit, so a colour bitmap's texels upsample as
+/// reflectances (clamped to [0, 1], no D65: `upsample_spectral` in
+/// src/textures/bitmap.cpp) and that spectrum is the radiance.
+fn area_radiance(area: &Object, cx: &Context) -> Result<crate::textures::SceneSpectrum, LoadError> {
+    only(area, &["radiance"])?;
+    match area.child("radiance") {
+        Some(c) if c.object.class == Class::Texture => {
+            super::textures::spectrum(area, "radiance", Kind::Albedo, 1.0, cx)
+        }
+        _ => emission(area, "radiance", cx.upsampler),
+    }
+}
+
 /// Lists what shapes of plugin `kind` change about the render once ([`feature`]).
 fn note(features: &mut Vec<String>, kind: &str) {
     if let Some(f) = feature(kind)
@@ -288,28 +296,6 @@ fn note(features: &mut Vec<String>, kind: &str) {
 fn b_name(bsdf: Option<&Arc<Object>>, shape: &str) -> String {
     bsdf.and_then(|b| b.id.clone())
         .unwrap_or_else(|| format!("{shape} material"))
-}
-
-/// Adds a top-level emitter: `constant` as the environment.
-fn emitter(
-    emitter: &Object,
-    upsampler: &Upsampler,
-    out: &mut LoadedGeometry,
-) -> Result<(), LoadError> {
-    match emitter.kind.as_str() {
-        "constant" => {
-            if out.spectral.environment.is_some() {
-                return Err(error(&emitter.at, "a second environment emitter"));
-            }
-            let radiance = spectrum(emitter, "radiance", Kind::Illuminant, 1.0, upsampler)?;
-            out.spectral.environment = Some(Environment::Uniform(radiance));
-            Ok(())
-        }
-        other => Err(error(
-            &emitter.at,
-            format!("emitter '{other}' is not read yet (area and constant are)"),
-        )),
-    }
 }
 
 /// The integrator's `max_depth` as prism's bounces, warning where prism's path tracer

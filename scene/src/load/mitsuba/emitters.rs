@@ -1,0 +1,299 @@
+//! Mitsuba's emitters that stand on their own (not on a shape), as prism's lights: the
+//! plugins of Mitsuba 3's "Emitters" reference (src/emitters/*.cpp).
+//!
+//! - `constant` (`radiance`): the uniform environment.
+//! - `envmap` (`filename`, `scale`, `to_world`): an environment image read with Mitsuba's
+//!   direction mapping, texel grid and spectra ([`EnvironmentMap::mitsuba`]).
+//!   `mis_compensation` is a sampling choice: prism always compensates next-event
+//!   estimation's samples, which leaves the image's expectation as it is.
+//! - `point` (`intensity` in W sr^-1, `position` or `to_world`'s translation).
+//! - `directional` (`irradiance` in W m^-2 facing the light, travelling along
+//!   `direction` or `to_world`'s +z).
+//! - `spot` (`intensity` on the axis, `cutoff_angle` and `beam_width` in degrees, at
+//!   `to_world`'s translation along its +z), with Mitsuba's falloff, linear in angle
+//!   ([`SpotFalloff::LinearAngle`]).
+//!
+//! An emitter's colour is an illuminant, as `get_emissive_texture` makes it in spectral
+//! variants: RGB and plain numbers times D65 (a number v is the colour (v, v, v), and an
+//! absent one 1), spectra as given.
+
+use std::sync::Arc;
+
+use glam::{DMat4, DVec3, Mat3, Vec3};
+
+use super::bitmaps::decode;
+use super::parse::error;
+use super::shapes::{string, transform};
+use super::spectra::{Kind, spectrum};
+use super::textures::Context;
+use super::tree::{Object, Value};
+use crate::LoadError;
+use crate::lights::{Environment, EnvironmentMap, SpotFalloff};
+use crate::load::{LightDesc, LoadedGeometry, Upsampler};
+use crate::textures::SceneSpectrum;
+
+/// Adds a top-level emitter to `out`.
+pub(crate) fn emitter(
+    emitter: &Object,
+    cx: &Context,
+    out: &mut LoadedGeometry,
+) -> Result<(), LoadError> {
+    let upsampler = cx.upsampler;
+    match emitter.kind.as_str() {
+        "constant" => {
+            only(emitter, &["radiance"])?;
+            let radiance = emission(emitter, "radiance", upsampler)?;
+            set_environment(emitter, Environment::Uniform(radiance), out)
+        }
+        "envmap" => {
+            only(
+                emitter,
+                &["filename", "scale", "to_world", "mis_compensation"],
+            )?;
+            let map = envmap(emitter, cx)?;
+            set_environment(emitter, Environment::Map(Arc::new(map)), out)
+        }
+        "point" => {
+            only(emitter, &["intensity", "position", "to_world"])?;
+            let position = match emitter.property("position") {
+                Some(p) => {
+                    exclusive(emitter, "position")?;
+                    match p.value {
+                        Value::Point(v) | Value::Vector(v) => DVec3::from(v),
+                        _ => return Err(error(&p.at, "'position' must be a point")),
+                    }
+                }
+                None => transform(emitter, "to_world")?.w_axis.truncate(),
+            };
+            out.lights.push(LightDesc::Point {
+                position: finite_vec(emitter, position, "position")?,
+                spectrum: emission(emitter, "intensity", upsampler)?,
+                scale: 1.0,
+            });
+            Ok(())
+        }
+        "directional" => {
+            only(emitter, &["irradiance", "direction", "to_world"])?;
+            let direction = match emitter.property("direction") {
+                Some(p) => {
+                    exclusive(emitter, "direction")?;
+                    match p.value {
+                        Value::Point(v) | Value::Vector(v) => DVec3::from(v),
+                        _ => return Err(error(&p.at, "'direction' must be a vector")),
+                    }
+                }
+                None => axis(&transform(emitter, "to_world")?),
+            };
+            out.lights.push(LightDesc::Directional {
+                direction: unit(emitter, direction, "direction")?,
+                spectrum: emission(emitter, "irradiance", upsampler)?,
+                scale: 1.0,
+            });
+            Ok(())
+        }
+        "spot" => {
+            if let Some(c) = emitter.child("texture") {
+                return Err(error(
+                    &c.object.at,
+                    "spot: a projected 'texture' is not read yet",
+                ));
+            }
+            only(
+                emitter,
+                &["intensity", "cutoff_angle", "beam_width", "to_world"],
+            )?;
+            let to_world = transform(emitter, "to_world")?;
+            let cutoff = angle(emitter, "cutoff_angle")?.unwrap_or(20.0);
+            let beam = angle(emitter, "beam_width")?.unwrap_or(cutoff * 0.75);
+            if !(0.0 < beam && beam <= cutoff && cutoff <= 180.0) {
+                return Err(error(
+                    &emitter.at,
+                    format!(
+                        "spot: beam_width {beam} and cutoff_angle {cutoff} must satisfy \
+                         0 < beam_width <= cutoff_angle <= 180"
+                    ),
+                ));
+            }
+            out.lights.push(LightDesc::Spot {
+                position: finite_vec(emitter, to_world.w_axis.truncate(), "to_world")?,
+                direction: unit(emitter, axis(&to_world), "to_world's +z")?,
+                inner: beam.to_radians() as f32,
+                outer: cutoff.to_radians() as f32,
+                spectrum: emission(emitter, "intensity", upsampler)?,
+                scale: 1.0,
+                falloff: SpotFalloff::LinearAngle,
+            });
+            Ok(())
+        }
+        other => Err(error(
+            &emitter.at,
+            format!(
+                "emitter '{other}' is not read yet (area, constant, envmap, point, \
+                 directional and spot are)"
+            ),
+        )),
+    }
+}
+
+/// The emitted spectrum `name` of `emitter` as Mitsuba's spectral variants read it: a
+/// number v or its absence (1) is D65 times v, as the colour (v, v, v) is.
+pub(crate) fn emission(
+    emitter: &Object,
+    name: &str,
+    upsampler: &Upsampler,
+) -> Result<SceneSpectrum, LoadError> {
+    let grey = match emitter.property(name).map(|p| (&p.value, &p.at)) {
+        None if emitter.child(name).is_none() => Some(1.0),
+        Some((Value::Float(v), at)) if !v.is_finite() => {
+            return Err(error(at, format!("{name}: {v} is not a finite number")));
+        }
+        Some((Value::Float(v), _)) => Some(*v),
+        Some((Value::Integer(v), _)) => Some(*v as f64),
+        _ => None,
+    };
+    match grey {
+        Some(v) => {
+            let at = emitter.property(name).map_or(&emitter.at, |p| &p.at);
+            let fitted = upsampler
+                .emission([f64::from(v as f32); 3])
+                .map_err(|e| error(at, format!("{name}: {e}")))?;
+            Ok(SceneSpectrum::Rgb(Arc::new(fitted)))
+        }
+        None => spectrum(emitter, name, Kind::Illuminant, 1.0, upsampler),
+    }
+}
+
+/// Mitsuba's `envmap`: its image, scale and frame.
+fn envmap(emitter: &Object, cx: &Context) -> Result<EnvironmentMap, LoadError> {
+    let name = string(emitter, "filename")?;
+    let scale = match emitter.property("scale") {
+        None => 1.0,
+        Some(p) => match p.value {
+            Value::Float(v) if v.is_finite() && v >= 0.0 => v,
+            Value::Integer(v) if v >= 0 => v as f64,
+            _ => return Err(error(&p.at, "'scale' must be a number >= 0")),
+        },
+    };
+    match emitter
+        .property("mis_compensation")
+        .map(|p| (&p.value, &p.at))
+    {
+        None | Some((Value::Boolean(_), _)) => {}
+        Some((_, at)) => return Err(error(at, "'mis_compensation' must be a boolean")),
+    }
+    let to_world = transform(emitter, "to_world")?;
+    let frame = Mat3::from_cols(
+        to_world.x_axis.truncate().as_vec3(),
+        to_world.y_axis.truncate().as_vec3(),
+        to_world.z_axis.truncate().as_vec3(),
+    );
+    let bytes = cx.files.read(&name, &emitter.at)?;
+    // PNG and JPEG are sRGB-encoded: Mitsuba converts them to linear values first.
+    let image = decode(&bytes, false).map_err(|e| error(&emitter.at, format!("{name}: {e}")))?;
+    let texels: Vec<[f32; 3]> = match image.channels {
+        1 => image.data.iter().map(|&v| [v; 3]).collect(),
+        _ => image
+            .data
+            .chunks_exact(image.channels)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+    };
+    let table = cx
+        .upsampler
+        .table()
+        .map_err(|e| error(&emitter.at, format!("{name}: {e}")))?;
+    EnvironmentMap::mitsuba(
+        image.width,
+        image.height,
+        texels,
+        frame,
+        scale,
+        (
+            table,
+            cx.upsampler.context.clone(),
+            cx.upsampler.illuminant.clone(),
+        ),
+    )
+    .map_err(|e| error(&emitter.at, format!("{name}: {e}")))
+}
+
+fn set_environment(
+    emitter: &Object,
+    environment: Environment,
+    out: &mut LoadedGeometry,
+) -> Result<(), LoadError> {
+    if out.spectral.environment.is_some() {
+        return Err(error(&emitter.at, "a second environment emitter"));
+    }
+    out.spectral.environment = Some(environment);
+    Ok(())
+}
+
+/// Mitsuba refuses `name` beside `to_world`.
+fn exclusive(emitter: &Object, name: &str) -> Result<(), LoadError> {
+    match emitter.property("to_world") {
+        Some(p) => Err(error(
+            &p.at,
+            format!("only one of '{name}' and 'to_world' can be given"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The direction `to_world` turns +z into.
+fn axis(to_world: &DMat4) -> DVec3 {
+    to_world.transform_vector3(DVec3::Z)
+}
+
+fn finite_vec(emitter: &Object, v: DVec3, name: &str) -> Result<Vec3, LoadError> {
+    let v = v.as_vec3();
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(error(&emitter.at, format!("{name} is not finite")))
+    }
+}
+
+fn unit(emitter: &Object, v: DVec3, name: &str) -> Result<Vec3, LoadError> {
+    match v.try_normalize() {
+        Some(u) => Ok(u.as_vec3()),
+        None => Err(error(
+            &emitter.at,
+            format!("{name} is not a direction (zero or not finite)"),
+        )),
+    }
+}
+
+/// An angle in degrees.
+fn angle(emitter: &Object, name: &str) -> Result<Option<f64>, LoadError> {
+    super::sensors::number(emitter, name)
+}
+
+/// An error for a property or nested object of `emitter` outside `known`.
+pub(crate) fn only(emitter: &Object, known: &[&str]) -> Result<(), LoadError> {
+    for p in &emitter.properties {
+        if !known.contains(&p.name.as_str()) {
+            return Err(error(
+                &p.at,
+                format!(
+                    "emitter {}: parameter '{}' is not read",
+                    emitter.kind, p.name
+                ),
+            ));
+        }
+    }
+    for c in &emitter.children {
+        if !c.name.as_deref().is_some_and(|n| known.contains(&n)) {
+            return Err(error(
+                &c.object.at,
+                format!(
+                    "emitter {}: nested {} '{}' is not read",
+                    emitter.kind,
+                    c.object.class.tag(),
+                    c.object.kind
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
