@@ -4,9 +4,10 @@
 use glam::{Vec2, Vec3};
 use prism_spectrum::SampledSpectrum;
 
+use super::microfacet::Microfacet;
 use super::{
-    BsdfSample, Diffuse, Layered, MetallicRoughness, Plastic, RoughConductor, RoughDielectric,
-    Sheet, Transmissive,
+    BsdfSample, Diffuse, Distribution, Layered, MetallicRoughness, Plastic, RoughConductor,
+    RoughDielectric, Sheet, ThinDielectric, Transmissive,
 };
 
 /// A BSDF at one hit, in the local frame whose z is the surface normal.
@@ -31,6 +32,15 @@ pub enum Bsdf<'a, const N: usize> {
     Sheet(Sheet<N>),
     /// Another BSDF about a tilted normal (Mitsuba's normal and bump maps).
     Perturbed(Box<super::perturbed::Perturbed<'a, N>>),
+    /// Smooth or rough dielectric with a distribution chosen at load time (Mitsuba's
+    /// Beckmann, or anisotropic roughness).
+    MicrofacetDielectric(RoughDielectric<N, Distribution>),
+    /// Smooth or rough conductor with a distribution chosen at load time.
+    MicrofacetConductor(RoughConductor<N, Distribution>),
+    /// A thin dielectric sheet (Mitsuba's `thindielectric`).
+    ThinDielectric(ThinDielectric<N>),
+    /// Mitsuba's rough plastic.
+    RoughPlastic(super::RoughPlastic<'a, N>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -57,6 +67,10 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Plastic(b) => b.f(wo, wi),
             Bsdf::Sheet(_) => SampledSpectrum::splat(0.0),
             Bsdf::Perturbed(b) => b.f(wo, wi),
+            Bsdf::MicrofacetDielectric(b) => b.f(wo, wi),
+            Bsdf::MicrofacetConductor(b) => b.f(wo, wi),
+            Bsdf::ThinDielectric(b) => b.f(wo, wi),
+            Bsdf::RoughPlastic(b) => b.f(wo, wi),
         }
     }
 
@@ -81,6 +95,10 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Plastic(b) => b.pdf(wo, wi),
             Bsdf::Sheet(_) => 0.0,
             Bsdf::Perturbed(b) => b.pdf(wo, wi),
+            Bsdf::MicrofacetDielectric(b) => b.pdf(wo, wi),
+            Bsdf::MicrofacetConductor(b) => b.pdf(wo, wi),
+            Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
+            Bsdf::RoughPlastic(b) => b.pdf(wo, wi),
         }
     }
 
@@ -97,6 +115,10 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Plastic(b) => b.sample(wo, uc, u),
             Bsdf::Sheet(b) => b.sample(wo),
             Bsdf::Perturbed(b) => b.sample(wo, uc, u),
+            Bsdf::MicrofacetDielectric(b) => b.sample(wo, uc, u),
+            Bsdf::MicrofacetConductor(b) => b.sample(wo, u),
+            Bsdf::ThinDielectric(b) => b.sample(wo, uc, u),
+            Bsdf::RoughPlastic(b) => b.sample(wo, uc, u),
         }
     }
 
@@ -110,6 +132,9 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.is_narrow(alpha),
             Bsdf::Sheet(_) => true,
             Bsdf::Perturbed(b) => b.inner.is_narrow(alpha),
+            Bsdf::MicrofacetDielectric(b) => b.distribution.max_alpha() <= alpha,
+            Bsdf::MicrofacetConductor(b) => b.distribution.max_alpha() <= alpha,
+            Bsdf::ThinDielectric(b) => b.distribution.effectively_smooth(),
             _ => false,
         }
     }
@@ -122,6 +147,9 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.is_delta(),
             Bsdf::Sheet(_) => true,
             Bsdf::Perturbed(b) => b.inner.is_delta(),
+            Bsdf::MicrofacetDielectric(b) => b.distribution.effectively_smooth(),
+            Bsdf::MicrofacetConductor(b) => b.distribution.effectively_smooth(),
+            Bsdf::ThinDielectric(b) => b.distribution.effectively_smooth(),
             _ => false,
         }
     }

@@ -8,8 +8,9 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::{Layers, SurfaceFrame};
 use crate::bsdf::{
-    Bsdf, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, Plastic, PlasticCoating, RoughConductor,
-    RoughDielectric, Sheet, SheetElement, TransportMode,
+    Bsdf, CoatingAlbedo, Diffuse, Distribution, Ggx, MetallicRoughness, Microfacet, Plastic,
+    PlasticCoating, RoughConductor, RoughDielectric, Sheet, SheetElement, ThinDielectric,
+    TransportMode,
 };
 use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
@@ -62,6 +63,44 @@ pub enum Material {
         k: SceneSpectrum,
         /// Perceptual roughness; alpha = roughness^2.
         roughness: f32,
+    },
+    /// A dielectric interface with a microfacet distribution chosen by the scene
+    /// (Mitsuba's `roughdielectric` with its default Beckmann distribution, or with
+    /// anisotropic roughness); isotropic GGX is [`Material::Dielectric`]. The index is
+    /// inside over outside.
+    MicrofacetDielectric {
+        /// Index of refraction of the inside.
+        ior: SceneSpectrum,
+        /// The distribution, alpha_x along the surface's tangent (dp/du).
+        distribution: Distribution,
+    },
+    /// A conductor with a microfacet distribution chosen by the scene (Mitsuba's
+    /// `roughconductor` with Beckmann or anisotropic roughness).
+    MicrofacetConductor {
+        /// Real part of the index.
+        eta: SceneSpectrum,
+        /// Extinction coefficient.
+        k: SceneSpectrum,
+        /// The distribution, alpha_x along the surface's tangent (dp/du).
+        distribution: Distribution,
+    },
+    /// A thin dielectric sheet, smooth: light reflects with the slab's summed reflectance
+    /// or passes straight through (Mitsuba's `thindielectric`, [`crate::bsdf::ThinDielectric`]).
+    ThinDielectric {
+        /// Index of the sheet over the outside.
+        ior: SceneSpectrum,
+    },
+    /// Mitsuba's `roughplastic` as Mitsuba models it ([`crate::bsdf::RoughPlastic`]): a
+    /// Lambertian substrate under a rough coating that loses the light single scattering
+    /// loses.
+    RoughPlastic {
+        /// The substrate's reflectance in [0, 1].
+        reflectance: SceneSpectrum,
+        /// Whether the substrate's inner bounces darken its colour (Mitsuba's
+        /// `nonlinear`).
+        nonlinear: bool,
+        /// The coating: its distribution, index and tables.
+        coating: Arc<crate::bsdf::RoughPlasticCoating>,
     },
     /// A Lambertian substrate under a smooth or rough dielectric coating, as Mitsuba's
     /// `plastic` and `roughplastic` ([`Plastic`]).
@@ -133,6 +172,8 @@ impl Material {
         matches!(
             self,
             Material::Dielectric { .. }
+                | Material::MicrofacetDielectric { .. }
+                | Material::ThinDielectric { .. }
                 | Material::Polarizer { .. }
                 | Material::Retarder { .. }
                 | Material::Interface
@@ -145,7 +186,9 @@ impl Material {
     pub fn dispersive(&self) -> bool {
         let varies = |ior: &SceneSpectrum| !matches!(ior, SceneSpectrum::Constant(_));
         match self {
-            Material::Dielectric { ior, .. } => varies(ior),
+            Material::Dielectric { ior, .. } | Material::MicrofacetDielectric { ior, .. } => {
+                varies(ior)
+            }
             _ => self
                 .transmission()
                 .is_some_and(|t| !t.thin && varies(&t.ior)),
@@ -170,7 +213,13 @@ impl Material {
             Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
                 Ggx::new(roughness * roughness, roughness * roughness).effectively_smooth()
             }
-            Material::Polarizer { .. } | Material::Retarder { .. } => true,
+            Material::MicrofacetDielectric { distribution, .. }
+            | Material::MicrofacetConductor { distribution, .. } => {
+                distribution.effectively_smooth()
+            }
+            Material::Polarizer { .. }
+            | Material::Retarder { .. }
+            | Material::ThinDielectric { .. } => true,
             Material::MetallicRoughness {
                 roughness, texture, ..
             } if self.transmission().is_some() => {
@@ -188,6 +237,10 @@ impl Material {
         match self {
             Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
                 below(*roughness)
+            }
+            Material::MicrofacetDielectric { distribution, .. }
+            | Material::MicrofacetConductor { distribution, .. } => {
+                distribution.max_alpha() <= alpha
             }
             Material::MetallicRoughness {
                 roughness, texture, ..
@@ -213,7 +266,8 @@ impl Material {
         match self {
             Material::Diffuse { reflectance }
             | Material::Fluorescent { reflectance, .. }
-            | Material::Plastic { reflectance, .. } => textured(reflectance),
+            | Material::Plastic { reflectance, .. }
+            | Material::RoughPlastic { reflectance, .. } => textured(reflectance),
             Material::MetallicRoughness {
                 base,
                 texture,
@@ -257,7 +311,9 @@ impl Material {
     /// dielectric, glTF glass that is not thin-walled, or a diffusely transmitting skin).
     pub fn can_hold_medium(&self) -> bool {
         match self {
-            Material::Interface | Material::Dielectric { .. } => true,
+            Material::Interface
+            | Material::Dielectric { .. }
+            | Material::MicrofacetDielectric { .. } => true,
             _ => {
                 self.transmission().is_some_and(|t| !t.thin)
                     || self.diffuse_transmission().is_some()
@@ -342,6 +398,15 @@ impl Material {
                 nonlinear,
                 coating,
             } => Bsdf::Plastic(Plastic::new(base(reflectance), coating, *nonlinear)),
+            Material::RoughPlastic {
+                reflectance,
+                nonlinear,
+                coating,
+            } => Bsdf::RoughPlastic(crate::bsdf::RoughPlastic::new(
+                base(reflectance),
+                coating,
+                *nonlinear,
+            )),
             Material::MetallicRoughness {
                 base: base_colour,
                 metallic,
@@ -395,6 +460,26 @@ impl Material {
                     k: k.at(wavelengths),
                 })
             }
+            Material::MicrofacetDielectric { ior, distribution } => {
+                Bsdf::MicrofacetDielectric(RoughDielectric {
+                    distribution: *distribution,
+                    eta: ior.at(wavelengths).0.map(|e| e.max(1e-3)),
+                    mode,
+                })
+            }
+            Material::MicrofacetConductor {
+                eta,
+                k,
+                distribution,
+            } => Bsdf::MicrofacetConductor(RoughConductor {
+                distribution: *distribution,
+                eta: eta.at(wavelengths),
+                k: k.at(wavelengths),
+            }),
+            Material::ThinDielectric { ior } => Bsdf::ThinDielectric(ThinDielectric {
+                distribution: Ggx::new(0.0, 0.0),
+                eta: ior.at(wavelengths).0,
+            }),
             Material::Fluorescent { reflectance, .. } => {
                 Bsdf::Diffuse(Diffuse::new(base(reflectance)))
             }
