@@ -720,6 +720,65 @@ mod rough_plastic {
     }
 }
 
+/// Mitsuba's blend of two BSDFs: sampling against the mixed density, and its white
+/// furnace is the weighted sum of the two's.
+mod blend {
+    use super::albedo::{albedo, split};
+    use super::{chi_square_directions, outgoing_directions};
+    use glam::Vec3;
+    use prism_scene::bsdf::{Blend, Bsdf, Diffuse, Ggx, RoughConductor};
+    use prism_spectrum::SampledSpectrum;
+
+    fn blend(weight: f32, alpha: f32) -> Blend<'static, 4> {
+        Blend {
+            first: Bsdf::Diffuse(Diffuse::new(SampledSpectrum::splat(1.0))),
+            second: Bsdf::Conductor(RoughConductor {
+                distribution: Ggx::new(alpha, alpha),
+                eta: SampledSpectrum::splat(0.0),
+                k: SampledSpectrum::splat(1e4),
+            }),
+            weight,
+        }
+    }
+
+    #[test]
+    fn sampling_matches_its_density() {
+        let bsdf = blend(0.3, 0.4);
+        for (k, wo) in outgoing_directions().into_iter().enumerate() {
+            chi_square_directions(
+                &format!("blend wo {k}"),
+                |u| {
+                    let (uc, u) = split(u);
+                    bsdf.sample(wo, uc, u).map(|s| s.wi)
+                },
+                |wi| f64::from(bsdf.pdf(wo, wi)),
+            );
+        }
+    }
+
+    #[test]
+    fn energy_is_the_weighted_sum() {
+        let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+        let mirror = blend(1.0, 1e-5);
+        let smooth = albedo(|wo, uc, u| mirror.sample(wo, uc, u), wo)[0];
+        assert!((smooth - 1.0).abs() < 1e-3, "{smooth}");
+        // A white diffuse surface and a near-mirror, blended: 1 either way, and a delta
+        // lobe keeps its share.
+        for weight in [0.0f32, 0.25, 0.7] {
+            let bsdf = blend(weight, 1e-5);
+            let a = albedo(|wo, uc, u| bsdf.sample(wo, uc, u), wo)[0];
+            assert!((a - 1.0).abs() < 5e-3, "weight {weight}: {a}");
+        }
+        let rough = blend(0.5, 0.6);
+        let conductor = blend(1.0, 0.6);
+        let (a, c) = (
+            albedo(|wo, uc, u| rough.sample(wo, uc, u), wo)[0],
+            albedo(|wo, uc, u| conductor.sample(wo, uc, u), wo)[0],
+        );
+        assert!((a - (0.5 + 0.5 * c)).abs() < 5e-3, "{a} vs {c}");
+    }
+}
+
 mod metallic_roughness {
     use super::chi_square_directions;
     use glam::{Vec2, Vec3};

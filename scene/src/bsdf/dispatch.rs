@@ -41,6 +41,8 @@ pub enum Bsdf<'a, const N: usize> {
     ThinDielectric(ThinDielectric<N>),
     /// Mitsuba's rough plastic.
     RoughPlastic(super::RoughPlastic<'a, N>),
+    /// A weighted mix of two BSDFs (Mitsuba's `blendbsdf`).
+    Blend(Box<super::Blend<'a, N>>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -71,6 +73,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::MicrofacetConductor(b) => b.f(wo, wi),
             Bsdf::ThinDielectric(b) => b.f(wo, wi),
             Bsdf::RoughPlastic(b) => b.f(wo, wi),
+            Bsdf::Blend(b) => b.f(wo, wi),
         }
     }
 
@@ -99,6 +102,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::MicrofacetConductor(b) => b.pdf(wo, wi),
             Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
             Bsdf::RoughPlastic(b) => b.pdf(wo, wi),
+            Bsdf::Blend(b) => b.pdf(wo, wi),
         }
     }
 
@@ -119,6 +123,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::MicrofacetConductor(b) => b.sample(wo, u),
             Bsdf::ThinDielectric(b) => b.sample(wo, uc, u),
             Bsdf::RoughPlastic(b) => b.sample(wo, uc, u),
+            Bsdf::Blend(b) => b.sample(wo, uc, u),
         }
     }
 
@@ -132,6 +137,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.is_narrow(alpha),
             Bsdf::Sheet(_) => true,
             Bsdf::Perturbed(b) => b.inner.is_narrow(alpha),
+            Bsdf::Blend(b) => b.is_narrow(alpha),
             Bsdf::MicrofacetDielectric(b) => b.distribution.max_alpha() <= alpha,
             Bsdf::MicrofacetConductor(b) => b.distribution.max_alpha() <= alpha,
             Bsdf::ThinDielectric(b) => b.distribution.effectively_smooth(),
@@ -147,6 +153,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.is_delta(),
             Bsdf::Sheet(_) => true,
             Bsdf::Perturbed(b) => b.inner.is_delta(),
+            Bsdf::Blend(b) => b.is_delta(),
             Bsdf::MicrofacetDielectric(b) => b.distribution.effectively_smooth(),
             Bsdf::MicrofacetConductor(b) => b.distribution.effectively_smooth(),
             Bsdf::ThinDielectric(b) => b.distribution.effectively_smooth(),

@@ -6,6 +6,7 @@
 //! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
 
 mod beckmann;
+mod blend;
 mod clearcoat;
 mod coating_albedo;
 mod conductor;
@@ -31,6 +32,7 @@ mod thin_film;
 mod transmissive;
 
 pub use beckmann::{Beckmann, Distribution};
+pub use blend::Blend;
 pub use clearcoat::{CLEARCOAT_IOR, Clearcoat, clearcoat_albedo};
 pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor, fresnel_conductor_lanes};

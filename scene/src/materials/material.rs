@@ -102,6 +102,16 @@ pub enum Material {
         /// The coating: its distribution, index and tables.
         coating: Arc<crate::bsdf::RoughPlasticCoating>,
     },
+    /// A weighted mix of two materials' BSDFs (Mitsuba's `blendbsdf`,
+    /// [`crate::bsdf::Blend`]): f = (1 - w) f_first + w f_second.
+    Blend {
+        /// The second's weight in [0, 1], a number or a texture.
+        weight: Arc<crate::textures::FloatTexture>,
+        /// The material weighed by 1 - w.
+        first: Box<Material>,
+        /// The material weighed by w.
+        second: Box<Material>,
+    },
     /// A Lambertian substrate under a smooth or rough dielectric coating, as Mitsuba's
     /// `plastic` and `roughplastic` ([`Plastic`]).
     Plastic {
@@ -178,6 +188,7 @@ impl Material {
                 | Material::Retarder { .. }
                 | Material::Interface
         ) || self.transmission().is_some()
+            || self.either(Material::transmissive)
             || self.diffuse_transmission().is_some()
     }
 
@@ -189,6 +200,7 @@ impl Material {
             Material::Dielectric { ior, .. } | Material::MicrofacetDielectric { ior, .. } => {
                 varies(ior)
             }
+            Material::Blend { .. } => self.either(Material::dispersive),
             _ => self
                 .transmission()
                 .is_some_and(|t| !t.thin && varies(&t.ior)),
@@ -199,6 +211,9 @@ impl Material {
     pub fn absorption(&self) -> Option<&SceneSpectrum> {
         match self {
             Material::Dielectric { absorption, .. } => absorption.as_ref(),
+            Material::Blend { first, second, .. } => {
+                first.absorption().or_else(|| second.absorption())
+            }
             _ => self
                 .transmission()
                 .and_then(|t| t.absorption.as_ref())
@@ -220,6 +235,7 @@ impl Material {
             Material::Polarizer { .. }
             | Material::Retarder { .. }
             | Material::ThinDielectric { .. } => true,
+            Material::Blend { .. } => self.either(Material::specular),
             Material::MetallicRoughness {
                 roughness, texture, ..
             } if self.transmission().is_some() => {
@@ -242,6 +258,7 @@ impl Material {
             | Material::MicrofacetConductor { distribution, .. } => {
                 distribution.max_alpha() <= alpha
             }
+            Material::Blend { first, second, .. } => first.narrow(alpha) && second.narrow(alpha),
             Material::MetallicRoughness {
                 roughness, texture, ..
             } if self.transmission().is_some() => texture.is_some() || below(*roughness),
@@ -255,6 +272,7 @@ impl Material {
     pub fn focuses(&self, alpha: f32) -> bool {
         match self {
             Material::Plastic { coating, .. } => coating.distribution().effectively_smooth(),
+            Material::Blend { first, second, .. } => first.focuses(alpha) || second.focuses(alpha),
             _ => self.narrow(alpha),
         }
     }
@@ -280,6 +298,9 @@ impl Material {
                     || iridescence.as_ref().is_some_and(|i| i.textured())
                     || layers.as_ref().is_some_and(|l| l.textured())
             }
+            Material::Blend { weight, .. } => {
+                weight.constant().is_none() || self.either(Material::textured)
+            }
             _ => false,
         }
     }
@@ -292,6 +313,15 @@ impl Material {
                 layers: Some(l), ..
             } => l.oriented(),
             Material::Polarizer { .. } | Material::Retarder { .. } => true,
+            Material::Blend { .. } => self.either(Material::oriented),
+            _ => false,
+        }
+    }
+
+    /// Whether either material of a blend has `property` (false for other materials).
+    fn either(&self, property: impl Fn(&Material) -> bool) -> bool {
+        match self {
+            Material::Blend { first, second, .. } => property(first) || property(second),
             _ => false,
         }
     }
@@ -314,6 +344,7 @@ impl Material {
             Material::Interface
             | Material::Dielectric { .. }
             | Material::MicrofacetDielectric { .. } => true,
+            Material::Blend { .. } => self.either(Material::can_hold_medium),
             _ => {
                 self.transmission().is_some_and(|t| !t.thin)
                     || self.diffuse_transmission().is_some()
@@ -482,6 +513,18 @@ impl Material {
             }),
             Material::Fluorescent { reflectance, .. } => {
                 Bsdf::Diffuse(Diffuse::new(base(reflectance)))
+            }
+            Material::Blend {
+                weight,
+                first,
+                second,
+            } => {
+                let w = weight.value(at.uv[0]);
+                Bsdf::Blend(Box::new(crate::bsdf::Blend {
+                    first: first.bsdf_oriented(at, wavelengths, mode, tint, frame),
+                    second: second.bsdf_oriented(at, wavelengths, mode, tint, frame),
+                    weight: if w.is_nan() { 0.0 } else { w.clamp(0.0, 1.0) },
+                }))
             }
             Material::Polarizer {
                 axis,

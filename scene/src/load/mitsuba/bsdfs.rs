@@ -1,6 +1,7 @@
 //! Mitsuba's BSDFs as prism's materials (Mitsuba's "BSDFs" plugin reference): `diffuse`,
 //! `dielectric`, `roughdielectric` and `thindielectric`, `conductor` and `roughconductor`,
-//! `plastic` and `roughplastic`, and `twosided` around any of them. Spectral values enter
+//! `plastic` and `roughplastic`, `blendbsdf` of two of them, and `twosided` around any
+//! of them. Spectral values enter
 //! as spectra; RGB is upsampled as the scene's other colours are
 //! (`crate::load::Upsampling`).
 //!
@@ -88,6 +89,30 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
                 )),
                 (None, _) => Err(error(&bsdf.at, "twosided needs a nested BSDF")),
             }
+        }
+        // Mitsuba's mix of its two nested BSDFs, the second weighed by `weight`.
+        "blendbsdf" => {
+            for p in &bsdf.properties {
+                if p.name != "weight" {
+                    return Err(error(
+                        &p.at,
+                        format!("blendbsdf: parameter '{}' is not read", p.name),
+                    ));
+                }
+            }
+            if bsdf.property("weight").is_none() && bsdf.child("weight").is_none() {
+                return Err(error(&bsdf.at, "blendbsdf needs a weight"));
+            }
+            let weight = textures::float(bsdf, "weight", 0.5, cx)?;
+            let nested: Vec<&Object> = bsdf.children_of(Class::Bsdf).map(|c| &*c.object).collect();
+            let [first, second] = nested.as_slice() else {
+                return Err(error(&bsdf.at, "blendbsdf takes two nested BSDFs"));
+            };
+            Ok(Material::Blend {
+                weight: Arc::new(weight),
+                first: Box::new(material(first, cx)?),
+                second: Box::new(material(second, cx)?),
+            })
         }
         "dielectric" | "roughdielectric" => {
             let rough = bsdf.kind == "roughdielectric";
@@ -262,8 +287,8 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
             &bsdf.at,
             format!(
                 "bsdf '{other}' is not read yet (diffuse, dielectric, roughdielectric, \
-                 thindielectric, conductor, roughconductor, plastic, roughplastic and \
-                 twosided are)"
+                 thindielectric, conductor, roughconductor, plastic, roughplastic, \
+                 blendbsdf and twosided are)"
             ),
         )),
     }
@@ -521,7 +546,10 @@ pub(crate) fn rough(bsdf: &Object) -> Result<Rough, LoadError> {
     })
 }
 
-/// An error for anisotropic roughness, which prism cannot orient along Mitsuba's dp/du yet.
+/// An error for anisotropic roughness: Mitsuba orients alpha_u along its shading frame's
+/// tangent, which on meshes is its per-vertex tangents interpolated across the triangle
+/// (`mesh.cpp`, `finalize_surface_interaction`) and on spheres dp/du; prism's frame at a
+/// Mitsuba shape has neither, so the lobe would turn with an arbitrary basis.
 fn isotropic(bsdf: &Object, rough: &Rough) -> Result<(), LoadError> {
     if rough.alpha_u == rough.alpha_v {
         Ok(())
@@ -529,7 +557,8 @@ fn isotropic(bsdf: &Object, rough: &Rough) -> Result<(), LoadError> {
         Err(error(
             &bsdf.at,
             format!(
-                "{} with alpha_u != alpha_v (anisotropic) is not read yet",
+                "{} with alpha_u != alpha_v (anisotropic) is not read yet (prism's shading \
+                 frame does not follow Mitsuba's surface tangents)",
                 bsdf.kind
             ),
         ))
@@ -742,6 +771,30 @@ mod tests {
         let e = read(r#"<bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf>"#)
             .unwrap_err();
         assert!(e.contains("anisotropic"), "{e}");
+    }
+
+    #[test]
+    fn blendbsdf_mixes_two_by_a_weight() {
+        let xml = r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#;
+        match read(xml).unwrap() {
+            Material::Blend {
+                weight,
+                first,
+                second,
+            } => {
+                assert_eq!(weight.constant(), Some(0.3));
+                assert!(matches!(*first, Material::Diffuse { .. }));
+                assert!(matches!(*second, Material::Conductor { .. }));
+            }
+            other => panic!("{other:?}"),
+        }
+        let e = read(r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/></bsdf>"#)
+            .unwrap_err();
+        assert!(e.contains("two nested BSDFs"), "{e}");
+        let e =
+            read(r#"<bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>"#)
+                .unwrap_err();
+        assert!(e.contains("needs a weight"), "{e}");
     }
 
     #[test]
