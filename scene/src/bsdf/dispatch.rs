@@ -4,9 +4,10 @@
 use glam::{Vec2, Vec3};
 use prism_spectrum::SampledSpectrum;
 
+use super::microfacet::Microfacet;
 use super::{
-    BsdfSample, Diffuse, Layered, MetallicRoughness, Plastic, RoughConductor, RoughDielectric,
-    Sheet, Transmissive,
+    BsdfSample, Diffuse, Distribution, Layered, MetallicRoughness, Plastic, RoughConductor,
+    RoughDielectric, Sheet, ThinDielectric, Transmissive,
 };
 
 /// A BSDF at one hit, in the local frame whose z is the surface normal.
@@ -35,6 +36,17 @@ pub enum Bsdf<'a, const N: usize> {
     Principled(Box<super::Principled<N>>),
     /// Mitsuba's `principledthin`.
     PrincipledThin(Box<super::PrincipledThin<N>>),
+    /// Smooth or rough dielectric with a distribution chosen at load time (Mitsuba's
+    /// Beckmann, or anisotropic roughness).
+    MicrofacetDielectric(RoughDielectric<N, Distribution>),
+    /// Smooth or rough conductor with a distribution chosen at load time.
+    MicrofacetConductor(RoughConductor<N, Distribution>),
+    /// A thin dielectric sheet (Mitsuba's `thindielectric`).
+    ThinDielectric(ThinDielectric<N>),
+    /// Mitsuba's rough plastic.
+    RoughPlastic(super::RoughPlastic<'a, N>),
+    /// A weighted mix of two BSDFs (Mitsuba's `blendbsdf`).
+    Blend(Box<super::Blend<'a, N>>),
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -63,6 +75,11 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Perturbed(b) => b.f(wo, wi),
             Bsdf::Principled(b) => b.f(wo, wi),
             Bsdf::PrincipledThin(b) => b.f(wo, wi),
+            Bsdf::MicrofacetDielectric(b) => b.f(wo, wi),
+            Bsdf::MicrofacetConductor(b) => b.f(wo, wi),
+            Bsdf::ThinDielectric(b) => b.f(wo, wi),
+            Bsdf::RoughPlastic(b) => b.f(wo, wi),
+            Bsdf::Blend(b) => b.f(wo, wi),
         }
     }
 
@@ -89,6 +106,11 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Perturbed(b) => b.pdf(wo, wi),
             Bsdf::Principled(b) => b.pdf(wo, wi),
             Bsdf::PrincipledThin(b) => b.pdf(wo, wi),
+            Bsdf::MicrofacetDielectric(b) => b.pdf(wo, wi),
+            Bsdf::MicrofacetConductor(b) => b.pdf(wo, wi),
+            Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
+            Bsdf::RoughPlastic(b) => b.pdf(wo, wi),
+            Bsdf::Blend(b) => b.pdf(wo, wi),
         }
     }
 
@@ -107,6 +129,11 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Perturbed(b) => b.sample(wo, uc, u),
             Bsdf::Principled(b) => b.sample(wo, uc, u),
             Bsdf::PrincipledThin(b) => b.sample(wo, uc, u),
+            Bsdf::MicrofacetDielectric(b) => b.sample(wo, uc, u),
+            Bsdf::MicrofacetConductor(b) => b.sample(wo, u),
+            Bsdf::ThinDielectric(b) => b.sample(wo, uc, u),
+            Bsdf::RoughPlastic(b) => b.sample(wo, uc, u),
+            Bsdf::Blend(b) => b.sample(wo, uc, u),
         }
     }
 
@@ -120,6 +147,10 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.is_narrow(alpha),
             Bsdf::Sheet(_) => true,
             Bsdf::Perturbed(b) => b.inner.is_narrow(alpha),
+            Bsdf::Blend(b) => b.is_narrow(alpha),
+            Bsdf::MicrofacetDielectric(b) => b.distribution.max_alpha() <= alpha,
+            Bsdf::MicrofacetConductor(b) => b.distribution.max_alpha() <= alpha,
+            Bsdf::ThinDielectric(b) => b.distribution.effectively_smooth(),
             _ => false,
         }
     }
@@ -132,6 +163,10 @@ impl<const N: usize> Bsdf<'_, N> {
             Bsdf::Transmissive(b) => b.is_delta(),
             Bsdf::Sheet(_) => true,
             Bsdf::Perturbed(b) => b.inner.is_delta(),
+            Bsdf::Blend(b) => b.is_delta(),
+            Bsdf::MicrofacetDielectric(b) => b.distribution.effectively_smooth(),
+            Bsdf::MicrofacetConductor(b) => b.distribution.effectively_smooth(),
+            Bsdf::ThinDielectric(b) => b.distribution.effectively_smooth(),
             _ => false,
         }
     }

@@ -1,7 +1,9 @@
 //! The anisotropic GGX (Trowbridge-Reitz) microfacet distribution with visible-normal
 //! sampling: E. Heitz, "Sampling the GGX distribution of visible normals", JCGT 7(4),
 //! 2018; masking-shadowing after Heitz, "Understanding the masking-shadowing function",
-//! JCGT 3(2), 2014 (height-correlated form).
+//! JCGT 3(2), 2014 (height-correlated form). [`Microfacet`] is what the rough BSDFs ask
+//! of a distribution, so that they take Mitsuba's Beckmann distribution
+//! ([`super::beckmann::Beckmann`]) as well, each compiled for the one it holds.
 
 use std::f32::consts::PI;
 
@@ -102,5 +104,49 @@ impl Ggx {
         let nh = p.x * t1 + p.y * t2 + pz * wh;
         let wm = Vec3::new(self.alpha_x * nh.x, self.alpha_y * nh.y, nh.z.max(1e-6)).normalize();
         if flip { -wm } else { wm }
+    }
+}
+
+/// What a microfacet BSDF asks of its distribution of normals (local frame, z the
+/// macro-surface normal).
+pub trait Microfacet: Copy + std::fmt::Debug + PartialEq {
+    /// D(wm): the density of microfacet normals (projected area per solid angle).
+    fn d(&self, wm: Vec3) -> f32;
+    /// The masking-shadowing term G(wo, wi) of the BSDF's value.
+    fn g(&self, wo: Vec3, wi: Vec3) -> f32;
+    /// The density of [`Microfacet::sample_visible_normal`] returning `wm` from `w`.
+    fn d_visible(&self, w: Vec3, wm: Vec3) -> f32;
+    /// A normal visible from `w`, in `w`'s hemisphere.
+    fn sample_visible_normal(&self, w: Vec3, u: Vec2) -> Vec3;
+    /// Whether the surface is effectively smooth (a delta lobe).
+    fn effectively_smooth(&self) -> bool;
+    /// The larger of the two roughnesses.
+    fn max_alpha(&self) -> f32;
+}
+
+impl Microfacet for Ggx {
+    #[inline(always)]
+    fn d(&self, wm: Vec3) -> f32 {
+        Ggx::d(self, wm)
+    }
+    #[inline(always)]
+    fn g(&self, wo: Vec3, wi: Vec3) -> f32 {
+        Ggx::g(self, wo, wi)
+    }
+    #[inline(always)]
+    fn d_visible(&self, w: Vec3, wm: Vec3) -> f32 {
+        Ggx::d_visible(self, w, wm)
+    }
+    #[inline(always)]
+    fn sample_visible_normal(&self, w: Vec3, u: Vec2) -> Vec3 {
+        Ggx::sample_visible_normal(self, w, u)
+    }
+    #[inline(always)]
+    fn effectively_smooth(&self) -> bool {
+        Ggx::effectively_smooth(self)
+    }
+    #[inline(always)]
+    fn max_alpha(&self) -> f32 {
+        self.alpha_x.max(self.alpha_y)
     }
 }

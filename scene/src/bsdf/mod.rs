@@ -5,13 +5,17 @@
 //! wavelengths (a `SampledSpectrum<N>`), as in *PBR* 4th ed. §9.1: the integrator never
 //! sees RGB or dynamic spectra in its inner loop. Directions point away from the surface.
 
+mod beckmann;
+mod blend;
 mod clearcoat;
 mod coating_albedo;
 mod conductor;
 mod dielectric;
 mod diffuse;
 mod dispatch;
+mod erf;
 mod fluorescent;
+mod gauss_legendre;
 mod layered;
 mod metallic_roughness;
 mod microfacet;
@@ -22,6 +26,7 @@ mod principled_lobes;
 mod principled_thin;
 mod rough_conductor;
 mod rough_dielectric;
+mod rough_plastic;
 mod sheen;
 mod sheet;
 mod table;
@@ -29,6 +34,8 @@ mod thin_dielectric;
 mod thin_film;
 mod transmissive;
 
+pub use beckmann::{Beckmann, Distribution};
+pub use blend::Blend;
 pub use clearcoat::{CLEARCOAT_IOR, Clearcoat, clearcoat_albedo};
 pub use coating_albedo::CoatingAlbedo;
 pub use conductor::{SmoothConductor, fresnel_conductor, fresnel_conductor_lanes};
@@ -42,7 +49,7 @@ pub use layered::{Layered, LayeredParts};
 pub use metallic_roughness::{
     DiffuseTransmission, Iridescence, MetallicRoughness, Specular, SpecularParts,
 };
-pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use microfacet::{Ggx, Microfacet, SMOOTH_ALPHA};
 pub use perturbed::{Perturbed, shadow_terminator};
 pub use plastic::{Plastic, PlasticCoating};
 pub use principled::{Principled, PrincipledParams, PrincipledRates};
@@ -50,6 +57,7 @@ pub use principled_lobes::principled_luminance;
 pub use principled_thin::{PrincipledThin, PrincipledThinParams, PrincipledThinRates};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
+pub use rough_plastic::{RoughPlastic, RoughPlasticCoating};
 pub use sheen::{MIN_SHEEN_ROUGHNESS, Sheen};
 pub use sheet::{Sheet, SheetElement};
 pub use thin_dielectric::ThinDielectric;

@@ -2,23 +2,24 @@ use glam::{Vec2, Vec3};
 use prism_sampling::distribution::positive_finite;
 use prism_spectrum::SampledSpectrum;
 
-use super::microfacet::Ggx;
+use super::microfacet::{Ggx, Microfacet};
 use super::{BsdfSample, SmoothConductor, fresnel_conductor_lanes, same_hemisphere};
 
-/// A rough conductor: GGX microfacets with complex Fresnel per lane, f = D F G / (4 cos_o
-/// cos_i) (Torrance-Sparrow), sampled by visible normals. Effectively smooth roughness
-/// falls back to the mirror.
+/// A rough conductor: microfacets (GGX unless `D` says otherwise: Mitsuba's Beckmann,
+/// [`super::Distribution`]) with complex Fresnel per lane, f = D F G / (4 cos_o cos_i)
+/// (Torrance-Sparrow), sampled by visible normals. Effectively smooth roughness falls back
+/// to the mirror.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RoughConductor<const N: usize> {
+pub struct RoughConductor<const N: usize, D = Ggx> {
     /// The microfacet distribution.
-    pub distribution: Ggx,
+    pub distribution: D,
     /// Real part of the index per lane.
     pub eta: SampledSpectrum<N>,
     /// Extinction coefficient per lane.
     pub k: SampledSpectrum<N>,
 }
 
-impl<const N: usize> RoughConductor<N> {
+impl<const N: usize, D: Microfacet> RoughConductor<N, D> {
     fn fresnel(&self, cos: f32) -> SampledSpectrum<N> {
         fresnel_conductor_lanes(cos, &self.eta, &self.k)
     }

@@ -2,18 +2,19 @@ use glam::{Vec2, Vec3};
 use prism_sampling::distribution::positive_finite;
 use prism_spectrum::SampledSpectrum;
 
-use super::microfacet::Ggx;
+use super::microfacet::{Ggx, Microfacet};
 use super::{BsdfSample, SmoothDielectric, TransportMode, fresnel_dielectric};
 
-/// A rough dielectric interface: GGX microfacets reflecting and refracting, after Walter,
+/// A rough dielectric interface: microfacets (GGX unless `D` says otherwise: Mitsuba's
+/// Beckmann, [`super::Distribution`]) reflecting and refracting, after Walter,
 /// Marschner, Li and Torrance, "Microfacet models for refraction through rough surfaces",
 /// EGSR 2007 (eq. 20-21 with the generalized half vector, and the 1/eta^2 radiance
 /// scaling of Veach 1997 §5.2), sampled by visible normals. Per-lane indices make it
 /// dispersive; a refraction then follows the hero's index only.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RoughDielectric<const N: usize> {
+pub struct RoughDielectric<const N: usize, D = Ggx> {
     /// The microfacet distribution.
-    pub distribution: Ggx,
+    pub distribution: D,
     /// Relative index (inside over outside) per lane.
     pub eta: [f32; N],
     /// Camera or light path.
@@ -32,7 +33,7 @@ fn refract_about(wo: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
     (-wo / eta + (cos_i / eta - cos_t) * n).try_normalize()
 }
 
-impl<const N: usize> RoughDielectric<N> {
+impl<const N: usize, D: Microfacet> RoughDielectric<N, D> {
     fn smooth(&self) -> SmoothDielectric<N> {
         SmoothDielectric::new(self.eta)
     }

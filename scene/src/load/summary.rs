@@ -146,7 +146,12 @@ impl LoadedGeometry {
             cameras: self.cameras.iter().map(|c| c.name.clone()).collect(),
             bounds: (lo.to_array(), hi.to_array()),
             uses_transmission: self.materials.iter().any(|m| match surface(m) {
-                Some(s) => matches!(s, Material::Dielectric { .. }),
+                Some(s) => matches!(
+                    s,
+                    Material::Dielectric { .. }
+                        | Material::MicrofacetDielectric { .. }
+                        | Material::ThinDielectric { .. }
+                ),
                 None => m.transmission > 0.0,
             }),
             uses_textures: self.materials.iter().any(|m| {

@@ -8,8 +8,9 @@ use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::{Layers, SurfaceFrame};
 use crate::bsdf::{
-    Bsdf, CoatingAlbedo, Diffuse, Ggx, MetallicRoughness, Plastic, PlasticCoating, RoughConductor,
-    RoughDielectric, Sheet, SheetElement, TransportMode,
+    Bsdf, CoatingAlbedo, Diffuse, Distribution, Ggx, MetallicRoughness, Microfacet, Plastic,
+    PlasticCoating, RoughConductor, RoughDielectric, Sheet, SheetElement, ThinDielectric,
+    TransportMode,
 };
 use crate::textures::{RgbTexture, SceneSpectrum, TexCoords};
 
@@ -62,6 +63,54 @@ pub enum Material {
         k: SceneSpectrum,
         /// Perceptual roughness; alpha = roughness^2.
         roughness: f32,
+    },
+    /// A dielectric interface with a microfacet distribution chosen by the scene
+    /// (Mitsuba's `roughdielectric` with its default Beckmann distribution, or with
+    /// anisotropic roughness); isotropic GGX is [`Material::Dielectric`]. The index is
+    /// inside over outside.
+    MicrofacetDielectric {
+        /// Index of refraction of the inside.
+        ior: SceneSpectrum,
+        /// The distribution, alpha_x along the surface's tangent (dp/du).
+        distribution: Distribution,
+    },
+    /// A conductor with a microfacet distribution chosen by the scene (Mitsuba's
+    /// `roughconductor` with Beckmann or anisotropic roughness).
+    MicrofacetConductor {
+        /// Real part of the index.
+        eta: SceneSpectrum,
+        /// Extinction coefficient.
+        k: SceneSpectrum,
+        /// The distribution, alpha_x along the surface's tangent (dp/du).
+        distribution: Distribution,
+    },
+    /// A thin dielectric sheet, smooth: light reflects with the slab's summed reflectance
+    /// or passes straight through (Mitsuba's `thindielectric`, [`crate::bsdf::ThinDielectric`]).
+    ThinDielectric {
+        /// Index of the sheet over the outside.
+        ior: SceneSpectrum,
+    },
+    /// Mitsuba's `roughplastic` as Mitsuba models it ([`crate::bsdf::RoughPlastic`]): a
+    /// Lambertian substrate under a rough coating that loses the light single scattering
+    /// loses.
+    RoughPlastic {
+        /// The substrate's reflectance in [0, 1].
+        reflectance: SceneSpectrum,
+        /// Whether the substrate's inner bounces darken its colour (Mitsuba's
+        /// `nonlinear`).
+        nonlinear: bool,
+        /// The coating: its distribution, index and tables.
+        coating: Arc<crate::bsdf::RoughPlasticCoating>,
+    },
+    /// A weighted mix of two materials' BSDFs (Mitsuba's `blendbsdf`,
+    /// [`crate::bsdf::Blend`]): f = (1 - w) f_first + w f_second.
+    Blend {
+        /// The second's weight in [0, 1], a number or a texture.
+        weight: Arc<crate::textures::FloatTexture>,
+        /// The material weighed by 1 - w.
+        first: Box<Material>,
+        /// The material weighed by w.
+        second: Box<Material>,
     },
     /// A Lambertian substrate under a smooth or rough dielectric coating, as Mitsuba's
     /// `plastic` and `roughplastic` ([`Plastic`]).
@@ -137,10 +186,13 @@ impl Material {
         matches!(
             self,
             Material::Dielectric { .. }
+                | Material::MicrofacetDielectric { .. }
+                | Material::ThinDielectric { .. }
                 | Material::Polarizer { .. }
                 | Material::Retarder { .. }
                 | Material::Interface
         ) || self.transmission().is_some()
+            || self.either(Material::transmissive)
             || self.diffuse_transmission().is_some()
             || matches!(self, Material::Principled(d) if d.transmissive())
             || matches!(self, Material::PrincipledThin(d) if d.transmissive())
@@ -151,7 +203,10 @@ impl Material {
     pub fn dispersive(&self) -> bool {
         let varies = |ior: &SceneSpectrum| !matches!(ior, SceneSpectrum::Constant(_));
         match self {
-            Material::Dielectric { ior, .. } => varies(ior),
+            Material::Dielectric { ior, .. } | Material::MicrofacetDielectric { ior, .. } => {
+                varies(ior)
+            }
+            Material::Blend { .. } => self.either(Material::dispersive),
             _ => self
                 .transmission()
                 .is_some_and(|t| !t.thin && varies(&t.ior)),
@@ -162,6 +217,9 @@ impl Material {
     pub fn absorption(&self) -> Option<&SceneSpectrum> {
         match self {
             Material::Dielectric { absorption, .. } => absorption.as_ref(),
+            Material::Blend { first, second, .. } => {
+                first.absorption().or_else(|| second.absorption())
+            }
             _ => self
                 .transmission()
                 .and_then(|t| t.absorption.as_ref())
@@ -176,7 +234,14 @@ impl Material {
             Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
                 Ggx::new(roughness * roughness, roughness * roughness).effectively_smooth()
             }
-            Material::Polarizer { .. } | Material::Retarder { .. } => true,
+            Material::MicrofacetDielectric { distribution, .. }
+            | Material::MicrofacetConductor { distribution, .. } => {
+                distribution.effectively_smooth()
+            }
+            Material::Polarizer { .. }
+            | Material::Retarder { .. }
+            | Material::ThinDielectric { .. } => true,
+            Material::Blend { .. } => self.either(Material::specular),
             Material::MetallicRoughness {
                 roughness, texture, ..
             } if self.transmission().is_some() => {
@@ -195,6 +260,11 @@ impl Material {
             Material::Dielectric { roughness, .. } | Material::Conductor { roughness, .. } => {
                 below(*roughness)
             }
+            Material::MicrofacetDielectric { distribution, .. }
+            | Material::MicrofacetConductor { distribution, .. } => {
+                distribution.max_alpha() <= alpha
+            }
+            Material::Blend { first, second, .. } => first.narrow(alpha) && second.narrow(alpha),
             Material::MetallicRoughness {
                 roughness, texture, ..
             } if self.transmission().is_some() => texture.is_some() || below(*roughness),
@@ -208,6 +278,7 @@ impl Material {
     pub fn focuses(&self, alpha: f32) -> bool {
         match self {
             Material::Plastic { coating, .. } => coating.distribution().effectively_smooth(),
+            Material::Blend { first, second, .. } => first.focuses(alpha) || second.focuses(alpha),
             _ => self.narrow(alpha),
         }
     }
@@ -219,7 +290,8 @@ impl Material {
         match self {
             Material::Diffuse { reflectance }
             | Material::Fluorescent { reflectance, .. }
-            | Material::Plastic { reflectance, .. } => textured(reflectance),
+            | Material::Plastic { reflectance, .. }
+            | Material::RoughPlastic { reflectance, .. } => textured(reflectance),
             Material::MetallicRoughness {
                 base,
                 texture,
@@ -234,6 +306,9 @@ impl Material {
             }
             Material::Principled(d) => d.textured(),
             Material::PrincipledThin(d) => d.textured(),
+            Material::Blend { weight, .. } => {
+                weight.constant().is_none() || self.either(Material::textured)
+            }
             _ => false,
         }
     }
@@ -248,6 +323,15 @@ impl Material {
             Material::Polarizer { .. } | Material::Retarder { .. } => true,
             Material::Principled(d) => d.anisotropic(),
             Material::PrincipledThin(d) => d.anisotropic(),
+            Material::Blend { .. } => self.either(Material::oriented),
+            _ => false,
+        }
+    }
+
+    /// Whether either material of a blend has `property` (false for other materials).
+    fn either(&self, property: impl Fn(&Material) -> bool) -> bool {
+        match self {
+            Material::Blend { first, second, .. } => property(first) || property(second),
             _ => false,
         }
     }
@@ -267,7 +351,10 @@ impl Material {
     /// dielectric, glTF glass that is not thin-walled, or a diffusely transmitting skin).
     pub fn can_hold_medium(&self) -> bool {
         match self {
-            Material::Interface | Material::Dielectric { .. } => true,
+            Material::Interface
+            | Material::Dielectric { .. }
+            | Material::MicrofacetDielectric { .. } => true,
+            Material::Blend { .. } => self.either(Material::can_hold_medium),
             _ => {
                 self.transmission().is_some_and(|t| !t.thin)
                     || self.diffuse_transmission().is_some()
@@ -352,6 +439,15 @@ impl Material {
                 nonlinear,
                 coating,
             } => Bsdf::Plastic(Plastic::new(base(reflectance), coating, *nonlinear)),
+            Material::RoughPlastic {
+                reflectance,
+                nonlinear,
+                coating,
+            } => Bsdf::RoughPlastic(crate::bsdf::RoughPlastic::new(
+                base(reflectance),
+                coating,
+                *nonlinear,
+            )),
             Material::MetallicRoughness {
                 base: base_colour,
                 metallic,
@@ -405,8 +501,40 @@ impl Material {
                     k: k.at(wavelengths),
                 })
             }
+            Material::MicrofacetDielectric { ior, distribution } => {
+                Bsdf::MicrofacetDielectric(RoughDielectric {
+                    distribution: *distribution,
+                    eta: ior.at(wavelengths).0.map(|e| e.max(1e-3)),
+                    mode,
+                })
+            }
+            Material::MicrofacetConductor {
+                eta,
+                k,
+                distribution,
+            } => Bsdf::MicrofacetConductor(RoughConductor {
+                distribution: *distribution,
+                eta: eta.at(wavelengths),
+                k: k.at(wavelengths),
+            }),
+            Material::ThinDielectric { ior } => Bsdf::ThinDielectric(ThinDielectric {
+                distribution: Ggx::new(0.0, 0.0),
+                eta: ior.at(wavelengths).0,
+            }),
             Material::Fluorescent { reflectance, .. } => {
                 Bsdf::Diffuse(Diffuse::new(base(reflectance)))
+            }
+            Material::Blend {
+                weight,
+                first,
+                second,
+            } => {
+                let w = weight.value(at.uv[0]);
+                Bsdf::Blend(Box::new(crate::bsdf::Blend {
+                    first: first.bsdf_oriented(at, wavelengths, mode, tint, frame),
+                    second: second.bsdf_oriented(at, wavelengths, mode, tint, frame),
+                    weight: if w.is_nan() { 0.0 } else { w.clamp(0.0, 1.0) },
+                }))
             }
             Material::Polarizer {
                 axis,

@@ -1,11 +1,16 @@
 //! Mitsuba's BSDFs as prism's materials (Mitsuba's "BSDFs" plugin reference): `diffuse`,
-//! `dielectric` and `roughdielectric`, `conductor` and `roughconductor`, `plastic` (not
-//! `roughplastic`), and `twosided` around any of them. Spectral values enter as spectra;
-//! RGB is upsampled as the scene's other colours are (`crate::load::Upsampling`).
+//! `dielectric`, `roughdielectric` and `thindielectric`, `conductor` and `roughconductor`,
+//! `plastic` and `roughplastic`, `blendbsdf` of two of them, and `twosided` around any
+//! of them. Spectral values enter
+//! as spectra; RGB is upsampled as the scene's other colours are
+//! (`crate::load::Upsampling`).
 //!
 //! Mitsuba's microfacet `alpha` is prism's roughness squared (prism's roughness is
-//! perceptual, alpha = roughness^2). Only the GGX distribution is read: Mitsuba's default,
-//! Beckmann, has no counterpart in prism and is an error rather than a look-alike.
+//! perceptual, alpha = roughness^2). Isotropic GGX is prism's own rough conductor and
+//! dielectric; Mitsuba's default distribution, Beckmann, is its own model
+//! ([`crate::bsdf::Beckmann`], [`Material::MicrofacetConductor`] and
+//! [`Material::MicrofacetDielectric`]), and `roughplastic` is Mitsuba's model with its
+//! energy loss ([`Material::RoughPlastic`]), not prism's `Plastic`.
 //! Parameters these plugins do not know, or know but prism does not follow (textures,
 //! `specular_reflectance` other than 1, anisotropic alphas), are errors naming them.
 
@@ -16,6 +21,7 @@ use super::spectra::{Kind, spectrum};
 use super::textures::{self, Context};
 use super::tree::{Class, Object, SpectrumValue, Value};
 use crate::LoadError;
+use crate::bsdf::{Beckmann, Distribution, Ggx};
 use crate::load::Upsampler;
 use crate::materials::Material;
 use crate::textures::SceneSpectrum;
@@ -73,6 +79,30 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
                 (None, _) => Err(error(&bsdf.at, "twosided needs a nested BSDF")),
             }
         }
+        // Mitsuba's mix of its two nested BSDFs, the second weighed by `weight`.
+        "blendbsdf" => {
+            for p in &bsdf.properties {
+                if p.name != "weight" {
+                    return Err(error(
+                        &p.at,
+                        format!("blendbsdf: parameter '{}' is not read", p.name),
+                    ));
+                }
+            }
+            if bsdf.property("weight").is_none() && bsdf.child("weight").is_none() {
+                return Err(error(&bsdf.at, "blendbsdf needs a weight"));
+            }
+            let weight = textures::float(bsdf, "weight", 0.5, cx)?;
+            let nested: Vec<&Object> = bsdf.children_of(Class::Bsdf).map(|c| &*c.object).collect();
+            let [first, second] = nested.as_slice() else {
+                return Err(error(&bsdf.at, "blendbsdf takes two nested BSDFs"));
+            };
+            Ok(Material::Blend {
+                weight: Arc::new(weight),
+                first: Box::new(material(first, cx)?),
+                second: Box::new(material(second, cx)?),
+            })
+        }
         "dielectric" | "roughdielectric" => {
             let rough = bsdf.kind == "roughdielectric";
             let mut known = vec![
@@ -88,10 +118,46 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
             unit(bsdf, "specular_reflectance")?;
             unit(bsdf, "specular_transmittance")?;
             let ior = ior(bsdf, "int_ior", "bk7")? / ior(bsdf, "ext_ior", "air")?;
-            Ok(Material::Dielectric {
+            let ior = SceneSpectrum::Constant(ior);
+            if !rough {
+                return Ok(Material::Dielectric {
+                    ior,
+                    roughness: 0.0,
+                    absorption: None,
+                });
+            }
+            let model = self::rough(bsdf)?;
+            isotropic(bsdf, &model)?;
+            Ok(match model.isotropic_ggx() {
+                Some(roughness) => Material::Dielectric {
+                    ior,
+                    roughness,
+                    absorption: None,
+                },
+                None => Material::MicrofacetDielectric {
+                    ior,
+                    distribution: model.distribution(),
+                },
+            })
+        }
+        // Mitsuba's thin sheet: reflectance summed over the slab's inner reflections,
+        // R' = R + T^2 R / (1 - R^2), and the rest straight through
+        // (`thindielectric.cpp`), which is prism's smooth thin sheet.
+        "thindielectric" => {
+            only(
+                bsdf,
+                &[
+                    "int_ior",
+                    "ext_ior",
+                    "specular_reflectance",
+                    "specular_transmittance",
+                ],
+            )?;
+            unit(bsdf, "specular_reflectance")?;
+            unit(bsdf, "specular_transmittance")?;
+            let ior = ior(bsdf, "int_ior", "bk7")? / ior(bsdf, "ext_ior", "air")?;
+            Ok(Material::ThinDielectric {
                 ior: SceneSpectrum::Constant(ior),
-                roughness: if rough { roughness(bsdf)? } else { 0.0 },
-                absorption: None,
             })
         }
         "conductor" | "roughconductor" => {
@@ -103,22 +169,67 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
             only(bsdf, &known)?;
             unit(bsdf, "specular_reflectance")?;
             let (eta, k) = conductor_index(bsdf, upsampler)?;
-            Ok(Material::Conductor {
-                eta,
-                k,
-                roughness: if rough { roughness(bsdf)? } else { 0.0 },
+            if !rough {
+                return Ok(Material::Conductor {
+                    eta,
+                    k,
+                    roughness: 0.0,
+                });
+            }
+            let model = self::rough(bsdf)?;
+            isotropic(bsdf, &model)?;
+            Ok(match model.isotropic_ggx() {
+                Some(roughness) => Material::Conductor { eta, k, roughness },
+                None => Material::MicrofacetConductor {
+                    eta,
+                    k,
+                    distribution: model.distribution(),
+                },
             })
         }
-        // prism's rough coating keeps the light Mitsuba's loses (its inner reflectance by
-        // reciprocity, plastic.rs; Mitsuba's `roughplastic` loses 9% in a white furnace
-        // at alpha 0.1, mitsuba3 issue #1155): the box with roughplastic cubes renders
-        // 3.5% brighter than Mitsuba's, so it is refused rather than read as something
-        // else.
-        "roughplastic" => Err(error(
-            &bsdf.at,
-            "roughplastic is not read yet (prism's rough plastic keeps the energy \
-             Mitsuba's loses and renders brighter; plastic is read)",
-        )),
+        // Mitsuba's own model, energy loss and all ([`crate::bsdf::RoughPlastic`]);
+        // prism's `Plastic` keeps that light and is what `plastic` reads.
+        "roughplastic" => {
+            let mut known = vec![
+                "diffuse_reflectance",
+                "int_ior",
+                "ext_ior",
+                "nonlinear",
+                "specular_reflectance",
+            ];
+            known.extend(ROUGH);
+            only(bsdf, &known)?;
+            unit(bsdf, "specular_reflectance")?;
+            let eta = ior(bsdf, "int_ior", "polypropylene")? / ior(bsdf, "ext_ior", "air")?;
+            if eta == 1.0 {
+                return Err(error(
+                    &bsdf.at,
+                    "roughplastic: the interior and exterior indices must differ",
+                ));
+            }
+            let model = self::rough(bsdf)?;
+            if model.alpha_u != model.alpha_v {
+                // Mitsuba refuses it too.
+                return Err(error(
+                    &bsdf.at,
+                    "roughplastic does not support anisotropic roughness (nor does Mitsuba)",
+                ));
+            }
+            Ok(Material::RoughPlastic {
+                reflectance: textures::spectrum(
+                    bsdf,
+                    "diffuse_reflectance",
+                    Kind::Albedo,
+                    0.5,
+                    cx,
+                )?,
+                nonlinear: nonlinear(bsdf)?,
+                coating: Arc::new(crate::bsdf::RoughPlasticCoating::new(
+                    model.distribution(),
+                    eta as f32,
+                )),
+            })
+        }
         "plastic" => {
             let rough = false;
             let mut known = vec![
@@ -144,12 +255,8 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
                     ),
                 ));
             }
-            let nonlinear = match bsdf.property("nonlinear").map(|p| (&p.value, &p.at)) {
-                None => false,
-                Some((Value::Boolean(b), _)) => *b,
-                Some((_, at)) => return Err(error(at, "nonlinear must be a boolean")),
-            };
-            let roughness = if rough { roughness(bsdf)? } else { 0.0 };
+            let nonlinear = nonlinear(bsdf)?;
+            let roughness = 0.0f32;
             Ok(Material::Plastic {
                 reflectance: textures::spectrum(
                     bsdf,
@@ -171,9 +278,19 @@ pub(crate) fn material(bsdf: &Object, cx: &Context) -> Result<Material, LoadErro
             &bsdf.at,
             format!(
                 "bsdf '{other}' is not read yet (diffuse, dielectric, roughdielectric, \
-                 conductor, roughconductor, plastic and twosided are)"
+                 thindielectric, conductor, roughconductor, plastic, roughplastic, \
+                 blendbsdf and twosided are)"
             ),
         )),
+    }
+}
+
+/// A plastic's `nonlinear` (default false).
+fn nonlinear(bsdf: &Object) -> Result<bool, LoadError> {
+    match bsdf.property("nonlinear").map(|p| (&p.value, &p.at)) {
+        None => Ok(false),
+        Some((Value::Boolean(b), _)) => Ok(*b),
+        Some((_, at)) => Err(error(at, "nonlinear must be a boolean")),
     }
 }
 
@@ -331,25 +448,48 @@ fn conductor_index(
     })
 }
 
-/// prism's roughness, sqrt(alpha), of a rough plugin: GGX only, isotropic.
-fn roughness(bsdf: &Object) -> Result<f32, LoadError> {
-    let kind = &bsdf.kind;
-    match bsdf.property("distribution").map(|p| (&p.value, &p.at)) {
-        Some((Value::String(d), _)) if d == "ggx" => {}
-        Some((Value::String(d), at)) if d != "beckmann" => {
-            return Err(error(at, format!("{kind}: unknown distribution '{d}'")));
-        }
-        Some((Value::String(_), _)) | None => {
-            let at = bsdf.property("distribution").map_or(&bsdf.at, |p| &p.at);
-            return Err(error(
-                at,
-                format!(
-                    "{kind} with the beckmann distribution is not read yet (distribution ggx is)"
-                ),
-            ));
-        }
-        Some((_, at)) => return Err(error(at, "distribution must be a name")),
+/// A rough plugin's microfacet model as Mitsuba reads it (`MicrofacetDistribution`'s
+/// properties constructor): `distribution` beckmann (the default) or ggx, and `alpha`
+/// (default 0.1) or `alpha_u` and `alpha_v` both.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Rough {
+    /// Whether the distribution is GGX (else Beckmann).
+    pub ggx: bool,
+    /// Roughness along the tangent (dp/du).
+    pub alpha_u: f32,
+    /// Roughness along the bitangent.
+    pub alpha_v: f32,
+}
+
+impl Rough {
+    /// Whether prism's own isotropic GGX materials (perceptual roughness sqrt(alpha))
+    /// say it.
+    fn isotropic_ggx(&self) -> Option<f32> {
+        (self.ggx && self.alpha_u == self.alpha_v).then(|| self.alpha_u.sqrt())
     }
+
+    /// The distribution.
+    pub(crate) fn distribution(&self) -> Distribution {
+        if self.ggx {
+            Distribution::Ggx(Ggx::new(self.alpha_u, self.alpha_v))
+        } else {
+            Distribution::Beckmann(Beckmann::new(self.alpha_u, self.alpha_v))
+        }
+    }
+}
+
+/// The microfacet model of a rough plugin.
+pub(crate) fn rough(bsdf: &Object) -> Result<Rough, LoadError> {
+    let kind = &bsdf.kind;
+    let ggx = match bsdf.property("distribution").map(|p| (&p.value, &p.at)) {
+        None => false,
+        Some((Value::String(d), at)) => match d.to_ascii_lowercase().as_str() {
+            "ggx" => true,
+            "beckmann" => false,
+            _ => return Err(error(at, format!("{kind}: unknown distribution '{d}'"))),
+        },
+        Some((_, at)) => return Err(error(at, "distribution must be a name")),
+    };
     if let Some(s) = bsdf.property("sample_visible")
         && !matches!(s.value, Value::Boolean(_))
     {
@@ -369,16 +509,10 @@ fn roughness(bsdf: &Object) -> Result<f32, LoadError> {
             Some((_, at)) => Err(error(at, format!("{name} must be a number"))),
         }
     };
-    let alpha = match (number("alpha")?, number("alpha_u")?, number("alpha_v")?) {
-        (Some(a), None, None) => a,
-        (None, None, None) => 0.1,
-        (None, Some(u), Some(v)) if u == v => u,
-        (None, Some(_), Some(_)) => {
-            return Err(error(
-                &bsdf.at,
-                format!("{kind} with alpha_u != alpha_v (anisotropic) is not read yet"),
-            ));
-        }
+    let (alpha_u, alpha_v) = match (number("alpha")?, number("alpha_u")?, number("alpha_v")?) {
+        (Some(a), None, None) => (a, a),
+        (None, None, None) => (0.1, 0.1),
+        (None, Some(u), Some(v)) => (u, v),
         _ => {
             return Err(error(
                 &bsdf.at,
@@ -386,7 +520,30 @@ fn roughness(bsdf: &Object) -> Result<f32, LoadError> {
             ));
         }
     };
-    Ok(alpha.sqrt() as f32)
+    Ok(Rough {
+        ggx,
+        alpha_u: alpha_u as f32,
+        alpha_v: alpha_v as f32,
+    })
+}
+
+/// An error for anisotropic roughness: Mitsuba orients alpha_u along its shading frame's
+/// tangent, which on meshes is its per-vertex tangents interpolated across the triangle
+/// (`mesh.cpp`, `finalize_surface_interaction`) and on spheres dp/du; prism's frame at a
+/// Mitsuba shape has neither, so the lobe would turn with an arbitrary basis.
+fn isotropic(bsdf: &Object, rough: &Rough) -> Result<(), LoadError> {
+    if rough.alpha_u == rough.alpha_v {
+        Ok(())
+    } else {
+        Err(error(
+            &bsdf.at,
+            format!(
+                "{} with alpha_u != alpha_v (anisotropic) is not read yet (prism's shading \
+                 frame does not follow Mitsuba's surface tangents)",
+                bsdf.kind
+            ),
+        ))
+    }
 }
 
 fn check_alpha(v: f64, name: &str, at: &super::tree::Location) -> Result<f64, LoadError> {
@@ -476,7 +633,7 @@ mod tests {
     }
 
     #[test]
-    fn rough_alpha_is_roughness_squared_and_beckmann_is_an_error() {
+    fn rough_alpha_is_roughness_squared_and_beckmann_its_own_model() {
         let xml = r#"<bsdf type="roughdielectric"><string name="distribution" value="ggx"/><float name="alpha" value="0.25"/></bsdf>"#;
         match read(xml).unwrap() {
             Material::Dielectric { roughness, .. } => assert_eq!(roughness, 0.5),
@@ -490,19 +647,33 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        // Beckmann, Mitsuba's default distribution, is not taken for GGX.
+        // Beckmann, Mitsuba's default distribution, is its own model.
         for xml in [
             r#"<bsdf type="roughconductor"/>"#,
-            r#"<bsdf type="roughconductor"><string name="distribution" value="beckmann"/></bsdf>"#,
+            r#"<bsdf type="roughconductor"><string name="distribution" value="Beckmann"/></bsdf>"#,
         ] {
-            let e = read(xml).unwrap_err();
-            assert!(
-                e.contains(
-                    "roughconductor with the beckmann distribution is not read yet (distribution ggx is)"
+            match read(xml).unwrap() {
+                Material::MicrofacetConductor { distribution, .. } => assert_eq!(
+                    distribution,
+                    Distribution::Beckmann(Beckmann::new(0.1, 0.1))
                 ),
-                "{e}"
-            );
+                other => panic!("{other:?}"),
+            }
         }
+        match read(r#"<bsdf type="roughdielectric"><float name="alpha" value="0.3"/></bsdf>"#)
+            .unwrap()
+        {
+            Material::MicrofacetDielectric { distribution, .. } => assert_eq!(
+                distribution,
+                Distribution::Beckmann(Beckmann::new(0.3, 0.3))
+            ),
+            other => panic!("{other:?}"),
+        }
+        let e = read(
+            r#"<bsdf type="roughconductor"><string name="distribution" value="phong"/></bsdf>"#,
+        )
+        .unwrap_err();
+        assert!(e.contains("unknown distribution 'phong'"), "{e}");
         let e = read(r#"<bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf>"#).unwrap_err();
         assert!(e.contains("alpha_u != alpha_v"), "{e}");
     }
@@ -576,11 +747,58 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        let xml = r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/></bsdf>"#;
-        assert!(
-            read(xml)
-                .unwrap_err()
-                .contains("roughplastic is not read yet")
-        );
+        match read(r#"<bsdf type="roughplastic"><boolean name="nonlinear" value="true"/></bsdf>"#)
+            .unwrap()
+        {
+            Material::RoughPlastic {
+                nonlinear, coating, ..
+            } => {
+                assert!(nonlinear);
+                assert_eq!(
+                    coating.distribution(),
+                    Distribution::Beckmann(Beckmann::new(0.1, 0.1))
+                );
+                assert!((coating.eta() - (1.49 / 1.000277) as f32).abs() < 1e-6);
+            }
+            other => panic!("{other:?}"),
+        }
+        let e = read(r#"<bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf>"#)
+            .unwrap_err();
+        assert!(e.contains("anisotropic"), "{e}");
+    }
+
+    #[test]
+    fn blendbsdf_mixes_two_by_a_weight() {
+        let xml = r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#;
+        match read(xml).unwrap() {
+            Material::Blend {
+                weight,
+                first,
+                second,
+            } => {
+                assert_eq!(weight.constant(), Some(0.3));
+                assert!(matches!(*first, Material::Diffuse { .. }));
+                assert!(matches!(*second, Material::Conductor { .. }));
+            }
+            other => panic!("{other:?}"),
+        }
+        let e = read(r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/></bsdf>"#)
+            .unwrap_err();
+        assert!(e.contains("two nested BSDFs"), "{e}");
+        let e =
+            read(r#"<bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>"#)
+                .unwrap_err();
+        assert!(e.contains("needs a weight"), "{e}");
+    }
+
+    #[test]
+    fn thindielectric_is_the_smooth_thin_sheet() {
+        match read(r#"<bsdf type="thindielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf>"#).unwrap() {
+            Material::ThinDielectric { ior } => assert_eq!(constant(&ior), 1.5),
+            other => panic!("{other:?}"),
+        }
+        let e = read(r#"<bsdf type="thindielectric"><rgb name="specular_transmittance" value="0.5"/></bsdf>"#)
+            .unwrap_err();
+        assert!(e.contains("not read yet"), "{e}");
     }
 }
