@@ -140,7 +140,7 @@ fn every_parameter_prism_does_not_read_is_one_warning_with_its_line() {
     let s = scene(
         r#"<sensor type="perspective"><float name="fov" value="40"/>
         <float name="shutter_close" value="1"/>
-        <film type="hdrfilm"><string name="pixel_format" value="rgb"/></film></sensor>"#,
+        <film type="hdrfilm"><boolean name="sample_border" value="true"/></film></sensor>"#,
     )
     .unwrap();
     let unread: Vec<&String> = s
@@ -151,6 +151,6 @@ fn every_parameter_prism_does_not_read_is_one_warning_with_its_line() {
         .collect();
     assert_eq!(unread.len(), 2, "{unread:?}");
     assert!(unread[0].starts_with("s.xml:3:") && unread[0].contains("'shutter_close'"));
-    assert!(unread[1].starts_with("s.xml:4:") && unread[1].contains("'pixel_format'"));
+    assert!(unread[1].starts_with("s.xml:4:") && unread[1].contains("'sample_border'"));
     assert!(!s.geometry.warnings.iter().any(|w| w.contains("'fov'")));
 }
