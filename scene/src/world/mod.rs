@@ -832,7 +832,19 @@ impl Scene {
         mode: crate::bsdf::TransportMode,
         tint: Option<SampledSpectrum<N>>,
     ) -> Bsdf<'s, N> {
-        let frame = SurfaceFrame::new(hit.shading_normal, self.tangent_at(hit));
+        let mut tangent = self.tangent_at(hit);
+        // Mitsuba's principled BSDFs lie along Mitsuba's shading frame, whose tangent is
+        // dp/du (`SurfaceInteraction::initialize_sh_frame`), where the mesh gives none.
+        if tangent == glam::Vec4::ZERO
+            && matches!(
+                material,
+                Material::Principled(_) | Material::PrincipledThin(_)
+            )
+        {
+            let (dp_du, _) = self.surface_derivatives(hit.triangle as usize, hit.normal);
+            tangent = dp_du.extend(1.0);
+        }
+        let frame = SurfaceFrame::new(hit.shading_normal, tangent);
         material.bsdf_oriented(&hit.tex, wavelengths, mode, tint, Some(&frame))
     }
 

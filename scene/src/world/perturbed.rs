@@ -21,7 +21,7 @@ impl Scene {
     /// dp/du and dp/dv of `triangle` as Mitsuba's meshes have them: over its texture
     /// coordinates where the scene has some (any pair across the plane where they do not
     /// span it), over its barycentrics otherwise.
-    fn surface_derivatives(&self, triangle: usize, geometric: Vec3) -> (Vec3, Vec3) {
+    pub(super) fn surface_derivatives(&self, triangle: usize, geometric: Vec3) -> (Vec3, Vec3) {
         let v = self.triangles[triangle];
         let (dp0, dp1) = (v[1] - v[0], v[2] - v[0]);
         let Some(uv) = self.attributes.uvs.get(triangle) else {
