@@ -91,20 +91,59 @@ pub(crate) fn camera(
     Ok((camera, film))
 }
 
-/// A pinhole's projection from `fov` along `fov_axis` (Mitsuba's `parse_fov`).
+/// A pinhole's projection from `fov` along `fov_axis`, or from `focal_length` (default
+/// "50mm") on a 36 x 24 mm frame's diagonal (Mitsuba's `parse_fov` in `sensor.cpp`).
 fn perspective(sensor: &Object, aspect: f64) -> Result<Projection, LoadError> {
-    let fov = number(sensor, "fov")?.unwrap_or(45.0);
+    let (fov, axis) = match (number(sensor, "fov")?, sensor.property("focal_length")) {
+        (Some(_), Some(p)) => {
+            return Err(error(
+                &p.at,
+                "give either a focal length ('focal_length') or a field of view ('fov')",
+            ));
+        }
+        (Some(fov), None) => {
+            let axis = match sensor.property("fov_axis").map(|p| &p.value) {
+                None => "x".to_string(),
+                Some(Value::String(s)) => s.to_lowercase(),
+                Some(_) => return Err(error(&sensor.at, "fov_axis must be a string")),
+            };
+            (fov, axis)
+        }
+        (None, focal) => {
+            let text = match focal.map(|p| &p.value) {
+                None => "50mm".to_string(),
+                Some(Value::String(s)) => s.clone(),
+                Some(Value::Float(v)) => v.to_string(),
+                Some(Value::Integer(v)) => v.to_string(),
+                Some(_) => return Err(error(&sensor.at, "focal_length must be like \"50mm\"")),
+            };
+            let mm: f64 = text
+                .trim()
+                .trim_end_matches("mm")
+                .parse()
+                .ok()
+                .filter(|v: &f64| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| {
+                    error(
+                        &sensor.at,
+                        format!(
+                            "focal_length \"{text}\": expected a positive length in mm (\"50mm\")"
+                        ),
+                    )
+                })?;
+            let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+            (
+                (diagonal / (2.0 * mm)).atan().to_degrees() * 2.0,
+                "diagonal".to_string(),
+            )
+        }
+    };
     if !(fov > 0.0 && fov < 180.0) {
         return Err(error(
             &sensor.at,
             format!("fov {fov} must be in (0, 180) degrees"),
         ));
     }
-    let axis = match sensor.property("fov_axis").map(|p| &p.value) {
-        None => "x".to_string(),
-        Some(Value::String(s)) => s.clone(),
-        Some(_) => return Err(error(&sensor.at, "fov_axis must be a string")),
-    };
     let tan_half = (fov.to_radians() / 2.0).tan();
     // tan(yfov / 2) from the axis the fov is given along (Mitsuba's `fov_axis`).
     let tan_half_y = match axis.as_str() {

@@ -154,3 +154,39 @@ fn every_parameter_prism_does_not_read_is_one_warning_with_its_line() {
     assert!(unread[1].starts_with("s.xml:4:") && unread[1].contains("'sample_border'"));
     assert!(!s.geometry.warnings.iter().any(|w| w.contains("'fov'")));
 }
+
+#[test]
+fn without_a_fov_the_lens_is_50mm_on_the_full_frame_diagonal() {
+    let yfov = |sensor: &str| {
+        let s = scene(sensor).unwrap();
+        match s.geometry.cameras[0].projection {
+            Projection::Perspective { yfov } => f64::from(yfov),
+            other => panic!("{other:?}"),
+        }
+    };
+    // 40 x 20 pixels: the diagonal is sqrt(5) of the height.
+    let expected = |mm: f64| {
+        let half_diagonal = (36.0f64.hypot(24.0) / (2.0 * mm)).atan();
+        2.0 * (half_diagonal.tan() / 5.0f64.sqrt()).atan()
+    };
+    let default = yfov(&format!(
+        r#"<sensor type="perspective">{}</sensor>"#,
+        film("")
+    ));
+    assert!((default - expected(50.0)).abs() < 1e-6, "{default}");
+    let wide = yfov(&format!(
+        r#"<sensor type="perspective"><string name="focal_length" value="35mm"/>{}</sensor>"#,
+        film("")
+    ));
+    assert!((wide - expected(35.0)).abs() < 1e-6, "{wide}");
+    let e = scene(
+        r#"<sensor type="perspective"><float name="fov" value="40"/><string name="focal_length" value="35mm"/></sensor>"#,
+    )
+    .unwrap_err();
+    assert!(e.contains("either"), "{e}");
+    assert!(
+        scene(r#"<sensor type="perspective"><string name="focal_length" value="wide"/></sensor>"#)
+            .unwrap_err()
+            .contains("focal_length")
+    );
+}
