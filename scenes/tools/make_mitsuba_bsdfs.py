@@ -5,8 +5,8 @@ and renders each with Mitsuba 3's scalar_spectral variant into the references
 cli/tests/mitsuba_ztests.rs z-tests prism's renders against
 (scenes/mitsuba/references/bsdfs-<name>-ref.exr and -var.exr, by make_mitsuba_ztest_refs.py).
 
-roughplastic is left out: prism's rough coating keeps the energy Mitsuba's loses, and
-that box rendered 3.5% brighter in prism; prism refuses the plugin.
+beckmann-* use Mitsuba's default distribution; roughplastic is Mitsuba's model (prism's
+own plastic keeps the energy Mitsuba's loses, and reads only `plastic`).
 
   /tmp/venv/bin/python scenes/tools/make_mitsuba_bsdfs.py [name ...]
 """
@@ -18,7 +18,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_mitsuba_scenes as base  # noqa: E402  (sets the scalar_spectral variant)
 import make_mitsuba_ztest_refs as refs  # noqa: E402
 
-for kind in ("roughconductor", "roughdielectric", "plastic", "roughplastic"):
+for kind in ("roughconductor", "roughdielectric", "plastic", "roughplastic", "thindielectric",
+             "blendbsdf"):
     base.CLASSES[kind] = "bsdf"
 
 # (small cube, large cube) per scene.
@@ -46,6 +47,32 @@ SCENES = {
     "plastic": (
         {"type": "plastic", "diffuse_reflectance": {"type": "rgb", "value": [0.2, 0.4, 0.8]}},
         {"type": "plastic", "int_ior": "bk7", "nonlinear": True},
+    ),
+    "beckmann-conductor": (
+        {"type": "roughconductor", "alpha": 0.1, "eta": 0.2, "k": 3.0},
+        {"type": "roughconductor", "alpha": 0.4, "eta": 1.5, "k": 2.0},
+    ),
+    "beckmann-dielectric": (
+        {"type": "roughdielectric", "alpha": 0.1},
+        {"type": "roughdielectric", "alpha": 0.3, "int_ior": 1.33},
+    ),
+    "roughplastic": (
+        {"type": "roughplastic",
+         "diffuse_reflectance": {"type": "rgb", "value": [0.2, 0.4, 0.8]}},
+        {"type": "roughplastic", "distribution": "ggx", "alpha": 0.3, "int_ior": "bk7",
+         "nonlinear": True},
+    ),
+    "blendbsdf": (
+        {"type": "blendbsdf", "weight": 0.3,
+         "a": {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.8, 0.3, 0.1]}},
+         "b": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.2}},
+        {"type": "blendbsdf", "weight": 0.7,
+         "a": {"type": "plastic"},
+         "b": {"type": "conductor", "material": "Au"}},
+    ),
+    "thindielectric": (
+        {"type": "thindielectric"},
+        {"type": "thindielectric", "int_ior": 1.8},
     ),
 }
 
