@@ -701,6 +701,29 @@ mod rough_plastic {
         }
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+        /// No NaN or infinity for any direction, grazing and unnormalized ones included.
+        #[test]
+        fn stays_finite(
+            wo in crate::directions::extreme_direction(),
+            wi in crate::directions::extreme_direction(),
+            uc in 0.0..1.0f32,
+            u in (0.0..1.0f32, 0.0..1.0f32),
+        ) {
+            use std::sync::OnceLock;
+            static COATING: OnceLock<RoughPlasticCoating> = OnceLock::new();
+            let c = COATING.get_or_init(|| coating(0.05, false));
+            let bsdf = RoughPlastic::new(SampledSpectrum([0.0, 0.5, 1.0, f32::NAN]), c, true);
+            let f = bsdf.f(wo, wi);
+            proptest::prop_assert!((0..4).all(|k| f[k].is_finite()) && bsdf.pdf(wo, wi).is_finite());
+            if let Some(s) = bsdf.sample(wo, uc, glam::Vec2::new(u.0, u.1)) {
+                proptest::prop_assert!(s.wi.is_finite() && (0..4).all(|k| s.f[k].is_finite()));
+                proptest::prop_assert!(s.pdf[0] > 0.0 && s.pdf[0].is_finite());
+            }
+        }
+    }
+
     #[test]
     fn reciprocal_and_two_sided() {
         let c = coating(0.2, false);
