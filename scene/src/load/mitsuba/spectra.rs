@@ -13,6 +13,13 @@ use crate::LoadError;
 use crate::load::Upsampler;
 use crate::textures::SceneSpectrum;
 
+/// Mitsuba's film divides by the CIE 1931 y-bar integral (`MI_CIE_Y_NORMALIZATION` in
+/// `include/mitsuba/core/spectrum.h`), so that a unit spectrum of radiance has luminance 1;
+/// prism's film integrates radiance against y-bar as it is. An emitter's spectrum given
+/// as numbers is scaled by this to mean in prism what it means in Mitsuba. (An emitter's
+/// colour is upsampled to a spectrum under D65 whose luminance is the colour's already.)
+pub(crate) const MITSUBA_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_062_5;
+
 /// What an RGB value means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Kind {
@@ -32,11 +39,30 @@ pub(crate) fn spectrum(
     upsampler: &Upsampler,
 ) -> Result<SceneSpectrum, LoadError> {
     if let Some(p) = object.property(name) {
+        let number = match p.value {
+            Value::Float(v) => Some(v),
+            Value::Integer(v) => Some(v as f64),
+            _ => None,
+        };
+        // An emitter's number is a grey under D65, as Mitsuba's `d65` texture makes it.
+        if let (Kind::Illuminant, Some(v)) = (kind, number) {
+            if !v.is_finite() {
+                return Err(error(&p.at, format!("{v} is not a finite number")));
+            }
+            let fitted = upsampler
+                .emission([f64::from(v as f32); 3])
+                .map_err(|e| error(&p.at, format!("{name}: {e}")))?;
+            return Ok(SceneSpectrum::Rgb(Arc::new(fitted)));
+        }
         return match &p.value {
             Value::Float(v) => constant(*v, &p.at),
             Value::Integer(v) => constant(*v as f64, &p.at),
-            Value::Spectrum(SpectrumValue::Constant(v)) => constant(*v, &p.at),
-            Value::Spectrum(SpectrumValue::Samples(samples)) => table(samples, &p.at),
+            Value::Spectrum(SpectrumValue::Constant(v)) => constant(*v * scale(kind), &p.at),
+            Value::Spectrum(SpectrumValue::Samples(samples)) => {
+                let scaled: Vec<(f64, f64)> =
+                    samples.iter().map(|&(l, v)| (l, v * scale(kind))).collect();
+                table(&scaled, &p.at)
+            }
             Value::Rgb(rgb) => {
                 // Mitsuba keeps colours as 32-bit floats.
                 let rgb = &rgb.map(|c| f64::from(c as f32));
@@ -70,6 +96,14 @@ pub(crate) fn spectrum(
         };
     }
     Ok(SceneSpectrum::Constant(default))
+}
+
+/// How a spectrum given as numbers scales: emitted radiance by Mitsuba's normalization.
+fn scale(kind: Kind) -> f64 {
+    match kind {
+        Kind::Albedo => 1.0,
+        Kind::Illuminant => MITSUBA_Y_NORMALIZATION,
+    }
 }
 
 fn constant(v: f64, at: &super::tree::Location) -> Result<SceneSpectrum, LoadError> {
