@@ -227,8 +227,8 @@ fn point_directional_and_spot_lights_read_as_mitsuba_places_them() {
 fn emitters_prism_does_not_follow_are_errors_with_their_line() {
     let cases = [
         (
-            r#"<emitter type="spot"><texture name="texture" type="checkerboard"/></emitter>"#,
-            "texture",
+            r#"<emitter type="spot"><rgb name="texture" value="0.5"/></emitter>"#,
+            "'texture' must be a texture",
         ),
         (
             r#"<emitter type="point"><point name="position" value="0, 0, 0"/>
@@ -300,4 +300,37 @@ fn an_area_emitters_bitmap_radiance_is_the_bitmaps_reflectance_spectrum() {
     }
     assert!(values[0] != values[1] && values[1] != values[2]);
     assert!(matches!(s.geometry.lights[0], LightDesc::Area { .. }));
+}
+
+/// A spot light's texture fills the cutoff cone: the axis looks at its centre, and a
+/// direction at the cutoff angle along the light's +x at the right edge (u = 1).
+#[test]
+fn a_spot_projects_its_texture_over_the_cutoff_cone() {
+    let png = std::fs::read(format!(
+        "{}/../scenes/mitsuba/textures/colours.png",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let s = scene(
+        r#"<emitter type="spot"><float name="cutoff_angle" value="30"/>
+             <texture name="texture" type="bitmap"><string name="filename" value="c.png"/></texture>
+             <transform name="to_world"><lookat origin="0, 1, 0" target="0, 0, 0" up="0, 0, 1"/>
+             </transform></emitter>"#,
+        HashMap::from([("c.png", png)]),
+    )
+    .unwrap();
+    let LightDesc::Spot {
+        texture: Some(t), ..
+    } = &s.geometry.lights[0]
+    else {
+        panic!("{:?}", s.geometry.lights[0]);
+    };
+    assert!((t.uv(-Vec3::Y) - Vec2::splat(0.5)).length() < 1e-6);
+    // The light's +x is up × axis: lookat's frame, (0, 0, 1) × (0, -1, 0) = (1, 0, 0).
+    let edge = Vec3::new(30f32.to_radians().sin(), -30f32.to_radians().cos(), 0.0);
+    assert!(
+        (t.uv(edge) - Vec2::new(1.0, 0.5)).length() < 1e-5,
+        "{}",
+        t.uv(edge)
+    );
 }
