@@ -1,6 +1,7 @@
 //! Mitsuba's emitters through the converter: where an environment image's texels light
 //! the sphere (Mitsuba's `uv_to_direction`, written out here as envmap.cpp has it), how
-//! its spectra interpolate, the punctual lights' placement and units, and the errors.
+//! its spectra interpolate, the punctual lights' placement and units, and the errors; and
+//! the sensor's default field of view, which the suite's directional-light scene shows.
 
 use std::collections::HashMap;
 
@@ -333,4 +334,23 @@ fn a_spot_projects_its_texture_over_the_cutoff_cone() {
         "{}",
         t.uv(edge)
     );
+}
+
+/// A sensor without a `fov` has Mitsuba's 50mm focal length on a 36 x 24 mm frame, along
+/// the diagonal (`parse_fov`): 46.8 degrees across the diagonal.
+#[test]
+fn a_sensor_without_fov_has_mitsubas_fifty_millimetres() {
+    let s = read(
+        r#"<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm">
+           <integer name="width" value="30"/><integer name="height" value="40"/></film>
+           </sensor></scene>"#,
+        HashMap::new(),
+    )
+    .unwrap();
+    let crate::camera::Projection::Perspective { yfov } = s.geometry.cameras[0].projection else {
+        panic!();
+    };
+    let tan_diagonal = (36.0f64.hypot(24.0) / 100.0) as f32;
+    let tan_y = tan_diagonal * 40.0 / 50.0;
+    assert!(((yfov / 2.0).tan() - tan_y).abs() < 1e-5, "{yfov}");
 }

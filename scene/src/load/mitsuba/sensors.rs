@@ -34,18 +34,48 @@ pub(crate) fn camera(sensor: &Object) -> Result<(Camera, Film), LoadError> {
     }
     let film = film(sensor)?;
     let aspect = f64::from(film.width) / f64::from(film.height);
-    let fov = number(sensor, "fov")?.unwrap_or(45.0);
+    // Without a `fov`, Mitsuba's `parse_fov` takes a `focal_length` (default 50mm) on a
+    // 36 x 24 mm frame, along its diagonal.
+    let (fov, axis) = match (number(sensor, "fov")?, sensor.property("focal_length")) {
+        (Some(_), Some(p)) => {
+            return Err(error(
+                &p.at,
+                "give either 'fov' or 'focal_length', not both",
+            ));
+        }
+        (Some(fov), None) => {
+            let axis = match sensor.property("fov_axis").map(|p| &p.value) {
+                None => "x".to_string(),
+                Some(Value::String(s)) => s.to_lowercase(),
+                Some(_) => return Err(error(&sensor.at, "fov_axis must be a string")),
+            };
+            (fov, axis)
+        }
+        (None, focal) => {
+            let mm = match focal.map(|p| (&p.value, &p.at)) {
+                None => 50.0,
+                Some((Value::String(f), at)) => f
+                    .trim_end_matches("mm")
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|v| *v > 0.0 && v.is_finite())
+                    .ok_or_else(|| error(at, format!("focal_length \"{f}\": expected <x>mm")))?,
+                Some((_, at)) => return Err(error(at, "focal_length must be a string (<x>mm)")),
+            };
+            let diagonal = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+            (
+                2.0 * (diagonal / (2.0 * mm)).atan().to_degrees(),
+                "diagonal".to_string(),
+            )
+        }
+    };
     if !(fov > 0.0 && fov < 180.0) {
         return Err(error(
             &sensor.at,
             format!("fov {fov} must be in (0, 180) degrees"),
         ));
     }
-    let axis = match sensor.property("fov_axis").map(|p| &p.value) {
-        None => "x".to_string(),
-        Some(Value::String(s)) => s.clone(),
-        Some(_) => return Err(error(&sensor.at, "fov_axis must be a string")),
-    };
     let tan_half = (fov.to_radians() / 2.0).tan();
     // tan(yfov / 2) from the axis the fov is given along (Mitsuba's `fov_axis`).
     let tan_half_y = match axis.as_str() {
