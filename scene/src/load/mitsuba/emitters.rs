@@ -15,7 +15,8 @@
 //!
 //! An emitter's colour is an illuminant, as `get_emissive_texture` makes it in spectral
 //! variants: RGB and plain numbers times D65 (a number v is the colour (v, v, v), and an
-//! absent one 1), spectra as given.
+//! absent one 1), spectra as given in Mitsuba's units (luminance relative to a spectrum
+//! of 1, see [`CIE_Y_NORMALIZATION`]).
 
 use std::sync::Arc;
 
@@ -185,9 +186,21 @@ pub(crate) fn emission(
                 .map_err(|e| error(at, format!("{name}: {e}")))?;
             Ok(SceneSpectrum::Rgb(Arc::new(fitted)))
         }
-        None => spectrum(emitter, name, Kind::Illuminant, 1.0, upsampler),
+        None => Ok(
+            match spectrum(emitter, name, Kind::Illuminant, 1.0, upsampler)? {
+                rgb @ SceneSpectrum::Rgb(_) => rgb,
+                given => SceneSpectrum::Scaled(Arc::new(given), CIE_Y_NORMALIZATION),
+            },
+        ),
     }
 }
+
+/// Mitsuba's films integrate spectra against CIE curves scaled so that a spectrum of 1
+/// everywhere has luminance 1 (`MI_CIE_Y_NORMALIZATION`, include/mitsuba/core/spectrum.h);
+/// prism's integrate them as they are. An emitted spectrum given as values (uniform,
+/// tabulated, a blackbody) is that much brighter in prism unless scaled by it. Colours
+/// under D65 are normalized to luminance 1 in both, so they need nothing.
+const CIE_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 
 /// Mitsuba's `envmap`: its image, scale and frame.
 fn envmap(emitter: &Object, cx: &Context) -> Result<EnvironmentMap, LoadError> {

@@ -354,3 +354,30 @@ fn a_sensor_without_fov_has_mitsubas_fifty_millimetres() {
     let tan_y = tan_diagonal * 40.0 / 50.0;
     assert!(((yfov / 2.0).tan() - tan_y).abs() < 1e-5, "{yfov}");
 }
+
+/// Mitsuba's `direct` integrator is a path of one bounce (the suite's directional-light
+/// scene lights a sphere's underside from the floor otherwise).
+#[test]
+fn a_direct_integrator_is_one_bounce() {
+    let s = scene(r#"<integrator type="direct"/>"#, HashMap::new()).unwrap();
+    assert_eq!(s.max_depth, Some(1));
+    assert!(s.geometry.warnings.iter().all(|w| !w.contains("direct")));
+}
+
+/// A spectrum of 1 everywhere has luminance 1 in Mitsuba's films: an emitted spectrum
+/// given as values is scaled by Mitsuba's CIE Y normalization, a colour is not.
+#[test]
+fn emitted_spectra_are_in_mitsubas_units() {
+    let s = scene(
+        r#"<emitter type="point"><spectrum name="intensity" value="400:2, 700:2"/></emitter>
+           <emitter type="point"><spectrum name="intensity" value="3"/></emitter>"#,
+        HashMap::new(),
+    )
+    .unwrap();
+    let value = |i: usize| match &s.geometry.lights[i] {
+        LightDesc::Point { spectrum, .. } => spectrum.evaluate(550.0),
+        other => panic!("{other:?}"),
+    };
+    assert!((value(0) * 106.750_259_4 - 2.0).abs() < 1e-6);
+    assert!((value(1) * 106.750_259_4 - 3.0).abs() < 1e-6);
+}

@@ -303,6 +303,10 @@ fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<
     let integrator = nested(integrator);
     match integrator.kind.as_str() {
         "path" | "volpath" | "volpathmis" => {}
+        // Mitsuba's `direct` (src/integrators/direct.cpp) sees emitters and lights the
+        // first hit, by MIS of emitter and BSDF samples: the expectation of a path of one
+        // bounce.
+        "direct" => return Ok(Some(1)),
         other => warnings.push(format!(
             "{}: integrator '{other}' renders with prism's path tracer",
             integrator.at
