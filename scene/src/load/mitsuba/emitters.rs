@@ -198,7 +198,7 @@ pub(crate) fn emission(
 /// Mitsuba's films integrate spectra against CIE curves scaled so that a spectrum of 1
 /// everywhere has luminance 1 (`MI_CIE_Y_NORMALIZATION`, include/mitsuba/core/spectrum.h);
 /// prism's integrate them as they are. An emitted spectrum given as values (uniform,
-/// tabulated, a blackbody) is that much brighter in prism unless scaled by it. Colours
+/// tabulated) is that much brighter in prism unless scaled by it. Colours
 /// under D65 are normalized to luminance 1 in both, so they need nothing.
 const CIE_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 
