@@ -182,6 +182,7 @@ fn a_spot_light_in_a_mirror_lights_the_floor_as_its_image_does() {
         cos_outer: 0.45f32.cos(),
         intensity: SceneSpectrum::Constant(2.0),
         falloff: SpotFalloff::Smooth,
+        texture: None,
     });
 }
 

@@ -178,6 +178,7 @@ fn spot_light_direct_lighting_follows_its_cone() {
         cos_outer: outer.cos() as f32,
         intensity: SceneSpectrum::Constant(2.0),
         falloff: SpotFalloff::Smooth,
+        texture: None,
     };
     for off in [0.0, 0.2, 0.35, 0.42, 0.49, 0.6] {
         let film = floor_render(vec![spot(inner, outer, off)], None, LambdaSampler::Visible);

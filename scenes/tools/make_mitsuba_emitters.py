@@ -100,7 +100,7 @@ SCENE = """<!-- Mitsuba's emitters on diffuse shapes, written by scenes/tools/ma
         <rgb name="intensity" value="3, 2.5, 2"/>
     </emitter>
     <emitter type="spot">
-        <rgb name="intensity" value="12, 14, 18"/>
+        <rgb name="intensity" value="60, 70, 90"/>
         <float name="cutoff_angle" value="25"/>
         <float name="beam_width" value="15"/>
         <transform name="to_world">

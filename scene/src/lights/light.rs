@@ -15,7 +15,7 @@ use prism_sampling::warp::{
 use prism_spectrum::{SampledSpectrum, SampledWavelengths};
 
 use super::light_choice::SpectralChoice;
-use super::{EmissionCache, EnvironmentMap};
+use super::{EmissionCache, EnvironmentMap, SpotTexture};
 use crate::geometry::{
     Ray, offset_ray_origin, triangle_area, triangle_normal, triangle_point_error,
 };
@@ -58,6 +58,8 @@ pub enum Light {
         intensity: SceneSpectrum,
         /// How the intensity falls off between the cones.
         falloff: SpotFalloff,
+        /// A texture it projects, multiplying its intensity (None: none).
+        texture: Option<Arc<SpotTexture>>,
     },
     /// A distant light travelling along `direction` with irradiance `irradiance`
     /// (W m^-2 nm^-1) on a surface facing it.
@@ -544,17 +546,24 @@ impl Lights {
                 cos_outer,
                 intensity,
                 falloff,
+                texture,
             } => {
                 let to = *position - p;
                 let d2 = to.length_squared();
                 let distance = d2.sqrt();
                 let wi = to / distance;
                 let falloff = spot_falloff(-wi.dot(*direction), *cos_inner, *cos_outer, *falloff);
+                let mut radiance = intensity.at(wavelengths) * (falloff / d2);
+                if let Some(t) = texture
+                    && falloff > 0.0
+                {
+                    radiance *= t.at(-wi, wavelengths);
+                }
                 LightSample {
                     light: index as u32,
                     wi,
                     distance,
-                    radiance: intensity.at(wavelengths) * (falloff / d2),
+                    radiance,
                     pdf: pmf,
                     delta: true,
                 }
@@ -680,14 +689,19 @@ impl Lights {
                 cos_outer,
                 intensity,
                 falloff,
+                texture,
             } => {
                 let local = uniform_cone(u_direction, *cos_outer);
                 let w = around(*direction, local);
                 let falloff = spot_falloff(local.z, *cos_inner, *cos_outer, *falloff);
-                (
-                    Ray::new(*position, w, f32::INFINITY),
-                    intensity.at(wavelengths) * (falloff / (uniform_cone_pdf(*cos_outer) * pmf)),
-                )
+                let mut beta =
+                    intensity.at(wavelengths) * (falloff / (uniform_cone_pdf(*cos_outer) * pmf));
+                if let Some(t) = texture
+                    && falloff > 0.0
+                {
+                    beta *= t.at(w, wavelengths);
+                }
+                (Ray::new(*position, w, f32::INFINITY), beta)
             }
             Light::Directional {
                 direction,

@@ -8,6 +8,7 @@ mod emission_cache;
 mod environment;
 mod light;
 mod light_choice;
+mod spot_texture;
 
 pub use emission_cache::EmissionCache;
 pub use environment::{
@@ -20,3 +21,4 @@ pub use light::{CausticTarget, EmissionSample, Light, LightSample, Lights, SpotF
 pub type Aim = CausticTarget;
 pub(crate) use light::{light_extent, light_spectrum, solid_angle_sampled, texture_coverage};
 pub use light_choice::MAX_GROUPS;
+pub use spot_texture::SpotTexture;

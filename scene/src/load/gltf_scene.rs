@@ -330,6 +330,7 @@ impl SceneLights {
                     spectrum,
                     scale,
                     falloff,
+                    texture,
                 } => lights.push(Light::Spot {
                     position: *position,
                     direction: *direction,
@@ -337,6 +338,7 @@ impl SceneLights {
                     cos_outer: outer.cos(),
                     intensity: scaled(spectrum, *scale),
                     falloff: *falloff,
+                    texture: texture.clone(),
                 }),
                 LightDesc::Directional {
                     direction,

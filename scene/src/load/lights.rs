@@ -52,6 +52,8 @@ pub enum LightDesc {
         scale: f64,
         /// How the intensity falls off between the cones.
         falloff: crate::lights::SpotFalloff,
+        /// A texture it projects (None: none).
+        texture: Option<std::sync::Arc<crate::lights::SpotTexture>>,
     },
     /// A directional light arriving along -`direction`... with spectral irradiance
     /// (W m^-2 nm^-1) the spectrum times `scale`.
@@ -159,6 +161,7 @@ pub(crate) fn punctual(
                 spectrum,
                 scale,
                 falloff: crate::lights::SpotFalloff::Smooth,
+                texture: None,
             }
         }
     })

@@ -23,7 +23,7 @@ pub use crate::bsdf::Bsdf;
 pub use crate::lights::Aim;
 pub use crate::lights::{
     CausticTarget, DEFAULT_ENVIRONMENT, EmissionCache, EmissionSample, Environment, EnvironmentMap,
-    Light, LightSample, Lights, MAX_GROUPS, SpotFalloff, grey_environment, unit_d65,
+    Light, LightSample, Lights, MAX_GROUPS, SpotFalloff, SpotTexture, grey_environment, unit_d65,
 };
 pub use crate::materials::{
     Alpha, AlphaMode, AnisotropyDesc, ClearcoatDesc, DiffuseTransmissionDesc, IridescenceDesc,

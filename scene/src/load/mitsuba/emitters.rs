@@ -11,11 +11,12 @@
 //!   `direction` or `to_world`'s +z).
 //! - `spot` (`intensity` on the axis, `cutoff_angle` and `beam_width` in degrees, at
 //!   `to_world`'s translation along its +z), with Mitsuba's falloff, linear in angle
-//!   ([`SpotFalloff::LinearAngle`]).
+//!   ([`SpotFalloff::LinearAngle`]), and its projected `texture` ([`SpotTexture`]).
 //!
 //! An emitter's colour is an illuminant, as `get_emissive_texture` makes it in spectral
 //! variants: RGB and plain numbers times D65 (a number v is the colour (v, v, v), and an
-//! absent one 1), spectra as given.
+//! absent one 1), spectra as given in Mitsuba's units (luminance relative to a spectrum
+//! of 1, see [`CIE_Y_NORMALIZATION`]).
 
 use std::sync::Arc;
 
@@ -26,9 +27,9 @@ use super::parse::error;
 use super::shapes::{string, transform};
 use super::spectra::{Kind, spectrum};
 use super::textures::Context;
-use super::tree::{Object, Value};
+use super::tree::{Class, Object, Value};
 use crate::LoadError;
-use crate::lights::{Environment, EnvironmentMap, SpotFalloff};
+use crate::lights::{Environment, EnvironmentMap, SpotFalloff, SpotTexture};
 use crate::load::{LightDesc, LoadedGeometry, Upsampler};
 use crate::textures::SceneSpectrum;
 
@@ -92,15 +93,15 @@ pub(crate) fn emitter(
             Ok(())
         }
         "spot" => {
-            if let Some(c) = emitter.child("texture") {
-                return Err(error(
-                    &c.object.at,
-                    "spot: a projected 'texture' is not read yet",
-                ));
-            }
             only(
                 emitter,
-                &["intensity", "cutoff_angle", "beam_width", "to_world"],
+                &[
+                    "intensity",
+                    "cutoff_angle",
+                    "beam_width",
+                    "to_world",
+                    "texture",
+                ],
             )?;
             let to_world = transform(emitter, "to_world")?;
             let cutoff = angle(emitter, "cutoff_angle")?.unwrap_or(20.0);
@@ -114,6 +115,31 @@ pub(crate) fn emitter(
                     ),
                 ));
             }
+            // Mitsuba reads the texture as any texture (a bitmap's colours as
+            // reflectance spectra), and it multiplies the intensity.
+            if let Some(p) = emitter.property("texture") {
+                return Err(error(
+                    &p.at,
+                    "spot: 'texture' must be a texture (Mitsuba asks for a spatially varying one)",
+                ));
+            }
+            let texture = match emitter.child("texture") {
+                None => None,
+                Some(c) if c.object.class == Class::Texture => {
+                    let texture =
+                        super::textures::spectrum(emitter, "texture", Kind::Albedo, 1.0, cx)?;
+                    let projected =
+                        SpotTexture::new(linear(&to_world), cutoff.to_radians() as f32, texture)
+                            .map_err(|e| error(&c.object.at, format!("spot: {e}")))?;
+                    Some(Arc::new(projected))
+                }
+                Some(c) => {
+                    return Err(error(
+                        &c.object.at,
+                        "spot: 'texture' must be a texture (Mitsuba asks for a spatially varying one)",
+                    ));
+                }
+            };
             out.lights.push(LightDesc::Spot {
                 position: finite_vec(emitter, to_world.w_axis.truncate(), "to_world")?,
                 direction: unit(emitter, axis(&to_world), "to_world's +z")?,
@@ -122,6 +148,7 @@ pub(crate) fn emitter(
                 spectrum: emission(emitter, "intensity", upsampler)?,
                 scale: 1.0,
                 falloff: SpotFalloff::LinearAngle,
+                texture,
             });
             Ok(())
         }
@@ -135,32 +162,22 @@ pub(crate) fn emitter(
     }
 }
 
-/// The emitted spectrum `name` of `emitter` as Mitsuba's spectral variants read it: a
-/// number v or its absence (1) is D65 times v, as the colour (v, v, v) is.
+/// The emitted spectrum `name` of `emitter` as Mitsuba's spectral variants read it
+/// (`Properties::get_texture_impl`): its absence is D65, and the rest as
+/// [`spectrum`] reads an illuminant (a number a grey under D65, a spectrum given as
+/// numbers scaled by Mitsuba's luminance normalization).
 pub(crate) fn emission(
     emitter: &Object,
     name: &str,
     upsampler: &Upsampler,
 ) -> Result<SceneSpectrum, LoadError> {
-    let grey = match emitter.property(name).map(|p| (&p.value, &p.at)) {
-        None if emitter.child(name).is_none() => Some(1.0),
-        Some((Value::Float(v), at)) if !v.is_finite() => {
-            return Err(error(at, format!("{name}: {v} is not a finite number")));
-        }
-        Some((Value::Float(v), _)) => Some(*v),
-        Some((Value::Integer(v), _)) => Some(*v as f64),
-        _ => None,
-    };
-    match grey {
-        Some(v) => {
-            let at = emitter.property(name).map_or(&emitter.at, |p| &p.at);
-            let fitted = upsampler
-                .emission([f64::from(v as f32); 3])
-                .map_err(|e| error(at, format!("{name}: {e}")))?;
-            Ok(SceneSpectrum::Rgb(Arc::new(fitted)))
-        }
-        None => spectrum(emitter, name, Kind::Illuminant, 1.0, upsampler),
+    if emitter.property(name).is_none() && emitter.child(name).is_none() {
+        let fitted = upsampler
+            .emission([1.0; 3])
+            .map_err(|e| error(&emitter.at, format!("{name}: {e}")))?;
+        return Ok(SceneSpectrum::Rgb(Arc::new(fitted)));
     }
+    spectrum(emitter, name, Kind::Illuminant, 1.0, upsampler)
 }
 
 /// Mitsuba's `envmap`: its image, scale and frame.
@@ -181,12 +198,7 @@ fn envmap(emitter: &Object, cx: &Context) -> Result<EnvironmentMap, LoadError> {
         None | Some((Value::Boolean(_), _)) => {}
         Some((_, at)) => return Err(error(at, "'mis_compensation' must be a boolean")),
     }
-    let to_world = transform(emitter, "to_world")?;
-    let frame = Mat3::from_cols(
-        to_world.x_axis.truncate().as_vec3(),
-        to_world.y_axis.truncate().as_vec3(),
-        to_world.z_axis.truncate().as_vec3(),
-    );
+    let frame = linear(&transform(emitter, "to_world")?);
     let bytes = cx.files.read(&name, &emitter.at)?;
     // PNG and JPEG are sRGB-encoded: Mitsuba converts them to linear values first.
     let image = decode(&bytes, false).map_err(|e| error(&emitter.at, format!("{name}: {e}")))?;
@@ -238,6 +250,15 @@ fn exclusive(emitter: &Object, name: &str) -> Result<(), LoadError> {
         )),
         None => Ok(()),
     }
+}
+
+/// The linear part of a transform.
+fn linear(to_world: &DMat4) -> Mat3 {
+    Mat3::from_cols(
+        to_world.x_axis.truncate().as_vec3(),
+        to_world.y_axis.truncate().as_vec3(),
+        to_world.z_axis.truncate().as_vec3(),
+    )
 }
 
 /// The direction `to_world` turns +z into.

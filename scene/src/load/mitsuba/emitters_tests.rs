@@ -1,6 +1,7 @@
 //! Mitsuba's emitters through the converter: where an environment image's texels light
 //! the sphere (Mitsuba's `uv_to_direction`, written out here as envmap.cpp has it), how
-//! its spectra interpolate, the punctual lights' placement and units, and the errors.
+//! its spectra interpolate, the punctual lights' placement and units, and the errors; and
+//! the sensor's default field of view, which the suite's directional-light scene shows.
 
 use std::collections::HashMap;
 
@@ -227,8 +228,8 @@ fn point_directional_and_spot_lights_read_as_mitsuba_places_them() {
 fn emitters_prism_does_not_follow_are_errors_with_their_line() {
     let cases = [
         (
-            r#"<emitter type="spot"><texture name="texture" type="checkerboard"/></emitter>"#,
-            "texture",
+            r#"<emitter type="spot"><rgb name="texture" value="0.5"/></emitter>"#,
+            "'texture' must be a texture",
         ),
         (
             r#"<emitter type="point"><point name="position" value="0, 0, 0"/>
@@ -300,4 +301,83 @@ fn an_area_emitters_bitmap_radiance_is_the_bitmaps_reflectance_spectrum() {
     }
     assert!(values[0] != values[1] && values[1] != values[2]);
     assert!(matches!(s.geometry.lights[0], LightDesc::Area { .. }));
+}
+
+/// A spot light's texture fills the cutoff cone: the axis looks at its centre, and a
+/// direction at the cutoff angle along the light's +x at the right edge (u = 1).
+#[test]
+fn a_spot_projects_its_texture_over_the_cutoff_cone() {
+    let png = std::fs::read(format!(
+        "{}/../scenes/mitsuba/textures/colours.png",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let s = scene(
+        r#"<emitter type="spot"><float name="cutoff_angle" value="30"/>
+             <texture name="texture" type="bitmap"><string name="filename" value="c.png"/></texture>
+             <transform name="to_world"><lookat origin="0, 1, 0" target="0, 0, 0" up="0, 0, 1"/>
+             </transform></emitter>"#,
+        HashMap::from([("c.png", png)]),
+    )
+    .unwrap();
+    let LightDesc::Spot {
+        texture: Some(t), ..
+    } = &s.geometry.lights[0]
+    else {
+        panic!("{:?}", s.geometry.lights[0]);
+    };
+    assert!((t.uv(-Vec3::Y) - Vec2::splat(0.5)).length() < 1e-6);
+    // The light's +x is up × axis: lookat's frame, (0, 0, 1) × (0, -1, 0) = (1, 0, 0).
+    let edge = Vec3::new(30f32.to_radians().sin(), -30f32.to_radians().cos(), 0.0);
+    assert!(
+        (t.uv(edge) - Vec2::new(1.0, 0.5)).length() < 1e-5,
+        "{}",
+        t.uv(edge)
+    );
+}
+
+/// A sensor without a `fov` has Mitsuba's 50mm focal length on a 36 x 24 mm frame, along
+/// the diagonal (`parse_fov`): 46.8 degrees across the diagonal.
+#[test]
+fn a_sensor_without_fov_has_mitsubas_fifty_millimetres() {
+    let s = read(
+        r#"<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm">
+           <integer name="width" value="30"/><integer name="height" value="40"/></film>
+           </sensor></scene>"#,
+        HashMap::new(),
+    )
+    .unwrap();
+    let crate::camera::Projection::Perspective { yfov } = s.geometry.cameras[0].projection else {
+        panic!();
+    };
+    let tan_diagonal = (36.0f64.hypot(24.0) / 100.0) as f32;
+    let tan_y = tan_diagonal * 40.0 / 50.0;
+    assert!(((yfov / 2.0).tan() - tan_y).abs() < 1e-5, "{yfov}");
+}
+
+/// Mitsuba's `direct` integrator is a path of one bounce (the suite's directional-light
+/// scene lights a sphere's underside from the floor otherwise).
+#[test]
+fn a_direct_integrator_is_one_bounce() {
+    let s = scene(r#"<integrator type="direct"/>"#, HashMap::new()).unwrap();
+    assert_eq!(s.max_depth, Some(1));
+    assert!(s.geometry.warnings.iter().all(|w| !w.contains("direct")));
+}
+
+/// A spectrum of 1 everywhere has luminance 1 in Mitsuba's films: an emitted spectrum
+/// given as values is scaled by Mitsuba's CIE Y normalization, a colour is not.
+#[test]
+fn emitted_spectra_are_in_mitsubas_units() {
+    let s = scene(
+        r#"<emitter type="point"><spectrum name="intensity" value="400:2, 700:2"/></emitter>
+           <emitter type="point"><spectrum name="intensity" value="3"/></emitter>"#,
+        HashMap::new(),
+    )
+    .unwrap();
+    let value = |i: usize| match &s.geometry.lights[i] {
+        LightDesc::Point { spectrum, .. } => spectrum.evaluate(550.0),
+        other => panic!("{other:?}"),
+    };
+    assert!((value(0) * 106.750_259_4 - 2.0).abs() < 1e-6);
+    assert!((value(1) * 106.750_259_4 - 3.0).abs() < 1e-6);
 }

@@ -324,6 +324,9 @@ fn integrator(integrator: &Object, warnings: &mut Vec<String>) -> Result<Option<
     }
     match integrator.kind.as_str() {
         "path" | "volpath" | "volpathmis" | "ptracer" => {}
+        // Mitsuba's `direct` (src/integrators/direct.cpp) sees emitters and lights the
+        // first hit, by MIS of emitter and BSDF samples: the expectation of a path of one
+        // bounce.
         "direct" => return Ok(Some(1)),
         other => warnings.push(format!(
             "{}: integrator '{other}' renders with prism's path tracer",
