@@ -18,7 +18,7 @@ use crate::textures::SceneSpectrum;
 /// prism's film integrates radiance against y-bar as it is. An emitter's spectrum given
 /// as numbers is scaled by this to mean in prism what it means in Mitsuba. (An emitter's
 /// colour is upsampled to a spectrum under D65 whose luminance is the colour's already.)
-pub(crate) const MITSUBA_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_062_5;
+pub(crate) const MITSUBA_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 
 /// What an RGB value means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
