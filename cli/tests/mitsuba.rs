@@ -134,7 +134,7 @@ fn bad_mitsuba_files_are_one_line_naming_file_and_line() {
     );
     let unread = write(
         "unread.xml",
-        "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"roughplastic\"/>\n  </shape>\n</scene>\n",
+        "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"hair\"/>\n  </shape>\n</scene>\n",
     );
     let undefined = write(
         "undefined.xml",
