@@ -740,3 +740,61 @@ fn a_camera_inside_a_medium_sees_through_it() {
     let expected = (-sigma * f64::from(radius)).exp();
     assert_image_mean(&film, constant_xyz(expected), "camera inside");
 }
+
+/// Mitsuba's `thindielectric` transmits as a null event that its `volpath` leaves out of
+/// `max_depth` (src/bsdfs/thindielectric.cpp, src/integrators/volpath.cpp): where crossing
+/// sets the medium (Mitsuba's scenes), a path of no bounce sees an emitter through both
+/// walls of a thin-sheet box holding a medium, the sheet (index 1) letting all through.
+#[test]
+fn thin_sheet_crossings_count_no_bounce_where_crossing_sets_the_medium() {
+    let d = 0.5f32;
+    let sigma_a = 0.4;
+    let medium = Medium::new(
+        SceneSpectrum::Constant(sigma_a),
+        SceneSpectrum::Constant(0.0),
+        Phase::henyey_greenstein(0.0).unwrap(),
+        None,
+    )
+    .unwrap();
+    let mut triangles = square_z0(2.0);
+    let mut triangle_material = vec![0, 0];
+    let box_ = slab(3.0, 0.2, 0.2 + d);
+    triangle_material.extend(vec![1; box_.len()]);
+    triangles.extend(box_);
+    let lights = (0..2)
+        .map(|t| Light::Triangle {
+            triangle: t,
+            emission: 0,
+            two_sided: false,
+        })
+        .collect();
+    let mut scene = Scene::new(SceneParts {
+        attributes: Default::default(),
+        triangles,
+        triangle_material,
+        materials: vec![
+            Material::Diffuse {
+                reflectance: SceneSpectrum::Constant(0.0),
+            },
+            Material::ThinDielectric {
+                ior: SceneSpectrum::Constant(1.0),
+            },
+        ],
+        emission: vec![SceneSpectrum::Constant(2.0)],
+        lights,
+        camera: ortho_camera(Vec3::new(0.0, 0.0, 1.0), 0.5),
+        quality: prism_scene::geometry::BvhQuality::Medium,
+    })
+    .unwrap();
+    let sides = prism_scene::medium::Sides {
+        inside: Some(0),
+        outside: None,
+    };
+    scene
+        .set_media(Media::with_sides(vec![medium], vec![None, Some(sides)], None).unwrap())
+        .unwrap();
+    let (film, stats) = render(&scene, &settings(8, 64, 4).max_depth(Some(0))).unwrap();
+    assert_eq!(stats.nonfinite, 0);
+    let expected = constant_xyz(2.0 * (-sigma_a * f64::from(d)).exp());
+    assert_image_mean(&film, expected, "a box of thin sheets at no bounce");
+}

@@ -27,6 +27,7 @@ use prism_sampling::distribution::positive_finite;
 use prism_sampling::stream::{SampleStream, SobolStream};
 use prism_sampling::wavelength::WavelengthPackage;
 use prism_scene::geometry::Ray;
+use prism_scene::materials::Material;
 use prism_scene::medium::Phase;
 use prism_scene::world::EmissionCache;
 use prism_spectrum::SampledWavelengths;
@@ -95,6 +96,13 @@ impl<'a> Integrator<'a> {
         let (mut rays, mut covered, mut interfaces) = (0u64, false, 0u32);
         // The bounce whose first flight has drawn its stratified pair.
         let mut stratified: Option<u32> = None;
+        // Straight crossings of thin sheets that count no bounce: Mitsuba's
+        // `thindielectric` transmits as a null event (`BSDFFlags::Null` in
+        // src/bsdfs/thindielectric.cpp), which its `volpath` leaves out of `max_depth`
+        // (src/integrators/volpath.cpp, `non_null_bsdf`). Only where crossing sets the
+        // medium (Mitsuba's scenes); `walk.depth` still counts them, so that every vertex
+        // draws its own sample dimensions.
+        let mut free_crossings = 0u32;
         loop {
             rays += 1;
             let hit = self.scene.intersect(&walk.ray);
@@ -104,7 +112,7 @@ impl<'a> Integrator<'a> {
             let direction = walk.ray.direction.normalize();
             if let Some(m) = media.current() {
                 let length = hit.map_or(f32::INFINITY, |h| h.t * walk.ray.direction.length());
-                let emits = walk.depth < self.max_depth;
+                let emits = walk.depth - free_crossings < self.max_depth;
                 let medium = self.scene.media().get(m);
                 let origin = walk.ray.origin;
                 // A bounce's first flight takes its first collision from the sample's
@@ -143,7 +151,7 @@ impl<'a> Integrator<'a> {
                     Flight::Fluoresced(p) => (Some(p), Phase::HenyeyGreenstein { g: 0.0 }),
                 };
                 if let Some(p) = p {
-                    if walk.depth >= self.max_depth {
+                    if walk.depth - free_crossings >= self.max_depth {
                         break;
                     }
                     interfaces = 0;
@@ -199,7 +207,12 @@ impl<'a> Integrator<'a> {
             // Whether the ray to this vertex crossed no boundary of a medium.
             let unbounded = std::mem::take(&mut interfaces) == 0;
             absorb(self.scene, &walk.ray, &hit, &walk.transport, &mut walk.beta);
-            if walk.depth >= self.max_depth {
+            let sheet = self.scene.media().crossing_sets()
+                && matches!(self.scene.material(&hit), Material::ThinDielectric { .. });
+            let exhausted = walk.depth - free_crossings >= self.max_depth;
+            // A sheet met with the bounces spent may still be crossed (no bounce), not
+            // reflected off.
+            if exhausted && !sheet {
                 break;
             }
             let here = &mut *stream;
@@ -238,6 +251,10 @@ impl<'a> Integrator<'a> {
             if !positive_finite(pdf) {
                 break;
             }
+            let crossed = sheet && sample.delta && wo.z * sample.wi.z < 0.0;
+            if exhausted && !crossed {
+                break;
+            }
             if REUSE && walk.depth == 0 && unbounded && media.current().is_none() {
                 let material = self.scene.material(&hit);
                 record.first = FirstVertex::recorded(material, hit, frame, wo, &bsdf, &sample, pdf);
@@ -245,6 +262,7 @@ impl<'a> Integrator<'a> {
             if !walk.follow::<FLUORESCENCE>(&hit, &vertex, &sample, pdf, false, sink) {
                 break;
             }
+            free_crossings += u32::from(crossed);
             // Light sampling's density of this direction is the light's, known only where
             // a light is met; its ratio so far is the unidirectional one over the bounce's.
             ratios.r_l = ratios.r_u / pdf;
