@@ -12,6 +12,8 @@
 //! - `spot` (`intensity` on the axis, `cutoff_angle` and `beam_width` in degrees, at
 //!   `to_world`'s translation along its +z), with Mitsuba's falloff, linear in angle
 //!   ([`SpotFalloff::LinearAngle`]), and its projected `texture` ([`SpotTexture`]).
+//! - `projector` (`irradiance`, `scale`, `fov`, `to_world`): a spot light projecting its
+//!   image through a frustum ([`SpotTexture::frustum`], [`SpotFalloff::InverseCosCubed`]).
 //!
 //! An emitter's colour is an illuminant, as `get_emissive_texture` makes it in spectral
 //! variants: RGB and plain numbers times D65 (a number v is the colour (v, v, v), and an
