@@ -174,7 +174,8 @@ pub(crate) fn emitter(
 /// `sample_direction` returns it over dist^2 as pi scale E / (z_local^2 cos theta).
 /// A constant `irradiance` is an illuminant (D65 for an RGB colour); a texture is read as
 /// `bitmap` reads any texture in spectral variants (its colours as reflectance spectra,
-/// with no illuminant), so its spectrum is 1.
+/// with no illuminant), so its spectrum is 1 in Mitsuba's units (over the y-bar
+/// integral, `MITSUBA_Y_NORMALIZATION`).
 fn projector(emitter: &Object, cx: &Context, out: &mut LoadedGeometry) -> Result<(), LoadError> {
     only(
         emitter,
@@ -214,8 +215,9 @@ fn projector(emitter: &Object, cx: &Context, out: &mut LoadedGeometry) -> Result
     };
     let tan_half = glam::Vec2::new((tan_y * aspect) as f32, tan_y as f32);
     let (spectrum, image) = match textured {
+        // Mitsuba's films divide every spectrum by the y-bar integral, a texel's too.
         Some(_) => (
-            SceneSpectrum::Constant(1.0),
+            SceneSpectrum::Constant(super::spectra::MITSUBA_Y_NORMALIZATION),
             super::textures::spectrum(emitter, "irradiance", Kind::Albedo, 1.0, cx)?,
         ),
         None => (
