@@ -227,6 +227,10 @@ pub enum SpotFalloff {
     /// Mitsuba 3's `spot` (`falloff_curve` in src/emitters/spot.cpp): linear in the angle
     /// from the axis, (outer - angle) / (outer - inner), and none at the outer angle itself.
     LinearAngle,
+    /// Mitsuba 3's `projector` (src/emitters/projector.cpp): 1 / cos^3 inside the outer
+    /// cone (the frustum's, which its [`SpotTexture`] clips), the inverse of a pinhole
+    /// camera's importance, so that a constant image lights a plane facing it evenly.
+    InverseCosCubed,
 }
 
 /// The falloff of a spot light at cos `cos` off its axis.
@@ -243,6 +247,8 @@ fn spot_falloff(cos: f32, cos_inner: f32, cos_outer: f32, falloff: SpotFalloff) 
                 0.0
             }
         }
+        SpotFalloff::InverseCosCubed if cos > cos_outer && cos > 0.0 => 1.0 / (cos * cos * cos),
+        SpotFalloff::InverseCosCubed => 0.0,
     }
 }
 
@@ -849,5 +855,21 @@ mod tests {
             |deg: f32| spot_falloff(deg.to_radians().cos(), cutoff.cos(), cutoff.cos(), linear);
         assert_eq!(hard(19.9), 1.0);
         assert_eq!(hard(20.1), 0.0);
+    }
+
+    /// Mitsuba's projector: 1 / cos^3 inside its cone (a plane facing it at distance 1 is
+    /// lit evenly: intensity / distance^2 times cos is constant), nothing outside.
+    #[test]
+    fn a_projectors_intensity_is_inverse_cos_cubed() {
+        let outer = 60f32.to_radians().cos();
+        let f = SpotFalloff::InverseCosCubed;
+        assert_eq!(spot_falloff(1.0, outer, outer, f), 1.0);
+        let c = 45f32.to_radians().cos();
+        assert!((spot_falloff(c, outer, outer, f) - 1.0 / (c * c * c)).abs() < 1e-5);
+        // On the plane z = 1 at angle theta: distance 1 / cos, incidence cos.
+        let irradiance = spot_falloff(c, outer, outer, f) * c * c * c;
+        assert!((irradiance - 1.0).abs() < 1e-5);
+        assert_eq!(spot_falloff(61f32.to_radians().cos(), outer, outer, f), 0.0);
+        assert_eq!(spot_falloff(-0.5, -0.9, -0.9, f), 0.0);
     }
 }

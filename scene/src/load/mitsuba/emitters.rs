@@ -12,6 +12,8 @@
 //! - `spot` (`intensity` on the axis, `cutoff_angle` and `beam_width` in degrees, at
 //!   `to_world`'s translation along its +z), with Mitsuba's falloff, linear in angle
 //!   ([`SpotFalloff::LinearAngle`]), and its projected `texture` ([`SpotTexture`]).
+//! - `projector` (`irradiance`, `scale`, `fov`, `to_world`): a spot light projecting its
+//!   image through a frustum ([`SpotTexture::frustum`], [`SpotFalloff::InverseCosCubed`]).
 //!
 //! An emitter's colour is an illuminant, as `get_emissive_texture` makes it in spectral
 //! variants: RGB and plain numbers times D65 (a number v is the colour (v, v, v), and an
@@ -152,14 +154,93 @@ pub(crate) fn emitter(
             });
             Ok(())
         }
+        "projector" => projector(emitter, cx, out),
         other => Err(error(
             &emitter.at,
             format!(
                 "emitter '{other}' is not read yet (area, constant, envmap, point, \
-                 directional and spot are)"
+                 directional, spot and projector are)"
             ),
         )),
     }
+}
+
+/// Mitsuba 3's `projector` (src/emitters/projector.cpp) as a spot light at `to_world`'s
+/// translation whose [`SpotTexture::frustum`] projects `irradiance` through the
+/// perspective camera's frustum (`fov`, `fov_axis` or `focal_length` as the
+/// `perspective` sensor reads them, the aspect the texture's resolution, 1 for a constant)
+/// and whose intensity in direction w at angle theta from the axis is
+/// pi scale E(uv(w)) / cos^3 theta ([`SpotFalloff::InverseCosCubed`]); Mitsuba's
+/// `sample_direction` returns it over dist^2 as pi scale E / (z_local^2 cos theta).
+/// A constant `irradiance` is an illuminant (D65 for an RGB colour); a texture is read as
+/// `bitmap` reads any texture in spectral variants (its colours as reflectance spectra,
+/// with no illuminant), so its spectrum is 1 in Mitsuba's units (over the y-bar
+/// integral, `MITSUBA_Y_NORMALIZATION`).
+fn projector(emitter: &Object, cx: &Context, out: &mut LoadedGeometry) -> Result<(), LoadError> {
+    only(
+        emitter,
+        &[
+            "irradiance",
+            "scale",
+            "to_world",
+            "fov",
+            "fov_axis",
+            "focal_length",
+        ],
+    )?;
+    let to_world = transform(emitter, "to_world")?;
+    let scale = match emitter.property("scale").map(|p| &p.value) {
+        None => 1.0,
+        Some(Value::Float(v)) => *v,
+        Some(Value::Integer(v)) => *v as f64,
+        Some(_) => return Err(error(&emitter.at, "projector: 'scale' must be a number")),
+    };
+    let textured = emitter
+        .child("irradiance")
+        .filter(|c| c.object.class == Class::Texture);
+    // Mitsuba's `Texture::resolution`: a bitmap's size, (1, 1) for any other texture.
+    let (width, height) = match textured {
+        Some(c) if c.object.kind == "bitmap" => super::textures::bitmap(&c.object, cx)?.0.size(),
+        _ => (1, 1),
+    };
+    let aspect = f64::from(width) / f64::from(height);
+    let tan_y = match super::sensors::perspective(emitter, aspect)? {
+        crate::camera::Projection::Perspective { yfov } => (f64::from(yfov) / 2.0).tan(),
+        _ => {
+            return Err(error(
+                &emitter.at,
+                "projector: expected a perspective field of view",
+            ));
+        }
+    };
+    let tan_half = glam::Vec2::new((tan_y * aspect) as f32, tan_y as f32);
+    let (spectrum, image) = match textured {
+        // Mitsuba's films divide every spectrum by the y-bar integral, a texel's too.
+        Some(_) => (
+            SceneSpectrum::Constant(super::spectra::MITSUBA_Y_NORMALIZATION),
+            super::textures::spectrum(emitter, "irradiance", Kind::Albedo, 1.0, cx)?,
+        ),
+        None => (
+            emission(emitter, "irradiance", cx.upsampler)?,
+            SceneSpectrum::Constant(1.0),
+        ),
+    };
+    let projected = SpotTexture::frustum(linear(&to_world), tan_half, image)
+        .map_err(|e| error(&emitter.at, format!("projector: {e}")))?;
+    // The cone holding the frustum, a little wider so that its corners stay lit; the
+    // frustum itself clips.
+    let outer = (projected.tan_extent().atan() * (1.0 + 1e-4)).min(std::f32::consts::FRAC_PI_2);
+    out.lights.push(LightDesc::Spot {
+        position: finite_vec(emitter, to_world.w_axis.truncate(), "to_world")?,
+        direction: unit(emitter, axis(&to_world), "to_world's +z")?,
+        inner: outer,
+        outer,
+        spectrum,
+        scale: std::f64::consts::PI * scale,
+        falloff: SpotFalloff::InverseCosCubed,
+        texture: Some(Arc::new(projected)),
+    });
+    Ok(())
 }
 
 /// The emitted spectrum `name` of `emitter` as Mitsuba's spectral variants read it

@@ -381,3 +381,109 @@ fn emitted_spectra_are_in_mitsubas_units() {
     assert!((value(0) * 106.750_259_4 - 2.0).abs() < 1e-6);
     assert!((value(1) * 106.750_259_4 - 3.0).abs() < 1e-6);
 }
+
+/// Mitsuba's projector: at `to_world`'s translation along its +z, pi scale times its
+/// irradiance with the 1 / cos^3 falloff, and its image over the frustum of `fov` along x
+/// with the image's aspect (6 x 5 texels), u growing towards the light's -x and v
+/// towards its -y (the perspective camera's film, `perspective_projection`), and nothing
+/// outside the frustum.
+#[test]
+fn a_projector_projects_its_image_through_a_frustum() {
+    let png = std::fs::read(format!(
+        "{}/../scenes/mitsuba/textures/colours.png",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let s = scene(
+        r#"<emitter type="projector"><float name="fov" value="90"/><float name="scale" value="2"/>
+             <texture name="irradiance" type="bitmap"><string name="filename" value="c.png"/></texture>
+             <transform name="to_world"><lookat origin="0, 1, 0" target="0, 0, 0" up="0, 0, 1"/>
+             </transform></emitter>
+           <emitter type="projector"><float name="fov" value="90"/>
+             <rgb name="irradiance" value="0.5"/></emitter>"#,
+        HashMap::from([("c.png", png.clone())]),
+    )
+    .unwrap();
+    let LightDesc::Spot {
+        position,
+        direction,
+        scale,
+        falloff,
+        texture: Some(t),
+        spectrum,
+        outer,
+        ..
+    } = &s.geometry.lights[0]
+    else {
+        panic!("{:?}", s.geometry.lights[0]);
+    };
+    assert_eq!(*position, Vec3::Y);
+    assert!((*direction + Vec3::Y).length() < 1e-6);
+    assert!((scale - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    assert_eq!(*falloff, SpotFalloff::InverseCosCubed);
+    assert!((spectrum.evaluate(550.0) * 106.750_259_4 - 1.0).abs() < 1e-6);
+    // The cone holds the frustum's corner: tan = hypot(1, 5 / 6).
+    assert!(outer.tan() >= 1f32.hypot(5.0 / 6.0));
+    assert!((t.uv(-Vec3::Y) - Vec2::splat(0.5)).length() < 1e-6);
+    // The light's +x is up x axis = (1, 0, 0), +y its up (0, 0, 1); tan_x = 1,
+    // tan_y = 5 / 6.
+    let at = |x: f32, z: f32| Vec3::new(x, -1.0, z).normalize();
+    assert!((t.uv(at(1.0, 0.0)) - Vec2::new(0.0, 0.5)).length() < 1e-5);
+    assert!((t.uv(at(-1.0, 0.0)) - Vec2::new(1.0, 0.5)).length() < 1e-5);
+    assert!((t.uv(at(0.0, 5.0 / 6.0)) - Vec2::new(0.5, 0.0)).length() < 1e-5);
+    // Which texel lights a direction: the image's at that uv, read as the spot reads
+    // its texture (whose uv is 1/2 + 1/2 (x, y) / (z tan 45)); none beyond the frustum.
+    let spot = scene(
+        r#"<emitter type="spot"><float name="cutoff_angle" value="45"/>
+             <texture name="texture" type="bitmap"><string name="filename" value="c.png"/></texture>
+             <transform name="to_world"><lookat origin="0, 1, 0" target="0, 0, 0" up="0, 0, 1"/>
+             </transform></emitter>"#,
+        HashMap::from([("c.png", png)]),
+    )
+    .unwrap();
+    let LightDesc::Spot {
+        texture: Some(spot),
+        ..
+    } = &spot.geometry.lights[0]
+    else {
+        panic!();
+    };
+    let w = SampledWavelengths::new([450.0, 550.0, 650.0, 700.0], [0.01; 4]).unwrap();
+    let mut seen = Vec::new();
+    for uv in [
+        Vec2::new(0.1, 0.1),
+        Vec2::new(0.9, 0.15),
+        Vec2::new(0.3, 0.85),
+    ] {
+        let from_projector = t.at(at(1.0 - 2.0 * uv.x, (1.0 - 2.0 * uv.y) * 5.0 / 6.0), &w);
+        let from_spot = spot.at(at(2.0 * uv.x - 1.0, 2.0 * uv.y - 1.0), &w);
+        assert!((spot.uv(at(2.0 * uv.x - 1.0, 2.0 * uv.y - 1.0)) - uv).length() < 1e-5);
+        for (p, q) in from_projector.0.iter().zip(from_spot.0) {
+            assert!(
+                (p - q).abs() < 1e-5,
+                "{uv}: {from_projector:?} {from_spot:?}"
+            );
+        }
+        seen.push(from_projector.0);
+    }
+    assert!(seen[0] != seen[1] && seen[1] != seen[2]);
+    assert_eq!(t.at(at(1.1, 0.0), &w).0, [0.0; 4]);
+    assert_eq!(t.at(at(0.0, 0.9), &w).0, [0.0; 4]);
+    assert_eq!(t.at(Vec3::Y, &w).0, [0.0; 4]);
+    // A constant irradiance: an illuminant, the image a square of tan 1.
+    let LightDesc::Spot {
+        texture: Some(t),
+        spectrum,
+        scale,
+        ..
+    } = &s.geometry.lights[1]
+    else {
+        panic!("{:?}", s.geometry.lights[1]);
+    };
+    assert!((scale - std::f64::consts::PI).abs() < 1e-12);
+    assert!(spectrum.evaluate(550.0) > 0.0);
+    let ahead = |x: f32, y: f32| Vec3::new(-x, y, 1.0).normalize();
+    assert!((t.uv(ahead(1.0, 1.0)) - Vec2::new(1.0, 0.0)).length() < 1e-5);
+    assert_eq!(t.at(ahead(0.5, 0.5), &w).0, [1.0; 4]);
+    assert_eq!(t.at(ahead(1.01, 0.0), &w).0, [0.0; 4]);
+}

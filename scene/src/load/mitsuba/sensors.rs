@@ -93,7 +93,7 @@ pub(crate) fn camera(
 
 /// A pinhole's projection from `fov` along `fov_axis`, or from `focal_length` (default
 /// "50mm") on a 36 x 24 mm frame's diagonal (Mitsuba's `parse_fov` in `sensor.cpp`).
-fn perspective(sensor: &Object, aspect: f64) -> Result<Projection, LoadError> {
+pub(crate) fn perspective(sensor: &Object, aspect: f64) -> Result<Projection, LoadError> {
     let (fov, axis) = match (number(sensor, "fov")?, sensor.property("focal_length")) {
         (Some(_), Some(p)) => {
             return Err(error(
