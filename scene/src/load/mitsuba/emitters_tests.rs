@@ -253,7 +253,6 @@ fn emitters_prism_does_not_follow_are_errors_with_their_line() {
             r#"<emitter type="envmap"><string name="filename" value="missing.exr"/></emitter>"#,
             "missing.exr",
         ),
-        (r#"<emitter type="projector"/>"#, "projector"),
     ];
     for (xml, expected) in cases {
         let e = scene(xml, one_texel(1.0)).unwrap_err();
