@@ -1,7 +1,7 @@
 //! Stanford PLY meshes as Mitsuba 3's `ply` shape reads them (mitsuba3,
 //! `src/shapes/ply.cpp`): ASCII, binary little endian and binary big endian; positions,
 //! normals, texture coordinates and the other vertex and face properties as named
-//! attributes (`vertex_color`, `face_weight`..., see [`super::ply_header`]). Faces of
+//! attributes (`vertex_color`, `face_weight`..., see `ply_header`). Faces of
 //! more than three corners are cut into a fan from their first corner (Mitsuba reads
 //! only triangles), each triangle keeping its face's attributes. Elements other than
 //! `vertex` and `face` are read past.
