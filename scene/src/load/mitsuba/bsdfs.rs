@@ -563,13 +563,13 @@ pub(crate) fn key(object: &Arc<Object>) -> usize {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::load::LoadOptions;
     use crate::load::mitsuba::{ParseOptions, parse};
 
     /// The material of the one `<bsdf>` in `xml`, or its error's text.
-    fn read(xml: &str) -> Result<Material, String> {
+    pub(in crate::load::mitsuba) fn read(xml: &str) -> Result<Material, String> {
         let none = |name: &str| -> std::io::Result<Vec<u8>> {
             Err(std::io::Error::other(format!("no file {name}")))
         };

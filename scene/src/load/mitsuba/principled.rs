@@ -202,38 +202,13 @@ fn only(bsdf: &Object, known: &[&str]) -> Result<(), LoadError> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::bsdfs::tests::read;
     use super::*;
-    use crate::load::LoadOptions;
-    use crate::load::Upsampler;
-    use crate::load::mitsuba::{ParseOptions, parse};
     use crate::textures::FloatTexture;
 
     /// Whether a number that varies over a surface is the constant `v`.
     fn is(t: &FloatTexture, v: f32) -> bool {
         t.constant() == Some(v)
-    }
-
-    fn read(xml: &str) -> Result<Material, String> {
-        let none = |name: &str| -> std::io::Result<Vec<u8>> {
-            Err(std::io::Error::other(format!("no file {name}")))
-        };
-        let options = ParseOptions {
-            defines: &[],
-            resolve: &none,
-        };
-        let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
-        let parsed = parse(&text, "t.xml", &options).unwrap();
-        let load = LoadOptions::default();
-        let upsampler = Upsampler::new(load.upsampling, load.table.clone()).unwrap();
-        let bsdf = &parsed.scene.children[0].object;
-        let cx = Context {
-            upsampler: &upsampler,
-            files: crate::load::mitsuba::files::Files {
-                resolve: &none,
-                search: &[],
-            },
-        };
-        super::super::bsdfs::material(bsdf, &cx).map_err(|e| e.to_string())
     }
 
     #[test]
